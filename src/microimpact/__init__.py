@@ -1,0 +1,54 @@
+"""microimpact: elastic-plastic impact of micro-particles on surfaces.
+
+The dynamic impact model of Aerosol Sci. Tech. 50(4):321-330 (2016): Hertz
+loading to the limiting contact pressure, Thornton-Ning plastic loading and
+elastic unloading with a flattened contact and a plastic displacement, with
+closed forms for the restitution coefficient, energy loss, contact times and
+time histories.
+
+>>> import microimpact as mi
+>>> pair = mi.ContactPair.sphere_on_flat(radius=2.45e-6, density=1350.0,
+...                                      effective_modulus=1.31e9, limiting_pressure=156e6)
+>>> out = pair.impact(50.0)
+>>> round(float(out.rebound_velocity), 2)  # seed: 36.31 m/s
+36.24
+"""
+
+from . import contact, dynamics, impact, materials
+from .impact import (
+    impact_outcome,
+    restitution_coefficient,
+    thornton_ning_restitution,
+    yield_velocity,
+    yield_velocity_sphere_on_flat,
+)
+from .dynamics import contact_times, deresiewicz_contact_time, ning_loading_time
+from .materials import MATERIALS, Material, effective_mass, effective_modulus, effective_radius, get_material
+from .pair import ContactPair, ImpactResult, LargeStrainWarning
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "ContactPair",
+    "ImpactResult",
+    "LargeStrainWarning",
+    "Material",
+    "MATERIALS",
+    "get_material",
+    "effective_modulus",
+    "effective_radius",
+    "effective_mass",
+    "yield_velocity",
+    "yield_velocity_sphere_on_flat",
+    "impact_outcome",
+    "restitution_coefficient",
+    "thornton_ning_restitution",
+    "contact_times",
+    "deresiewicz_contact_time",
+    "ning_loading_time",
+    "contact",
+    "impact",
+    "dynamics",
+    "materials",
+    "__version__",
+]

@@ -1,0 +1,103 @@
+"""``microimpact impact``: the outcome of impacts at given speeds, as a table or JSON."""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+import warnings
+
+import numpy as np
+
+from ..pair import RESULT_FIELDS, LargeStrainWarning
+from ._common import add_pair_arguments, pair_from_args, parse_values
+
+# (attribute, header, scale to the shown unit, format)
+COLUMNS = [
+    ("velocity", "V [m/s]", 1.0, "{:.4g}"),
+    ("restitution", "e", 1.0, "{:.5f}"),
+    ("rebound_velocity", "V_r [m/s]", 1.0, "{:.4g}"),
+    ("energy_loss", "1-e^2", 1.0, "{:.4f}"),
+    ("max_approach", "alpha* [nm]", 1e9, "{:.5g}"),
+    ("plastic_approach", "alpha_p [nm]", 1e9, "{:.5g}"),
+    ("max_force", "P* [uN]", 1e6, "{:.5g}"),
+    ("unloading_radius", "R_p [um]", 1e6, "{:.4g}"),
+    ("elastic_stage_time", "t1 [ns]", 1e9, "{:.4f}"),
+    ("plastic_stage_time", "t2 [ns]", 1e9, "{:.4f}"),
+    ("loading_time", "t_L [ns]", 1e9, "{:.4f}"),
+    ("unloading_time", "t_U [ns]", 1e9, "{:.4f}"),
+    ("contact_time", "t_c [ns]", 1e9, "{:.4f}"),
+]
+
+
+def register(sub) -> None:
+    p = sub.add_parser(
+        "impact",
+        help="restitution, energy loss, approaches, force and contact times at given speeds",
+        description="Outcome of normal impacts at the given speeds (closed form). "
+        "Speeds: numbers, comma lists or ranges start:stop:count, in m/s.",
+    )
+    p.add_argument("velocities", nargs="+", metavar="V", help="impact speed(s) [m/s], e.g. 30 50 70 or 1:120:12")
+    add_pair_arguments(p)
+    p.add_argument("--json", action="store_true", help="print JSON (SI units) instead of a table")
+    p.set_defaults(func=run)
+
+
+def _fmt(value, scale, fmt):
+    x = float(value) * scale
+    if math.isinf(x):
+        return "inf"
+    return fmt.format(x)
+
+
+def format_table(result) -> str:
+    """The result as an aligned text table; rows outside small strain end with ``*``."""
+    V = np.atleast_1d(result.velocity)
+    cols = {name: np.atleast_1d(getattr(result, name)) for name, *_ in COLUMNS}
+    flags = np.atleast_1d(result.large_strain)
+    rows = [[h for _, h, _, _ in COLUMNS]]
+    for i in range(V.size):
+        row = [_fmt(cols[name][i], scale, fmt) for name, _, scale, fmt in COLUMNS]
+        row[-1] += " *" if flags[i] else ""
+        rows.append(row)
+    widths = [max(len(r[j]) for r in rows) for j in range(len(COLUMNS))]
+    lines = ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in rows]
+    lines.insert(1, "  ".join("-" * w for w in widths))
+    return "\n".join(lines)
+
+
+def run(args) -> int:
+    pair = pair_from_args(args)
+    V = parse_values(args.velocities, "velocity")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", LargeStrainWarning)
+        result = pair.impact(V)
+    flagged = np.atleast_1d(result.large_strain)
+    if args.json:
+        data = {k: np.atleast_1d(v).tolist() for k, v in result.to_dict().items()}
+        doc = {
+            "pair": {
+                "label": pair.label,
+                "effective_modulus": pair.effective_modulus,
+                "effective_radius": pair.effective_radius,
+                "effective_mass": pair.effective_mass,
+                "limiting_pressure": pair.limiting_pressure,
+                "density": pair.density,
+                "yield_velocity": pair.yield_velocity,
+            },
+            "units": {k: u for k, (u, _) in RESULT_FIELDS.items()},
+            "results": data,
+        }
+        json.dump(doc, sys.stdout, indent=2, allow_nan=True)
+        sys.stdout.write("\n")
+    else:
+        print(pair.describe())
+        print()
+        print(format_table(result))
+    if flagged.any():
+        print(
+            f"warning: {int(flagged.sum())} of {flagged.size} impacts (marked *) reach a contact radius "
+            "above 0.3 R*: outside the model's small-strain range",
+            file=sys.stderr,
+        )
+    return 0

@@ -1,0 +1,196 @@
+"""Force-displacement laws of the three contact stages and the yield point.
+
+All functions take array_like arguments and broadcast them against each other
+(numpy rules). Symbols follow the seed paper (Aerosol Sci. Tech. 50(4), 2016)
+and ``THEORY.md``:
+
+``alpha``  relative approach (overlap) of the two centres [m]
+``E*``     effective modulus [Pa], ``R*`` effective radius [m]
+``p_y``    limiting contact pressure [Pa]
+
+Stage 1, Hertz (eqs. 1-4); the yield point (eqs. 5, 7); stage 2, plastic
+loading of Thornton & Ning (1998) (eqs. 6, 8); stage 3, elastic unloading
+with a flattened contact of radius ``R_p`` from a plastic approach
+``alpha_p`` (eqs. 9-11). Normalised forms: eqs. 12-15.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._validation import check_nonnegative, check_positive
+
+__all__ = [
+    "hertz_force",
+    "hertz_contact_radius",
+    "hertz_central_pressure",
+    "yield_contact_radius",
+    "yield_approach",
+    "yield_force",
+    "plastic_loading_force",
+    "loading_force",
+    "equivalent_elastic_force",
+    "unloading_radius",
+    "plastic_approach",
+    "unloading_force",
+    "contact_force",
+    "normalized_loading_force",
+    "normalized_unloading_force",
+]
+
+
+def hertz_force(alpha, effective_modulus, effective_radius):
+    """Hertz normal force ``P = 4/3 E* R*^(1/2) alpha^(3/2)`` [N] (seed eq. 2).
+
+    Parameters
+    ----------
+    alpha : array_like
+        Approach [m], >= 0.
+    effective_modulus : array_like
+        ``E*`` [Pa].
+    effective_radius : array_like
+        ``R*`` [m].
+
+    Examples
+    --------
+    >>> float(hertz_force(1e-8, 1.31e9, 2.45e-6))  # doctest: +ELLIPSIS
+    2.73...e-06
+    """
+    alpha = check_nonnegative("alpha", alpha)
+    return 4.0 / 3.0 * effective_modulus * np.sqrt(effective_radius) * alpha**1.5
+
+
+def hertz_contact_radius(alpha, effective_radius):
+    """Hertz contact radius ``a = (R* alpha)^(1/2)`` [m] (seed eq. 3)."""
+    alpha = check_nonnegative("alpha", alpha)
+    return np.sqrt(effective_radius * alpha)
+
+
+def hertz_central_pressure(alpha, effective_modulus, effective_radius):
+    """Hertz pressure at the contact centre, ``p0 = 3P/(2 pi a^2) = 2 E* a/(pi R*)`` [Pa] (eqs. 1, 4)."""
+    a = hertz_contact_radius(alpha, effective_radius)
+    return 2.0 * effective_modulus * a / (np.pi * effective_radius)
+
+
+def yield_contact_radius(limiting_pressure, effective_modulus, effective_radius):
+    """Contact radius at first yield, ``a_y = pi p_y R* / (2 E*)`` [m] (eq. 4 with ``p0 = p_y``)."""
+    p_y = check_positive("limiting_pressure", limiting_pressure, allow_inf=True)
+    E = check_positive("effective_modulus", effective_modulus)
+    R = check_positive("effective_radius", effective_radius)
+    return np.pi * p_y * R / (2.0 * E)
+
+
+def yield_approach(limiting_pressure, effective_modulus, effective_radius):
+    """Approach at first yield, ``alpha_y = (pi p_y / (2 E*))^2 R*`` [m] (seed eq. 5).
+
+    Examples
+    --------
+    >>> round(float(yield_approach(156e6, 1.31e9, 2.45e-6)) * 1e9, 2)  # nm, silicon case
+    85.73
+    """
+    a_y = yield_contact_radius(limiting_pressure, effective_modulus, effective_radius)
+    return a_y**2 / np.asarray(effective_radius, dtype=float)
+
+
+def yield_force(limiting_pressure, effective_modulus, effective_radius):
+    """Force at first yield, ``P_y = 4/3 E* R*^(1/2) alpha_y^(3/2)`` [N] (seed eq. 7)."""
+    alpha_y = yield_approach(limiting_pressure, effective_modulus, effective_radius)
+    return 4.0 / 3.0 * effective_modulus * np.sqrt(effective_radius) * alpha_y**1.5
+
+
+def plastic_loading_force(alpha, effective_modulus, effective_radius, limiting_pressure):
+    """Plastic loading force ``P = P_y + pi p_y R* (alpha - alpha_y)`` [N] (seed eqs. 6, 8).
+
+    Thornton & Ning (1998): once the central pressure reaches ``p_y`` the force
+    grows linearly with the approach. Valid for ``alpha >= alpha_y``.
+    """
+    alpha = check_nonnegative("alpha", alpha)
+    alpha_y = yield_approach(limiting_pressure, effective_modulus, effective_radius)
+    P_y = yield_force(limiting_pressure, effective_modulus, effective_radius)
+    return P_y + np.pi * limiting_pressure * effective_radius * (alpha - alpha_y)
+
+
+def loading_force(alpha, effective_modulus, effective_radius, limiting_pressure):
+    """Force on the loading path, Hertz up to ``alpha_y`` then plastic (eqs. 2, 8) [N]."""
+    alpha = check_nonnegative("alpha", alpha)
+    alpha_y = yield_approach(limiting_pressure, effective_modulus, effective_radius)
+    elastic = hertz_force(alpha, effective_modulus, effective_radius)
+    with np.errstate(invalid="ignore"):
+        plastic = plastic_loading_force(alpha, effective_modulus, effective_radius, limiting_pressure)
+    return np.where(alpha <= alpha_y, elastic, plastic)
+
+
+def equivalent_elastic_force(max_approach, effective_modulus, effective_radius):
+    """``F_e = 4/3 E* R*^(1/2) alpha*^(3/2)``, the Hertz force at the maximum approach [N] (after eq. 9)."""
+    return hertz_force(max_approach, effective_modulus, effective_radius)
+
+
+def unloading_radius(max_approach, max_force, effective_modulus, effective_radius):
+    """Radius of curvature of the flattened contact, ``R_p = R* F_e / P*`` [m] (seed eq. 9).
+
+    ``R_p >= R*``: plastic loading flattens the contact. For an elastic impact
+    (``P* = F_e``) ``R_p = R*``. Where both forces are zero (no contact), ``R*``.
+    """
+    F_e = equivalent_elastic_force(max_approach, effective_modulus, effective_radius)
+    R = np.asarray(effective_radius, dtype=float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = np.where(np.asarray(max_force) > 0, F_e / max_force, 1.0)
+    return R * ratio
+
+
+def plastic_approach(max_approach, max_force, effective_modulus, effective_radius):
+    """Plastic (unrecoverable) approach ``alpha_p = alpha* (1 - P*/F_e)`` [m] (seed eq. 11)."""
+    alpha_m = np.asarray(max_approach, dtype=float)
+    F_e = equivalent_elastic_force(alpha_m, effective_modulus, effective_radius)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        frac = np.where(F_e > 0, np.asarray(max_force) / F_e, 1.0)
+    return np.maximum(alpha_m * (1.0 - frac), 0.0)
+
+
+def unloading_force(alpha, plastic_approach, unloading_radius, effective_modulus):
+    """Elastic unloading force ``P = 4/3 E* R_p^(1/2) (alpha - alpha_p)^(3/2)`` [N] (seed eq. 10).
+
+    Zero for ``alpha <= alpha_p`` (the bodies have separated).
+    """
+    alpha = np.asarray(alpha, dtype=float)
+    d = np.maximum(alpha - plastic_approach, 0.0)
+    return 4.0 / 3.0 * effective_modulus * np.sqrt(unloading_radius) * d**1.5
+
+
+def contact_force(alpha, effective_modulus, effective_radius, limiting_pressure, max_approach=None):
+    """The whole history-dependent force law [N] (seed eqs. 2, 8, 10).
+
+    With ``max_approach=None`` the contact is loading: Hertz below ``alpha_y``,
+    plastic above (eqs. 2, 8). With the maximum approach ``alpha*`` reached so
+    far, the contact is unloading from ``alpha*``: eq. 10 with ``R_p`` (eq. 9)
+    and ``alpha_p`` (eq. 11) fixed by ``alpha*``.
+    """
+    if max_approach is None:
+        return loading_force(alpha, effective_modulus, effective_radius, limiting_pressure)
+    P_max = loading_force(max_approach, effective_modulus, effective_radius, limiting_pressure)
+    R_p = unloading_radius(max_approach, P_max, effective_modulus, effective_radius)
+    a_p = plastic_approach(max_approach, P_max, effective_modulus, effective_radius)
+    return unloading_force(alpha, a_p, R_p, effective_modulus)
+
+
+def normalized_loading_force(alpha_hat):
+    """Normalised loading force ``P/P_y`` against ``alpha/alpha_y`` (seed eqs. 13, 14).
+
+    ``alpha_hat^(3/2)`` up to 1, then ``(3 alpha_hat - 1)/2``.
+    """
+    a = check_nonnegative("alpha_hat", alpha_hat)
+    return np.where(a <= 1.0, a**1.5, (3.0 * a - 1.0) / 2.0)
+
+
+def normalized_unloading_force(alpha_hat, max_alpha_hat):
+    """Normalised unloading force ``P/P_y`` (seed eq. 15).
+
+    ``(R_p/R*)^(1/2) (alpha_hat - alpha_hat_p)^(3/2)`` with ``R_p/R* = alpha_hat*^(3/2)/P_hat*``
+    and ``alpha_hat_p = alpha_hat* - P_hat*/alpha_hat*^(1/2)``.
+    """
+    a = np.asarray(alpha_hat, dtype=float)
+    am = np.asarray(max_alpha_hat, dtype=float)
+    Pm = normalized_loading_force(am)
+    rp = am**1.5 / Pm
+    ap = am - Pm / np.sqrt(am)
+    return np.sqrt(rp) * np.maximum(a - ap, 0.0) ** 1.5

@@ -1,0 +1,282 @@
+"""Closed-form outcome of a normal elastic-plastic impact (seed eqs. 16-29).
+
+A sphere (or a pair of spheres, through the effective values) meets a surface
+at normal speed ``V``. Below the yield velocity ``V_y`` (eq. 28) the impact is
+Hertzian and perfectly elastic. Above it, with ``v = V / V_y``, the seed's
+normalised solution gives (``^`` means divided by the yield value):
+
+* maximum approach ``alpha^* = (1 + s)/3`` with ``s = ((24 v^2 - 4)/5)^(1/2)`` (eq. 22)
+* maximum force ``P^* = (3 alpha^* - 1)/2 = s/2`` (eq. 14 at ``alpha^*``)
+* plastic approach ``alpha^_p = alpha^* - P^*/alpha^*^(1/2)`` (eq. 11)
+* unloading radius ``R_p/R* = alpha^*^(3/2)/P^*`` (eq. 9)
+* restitution ``e = P^* / (alpha^*^(1/4) v)`` (eqs. 24, 25, 27)
+* fraction of kinetic energy lost ``1 - e^2`` (eq. 29)
+
+Everything depends on ``V`` only through ``v`` once lengths are scaled by
+``alpha_y`` and forces by ``P_y``. The limits ``V -> 0`` (no contact) and
+``V -> inf`` (``e -> 0``) are returned explicitly; ``p_y = inf`` gives the
+"equivalent elastic impact" of the seed's Fig. 7.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._validation import check_positive, check_velocity
+from .contact import yield_approach, yield_force
+
+__all__ = [
+    "LARGE_STRAIN_RATIO",
+    "yield_velocity",
+    "yield_velocity_sphere_on_flat",
+    "elastic_max_approach",
+    "normalized_max_approach",
+    "normalized_max_force",
+    "normalized_plastic_approach",
+    "normalized_unloading_radius",
+    "normalized_restitution",
+    "restitution_coefficient",
+    "thornton_ning_restitution",
+    "energy_loss_fraction",
+    "impact_outcome",
+]
+
+#: Contact radius over effective radius above which the small-strain assumption of
+#: Hertz's theory is no longer good; results beyond it are flagged, not refused.
+LARGE_STRAIN_RATIO = 0.3
+
+
+def _check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure):
+    return (
+        check_positive("effective_modulus", effective_modulus),
+        check_positive("effective_radius", effective_radius),
+        check_positive("effective_mass", effective_mass),
+        check_positive("limiting_pressure", limiting_pressure, allow_inf=True),
+    )
+
+
+def yield_velocity(limiting_pressure, effective_modulus, effective_radius, effective_mass):
+    """Yield velocity [m/s], general energy form: ``1/2 m* V_y^2 = 2/5 P_y alpha_y``.
+
+    The impact speed at which the Hertz pressure at the contact centre just
+    reaches ``p_y`` (Davies 1949; Thornton & Ning 1998). Valid for two spheres
+    with the effective radius and mass. For a sphere on a flat it is the seed's
+    eq. 28 (:func:`yield_velocity_sphere_on_flat`).
+
+    Examples
+    --------
+    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350
+    >>> round(float(yield_velocity(156e6, 1.31e9, 2.45e-6, m)), 3)
+    7.523
+    """
+    E, R, m, p_y = _check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
+    a_y = yield_approach(p_y, E, R)
+    P_y = yield_force(p_y, E, R)
+    return np.sqrt(0.8 * P_y * a_y / m)
+
+
+def yield_velocity_sphere_on_flat(limiting_pressure, effective_modulus, density):
+    """Yield velocity of a sphere on a flat, ``V_y = (pi^4/40)^(1/2) (p_y^5/(E*^4 rho))^(1/2)`` (seed eq. 28).
+
+    ``(pi^4/40)^(1/2) = 1.5605``: the seed prints 1.56. Independent of the radius.
+
+    Parameters
+    ----------
+    limiting_pressure : array_like
+        ``p_y`` [Pa].
+    effective_modulus : array_like
+        ``E*`` [Pa].
+    density : array_like
+        Particle density [kg/m^3].
+
+    Examples
+    --------
+    >>> round(float(yield_velocity_sphere_on_flat(156e6, 1.31e9, 1350.0)), 2)  # seed prints 7.59
+    7.52
+    """
+    p_y = check_positive("limiting_pressure", limiting_pressure, allow_inf=True)
+    E = check_positive("effective_modulus", effective_modulus)
+    rho = check_positive("density", density)
+    return np.sqrt(np.pi**4 / 40.0) * np.sqrt(p_y**5 / (E**4 * rho))
+
+
+def elastic_max_approach(velocity, effective_modulus, effective_radius, effective_mass):
+    """Maximum approach of a purely elastic (Hertz) impact, ``alpha_m = (15 m* V^2 / (16 E* R*^(1/2)))^(2/5)`` [m]."""
+    V = check_velocity("velocity", velocity)
+    return (15.0 * effective_mass * V**2 / (16.0 * effective_modulus * np.sqrt(effective_radius))) ** 0.4
+
+
+def _plastic_v(v):
+    """``v`` clipped to >= 1 so the plastic formulas stay real where the impact is elastic."""
+    return np.maximum(v, 1.0)
+
+
+def normalized_max_approach(v):
+    """``alpha*/alpha_y`` against ``v = V/V_y`` (seed eq. 22; Hertz ``v^(4/5)`` for ``v <= 1``)."""
+    v = check_velocity("v", v)
+    vp = _plastic_v(v)
+    s = np.sqrt((24.0 * vp**2 - 4.0) / 5.0)
+    return np.where(v <= 1.0, v**0.8, (1.0 + s) / 3.0)
+
+
+def normalized_max_force(v):
+    """``P*/P_y = (3 alpha^* - 1)/2`` (seed eq. 14 at the maximum approach; ``v^(6/5)`` for ``v <= 1``)."""
+    v = check_velocity("v", v)
+    vp = _plastic_v(v)
+    return np.where(v <= 1.0, v**1.2, 0.5 * np.sqrt((24.0 * vp**2 - 4.0) / 5.0))
+
+
+def normalized_plastic_approach(v):
+    """``alpha_p/alpha_y = alpha^* - P^*/alpha^*^(1/2)`` (seed eq. 11, normalised); 0 for ``v <= 1``."""
+    A = normalized_max_approach(v)
+    P = normalized_max_force(v)
+    with np.errstate(invalid="ignore"):
+        out = np.where(np.asarray(v) <= 1.0, 0.0, A - P / np.sqrt(A))
+    return np.where(np.isinf(v), np.inf, np.maximum(out, 0.0))
+
+
+def normalized_unloading_radius(v):
+    """``R_p/R* = alpha^*^(3/2)/P^*`` (seed eq. 9, normalised); 1 for ``v <= 1``."""
+    A = normalized_max_approach(v)
+    P = normalized_max_force(v)
+    with np.errstate(invalid="ignore"):
+        out = np.where(np.asarray(v) <= 1.0, 1.0, A**1.5 / P)
+    return np.where(np.isinf(v), np.inf, out)
+
+
+def normalized_restitution(v):
+    """Restitution coefficient against ``v = V/V_y`` (seed eq. 27).
+
+    ``e = P^* / (alpha^*^(1/4) v)`` for ``v > 1``, 1 for ``v <= 1``, 0 at ``v = inf``.
+
+    Examples
+    --------
+    >>> float(normalized_restitution(1.0))
+    1.0
+    >>> round(float(normalized_restitution(1e8) * 1e8**0.25), 3)  # high-speed limit 1.185 v^(-1/4)
+    1.185
+    """
+    v = check_velocity("v", v)
+    vp = _plastic_v(v)
+    s = np.sqrt((24.0 * vp**2 - 4.0) / 5.0)
+    with np.errstate(invalid="ignore"):
+        e = 0.5 * s / (((1.0 + s) / 3.0) ** 0.25 * vp)
+    e = np.where(v <= 1.0, 1.0, e)
+    return np.where(np.isinf(v), 0.0, e)
+
+
+def restitution_coefficient(velocity, yield_velocity):
+    """Restitution coefficient ``e`` of an impact at ``velocity`` [m/s] (seed eq. 27).
+
+    Parameters
+    ----------
+    velocity : array_like
+        Impact speed ``V`` [m/s], >= 0.
+    yield_velocity : array_like
+        ``V_y`` [m/s] (eq. 28 or :func:`yield_velocity`); ``inf`` gives ``e = 1``.
+    """
+    V = check_velocity("velocity", velocity)
+    Vy = check_positive("yield_velocity", yield_velocity, allow_inf=True)
+    with np.errstate(invalid="ignore"):
+        v = np.where(np.isinf(Vy) & ~np.isinf(V), 0.0, V / Vy)
+    return normalized_restitution(np.nan_to_num(v, nan=np.inf))
+
+
+def thornton_ning_restitution(velocity, yield_velocity):
+    """Thornton & Ning's (1998) closed form of the restitution coefficient.
+
+    ``e = (6 3^(1/2)/5)^(1/2) (1 - w^2/6)^(1/2) [w / (w + 2 (6/5 - w^2/5)^(1/2))]^(1/4)``
+    with ``w = V_y/V`` for ``V > V_y``, and 1 otherwise. Written independently of
+    :func:`restitution_coefficient`; the two are algebraically equal (THEORY.md §3).
+    """
+    V = check_velocity("velocity", velocity)
+    Vy = check_positive("yield_velocity", yield_velocity, allow_inf=True)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        w = np.minimum(Vy / V, 1.0)
+        e = (
+            np.sqrt(6.0 * np.sqrt(3.0) / 5.0)
+            * np.sqrt(1.0 - w**2 / 6.0)
+            * (w / (w + 2.0 * np.sqrt(6.0 / 5.0 - w**2 / 5.0))) ** 0.25
+        )
+    return np.where(V <= Vy, 1.0, e)
+
+
+def energy_loss_fraction(restitution):
+    """Fraction of the incident kinetic energy lost to plastic deformation, ``1 - e^2`` (seed eq. 29)."""
+    e = np.asarray(restitution, dtype=float)
+    return 1.0 - e**2
+
+
+def impact_outcome(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure):
+    """Outcome of a normal impact at ``velocity``, in closed form (seed eqs. 5-29).
+
+    All arguments broadcast against each other.
+
+    Parameters
+    ----------
+    velocity : array_like
+        Normal impact speed ``V`` [m/s], >= 0 (``inf`` gives the limits).
+    effective_modulus : array_like
+        ``E*`` [Pa].
+    effective_radius : array_like
+        ``R*`` [m].
+    effective_mass : array_like
+        ``m*`` [kg].
+    limiting_pressure : array_like
+        ``p_y`` [Pa]; ``inf`` makes every impact elastic.
+
+    Returns
+    -------
+    dict of ndarray
+        ``yield_velocity`` [m/s], ``normalized_velocity`` ``V/V_y`` [-],
+        ``elastic`` (bool, ``V <= V_y``), ``restitution`` [-], ``rebound_velocity`` [m/s],
+        ``max_approach`` ``alpha*`` [m], ``plastic_approach`` ``alpha_p`` [m],
+        ``max_force`` ``P*`` [N], ``unloading_radius`` ``R_p`` [m],
+        ``energy_loss`` ``1 - e^2`` [-], ``max_contact_radius`` ``a* = (R* alpha*)^(1/2)`` [m],
+        ``large_strain`` (bool, ``a*/R* > 0.3``).
+    """
+    V = check_velocity("velocity", velocity)
+    E, R, m, p_y = _check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
+    Vy = yield_velocity(p_y, E, R, m)
+    finite_py = np.isfinite(p_y)
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        a_y = np.where(finite_py, yield_approach(np.where(finite_py, p_y, 1.0), E, R), np.inf)
+        P_y = np.where(finite_py, yield_force(np.where(finite_py, p_y, 1.0), E, R), np.inf)
+        # v = V/V_y; an infinite V_y (p_y = inf) makes every finite or infinite V elastic.
+        v = np.where(np.isinf(Vy), 0.0, V / np.where(np.isinf(Vy), 1.0, Vy))
+        elastic = v <= 1.0
+        infinite = np.isinf(v)
+
+        # Elastic branch, dimensional (so p_y = inf works): Hertz at alpha_m.
+        alpha_m = elastic_max_approach(V, E, R, m)
+        F_m = 4.0 / 3.0 * E * np.sqrt(R) * alpha_m**1.5
+
+        # Plastic branch, normalised (eqs. 22, 14, 11, 9, 27).
+        A = normalized_max_approach(np.where(infinite, 1.0, v))
+        Phat = normalized_max_force(np.where(infinite, 1.0, v))
+        sqA = np.sqrt(A)
+        e_pl = Phat / (np.sqrt(sqA) * np.maximum(v, 1.0))
+
+        restitution = np.where(elastic, 1.0, np.where(infinite, 0.0, e_pl))
+        max_approach = np.where(elastic, alpha_m, np.where(infinite, np.inf, a_y * A))
+        max_force = np.where(elastic, F_m, np.where(infinite, np.inf, P_y * Phat))
+        plastic = np.where(elastic, 0.0, np.where(infinite, np.inf, a_y * np.maximum(A - Phat / sqA, 0.0)))
+        R_p = np.where(elastic, R, np.where(infinite, np.inf, R * A * sqA / Phat))
+        rebound = np.where(infinite, np.inf, restitution * V)
+        a_max = np.sqrt(R * max_approach)
+    V_b, Vy_b = np.broadcast_arrays(V, Vy, E, R, m, p_y)[:2]
+    return {
+        "velocity": np.array(V_b, dtype=float),
+        "yield_velocity": np.broadcast_to(Vy_b, restitution.shape).copy(),
+        "normalized_velocity": v,
+        "elastic": elastic,
+        "restitution": restitution,
+        "rebound_velocity": rebound,
+        "max_approach": max_approach,
+        "plastic_approach": plastic,
+        "max_force": max_force,
+        "unloading_radius": R_p,
+        "energy_loss": energy_loss_fraction(restitution),
+        "max_contact_radius": a_max,
+        "large_strain": a_max / R > LARGE_STRAIN_RATIO,
+    }

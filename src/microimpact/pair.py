@@ -1,0 +1,399 @@
+"""The object layer users hold: :class:`ContactPair` and :class:`ImpactResult`.
+
+A :class:`ContactPair` stores the four effective values the model needs
+(``E*``, ``R*``, ``m*``, ``p_y``) and where they came from; every method
+delegates to the vectorized functions of :mod:`microimpact.contact`,
+:mod:`microimpact.impact` and :mod:`microimpact.dynamics`.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, field, fields, replace
+
+import numpy as np
+
+from . import contact, dynamics, impact
+from ._validation import check_positive
+from .materials import DEFAULT_K, PAPER_CASES, Material, effective_modulus, get_material, sphere_mass
+
+__all__ = ["ContactPair", "ImpactResult", "LargeStrainWarning"]
+
+
+class LargeStrainWarning(UserWarning):
+    """The contact radius exceeds the small-strain range of the model (``a/R* > 0.3``)."""
+
+
+def _scalar_or_array(x):
+    x = np.asarray(x)
+    return x[()] if x.ndim == 0 else x
+
+
+# Quantities of an ImpactResult, with units and a short description: used by the
+# CLI table, the sweep's attrs and the CSV headers.
+RESULT_FIELDS: dict[str, tuple[str, str]] = {
+    "velocity": ("m/s", "impact speed V"),
+    "restitution": ("1", "coefficient of restitution e (eq. 27)"),
+    "rebound_velocity": ("m/s", "rebound speed V_r = e V"),
+    "energy_loss": ("1", "fraction of kinetic energy lost, 1 - e^2 (eq. 29)"),
+    "max_approach": ("m", "maximum approach alpha* (eq. 22)"),
+    "plastic_approach": ("m", "plastic (unrecoverable) approach alpha_p (eq. 11)"),
+    "max_force": ("N", "maximum contact force P*"),
+    "unloading_radius": ("m", "curvature radius of the flattened contact R_p (eq. 9)"),
+    "max_contact_radius": ("m", "contact radius at maximum approach a* = (R* alpha*)^(1/2)"),
+    "elastic_stage_time": ("s", "stage 1 (Hertz loading) duration t1 (eq. 20)"),
+    "plastic_stage_time": ("s", "stage 2 (plastic loading) duration t2 (eq. 23)"),
+    "loading_time": ("s", "loading time t_L = t1 + t2 (eq. 32)"),
+    "unloading_time": ("s", "unloading time t_U (eq. 26)"),
+    "contact_time": ("s", "contact time t_c = t_L + t_U (eq. 33)"),
+    "normalized_velocity": ("1", "V / V_y"),
+    "elastic": ("1", "True where V <= V_y (purely elastic impact)"),
+    "large_strain": ("1", "True where a*/R* > 0.3 (outside the small-strain range)"),
+}
+
+
+@dataclass(frozen=True, eq=False)
+class ImpactResult:
+    """Outcome of one or many impacts of a :class:`ContactPair`.
+
+    Every attribute is shaped like the ``velocity`` given to
+    :meth:`ContactPair.impact` (a numpy scalar for a scalar speed). Units: SI.
+
+    Attributes
+    ----------
+    velocity : impact speed ``V`` [m/s]
+    yield_velocity : ``V_y`` [m/s] (eq. 28)
+    restitution : ``e`` [-] (eq. 27)
+    rebound_velocity : ``V_r = e V`` [m/s]
+    energy_loss : ``1 - e^2`` [-] (eq. 29)
+    max_approach : ``alpha*`` [m] (eq. 22)
+    plastic_approach : ``alpha_p`` [m] (eq. 11)
+    max_force : ``P*`` [N]
+    unloading_radius : ``R_p`` [m] (eq. 9)
+    max_contact_radius : ``a*`` [m]
+    elastic_stage_time, plastic_stage_time, loading_time, unloading_time, contact_time : [s]
+        ``t1, t2, t_L, t_U, t_c`` (eqs. 20, 23, 32, 26, 33)
+    normalized_velocity : ``V/V_y`` [-]
+    elastic : bool, ``V <= V_y``
+    large_strain : bool, ``a*/R* > 0.3``: outside the model's small-strain range
+    """
+
+    velocity: np.ndarray
+    yield_velocity: np.ndarray
+    normalized_velocity: np.ndarray
+    elastic: np.ndarray
+    restitution: np.ndarray
+    rebound_velocity: np.ndarray
+    energy_loss: np.ndarray
+    max_approach: np.ndarray
+    plastic_approach: np.ndarray
+    max_force: np.ndarray
+    unloading_radius: np.ndarray
+    max_contact_radius: np.ndarray
+    large_strain: np.ndarray
+    elastic_stage_time: np.ndarray
+    plastic_stage_time: np.ndarray
+    loading_time: np.ndarray
+    unloading_time: np.ndarray
+    contact_time: np.ndarray
+
+    @property
+    def any_large_strain(self) -> bool:
+        """True if any impact lies outside the small-strain range."""
+        return bool(np.any(self.large_strain))
+
+    def to_dict(self) -> dict:
+        """All quantities as a dict of arrays (or scalars)."""
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+    def __len__(self):
+        return int(np.size(self.velocity))
+
+
+@dataclass(frozen=True)
+class ContactPair:
+    """A particle and the body it hits, reduced to the model's effective values.
+
+    Most users build one with :meth:`sphere_on_flat`, :meth:`from_materials` or
+    :meth:`two_spheres`.
+
+    Parameters
+    ----------
+    effective_modulus : float
+        ``E*`` [Pa].
+    effective_radius : float
+        ``R*`` [m].
+    effective_mass : float
+        ``m*`` [kg].
+    limiting_pressure : float
+        ``p_y`` [Pa]; ``inf`` makes every impact elastic.
+    density : float, optional
+        Particle density [kg/m^3], when known (sphere on flat).
+    label : str
+        A name for tables and legends.
+    particle, surface : Material, optional
+        Where the effective values came from.
+
+    Examples
+    --------
+    >>> import microimpact as mi
+    >>> pair = mi.ContactPair.sphere_on_flat(radius=2.45e-6, density=1350.0,
+    ...                                      effective_modulus=1.31e9, limiting_pressure=156e6)
+    >>> round(float(pair.yield_velocity), 2)
+    7.52
+    >>> out = pair.impact([30.0, 50.0, 70.0])
+    >>> out.restitution.round(3)
+    array([0.813, 0.725, 0.67 ])
+    """
+
+    effective_modulus: float
+    effective_radius: float
+    effective_mass: float
+    limiting_pressure: float
+    density: float | None = None
+    label: str = ""
+    particle: Material | None = field(default=None, compare=False)
+    surface: Material | None = field(default=None, compare=False)
+
+    def __post_init__(self):
+        for name in ("effective_modulus", "effective_radius", "effective_mass"):
+            object.__setattr__(self, name, float(check_positive(name, getattr(self, name))))
+        object.__setattr__(
+            self,
+            "limiting_pressure",
+            float(check_positive("limiting_pressure", self.limiting_pressure, allow_inf=True)),
+        )
+        if self.density is not None:
+            object.__setattr__(self, "density", float(check_positive("density", self.density)))
+
+    # ----------------------------------------------------------------- constructors
+    @staticmethod
+    def _limiting_pressure(limiting_pressure, k, yield_strength, particle=None, surface=None):
+        if limiting_pressure is not None:
+            if yield_strength is not None or k is not None:
+                raise ValueError(
+                    "limiting_pressure was given together with k/yield_strength; give one or the other"
+                )
+            return limiting_pressure
+        k = DEFAULT_K if k is None else float(check_positive("k", k))
+        if yield_strength is None:
+            known = [m.yield_strength for m in (particle, surface) if m is not None and m.yield_strength]
+            if not known:
+                raise ValueError(
+                    "limiting_pressure is needed: give limiting_pressure=..., or yield_strength=... "
+                    "(p_y = k * Y), or a material with a yield strength"
+                )
+            yield_strength = min(known)  # the softer body yields first
+        return k * float(check_positive("yield_strength", yield_strength))
+
+    @classmethod
+    def sphere_on_flat(
+        cls,
+        radius,
+        density=None,
+        effective_modulus=None,
+        limiting_pressure=None,
+        *,
+        mass=None,
+        yield_strength=None,
+        k=None,
+        label="",
+    ) -> "ContactPair":
+        """A sphere of ``radius`` [m] hitting a flat, fixed surface, from effective values.
+
+        Parameters
+        ----------
+        radius : float
+            Particle radius [m] (``R* = R``).
+        density : float
+            Particle density [kg/m^3]; or give ``mass`` [kg] instead.
+        effective_modulus : float
+            ``E*`` [Pa].
+        limiting_pressure : float
+            ``p_y`` [Pa]; or give ``yield_strength`` ``Y`` [Pa] and optionally ``k``
+            (default :data:`~microimpact.materials.DEFAULT_K` = 2.2): ``p_y = k Y``.
+        """
+        if effective_modulus is None:
+            raise ValueError("effective_modulus is needed for sphere_on_flat (or use from_materials)")
+        radius = float(check_positive("radius", radius))
+        if (density is None) == (mass is None):
+            raise ValueError("give exactly one of density or mass")
+        if density is not None:
+            m = float(sphere_mass(radius, density))
+        else:
+            m = float(check_positive("mass", mass))
+            density = m / (4.0 / 3.0 * math.pi * radius**3)
+        p_y = cls._limiting_pressure(limiting_pressure, k, yield_strength)
+        return cls(effective_modulus, radius, m, p_y, density=density, label=label)
+
+    @classmethod
+    def from_materials(
+        cls,
+        particle,
+        surface,
+        radius,
+        *,
+        limiting_pressure=None,
+        k=None,
+        yield_strength=None,
+        label=None,
+    ) -> "ContactPair":
+        """A sphere of a named material hitting a flat of another.
+
+        Parameters
+        ----------
+        particle, surface : str or Material
+            Names from :data:`~microimpact.materials.MATERIALS` or :class:`Material` objects.
+        radius : float
+            Particle radius [m].
+        limiting_pressure : float, optional
+            ``p_y`` [Pa]. If not given, ``p_y = k Y`` with ``Y`` the smaller yield
+            strength of the two materials (or ``yield_strength``), ``k`` default 2.2.
+
+        Examples
+        --------
+        >>> import microimpact as mi
+        >>> pair = mi.ContactPair.from_materials("nh4fl", "silicon", radius=2.45e-6,
+        ...                                      limiting_pressure=156e6)
+        >>> round(pair.effective_modulus / 1e9, 3)
+        1.309
+        """
+        p, s = get_material(particle), get_material(surface)
+        E = float(effective_modulus(p.youngs_modulus, p.poisson_ratio, s.youngs_modulus, s.poisson_ratio))
+        radius = float(check_positive("radius", radius))
+        m = float(sphere_mass(radius, p.density))
+        p_y = cls._limiting_pressure(limiting_pressure, k, yield_strength, p, s)
+        return cls(E, radius, m, p_y, density=p.density, label=label or f"{p.name} on {s.name}",
+                   particle=p, surface=s)
+
+    @classmethod
+    def two_spheres(
+        cls,
+        material1,
+        material2,
+        radius1,
+        radius2,
+        *,
+        limiting_pressure=None,
+        k=None,
+        yield_strength=None,
+        label=None,
+    ) -> "ContactPair":
+        """Two free spheres colliding head on; ``V`` is then their relative normal speed.
+
+        ``R* = 1/(1/R1 + 1/R2)``, ``m* = 1/(1/m1 + 1/m2)``; the rebound velocity is
+        the relative separation speed ``e V``.
+        """
+        p, s = get_material(material1), get_material(material2)
+        E = float(effective_modulus(p.youngs_modulus, p.poisson_ratio, s.youngs_modulus, s.poisson_ratio))
+        r1 = float(check_positive("radius1", radius1))
+        r2 = float(check_positive("radius2", radius2))
+        m1, m2 = float(sphere_mass(r1, p.density)), float(sphere_mass(r2, s.density))
+        p_y = cls._limiting_pressure(limiting_pressure, k, yield_strength, p, s)
+        return cls(E, 1.0 / (1.0 / r1 + 1.0 / r2), 1.0 / (1.0 / m1 + 1.0 / m2), p_y,
+                   label=label or f"{p.name} sphere on {s.name} sphere", particle=p, surface=s)
+
+    @classmethod
+    def paper_case(cls, name: str = "silicon") -> "ContactPair":
+        """The seed paper's NH4Fl particle (d = 4.9 um) on ``"silicon"`` or ``"mica"`` (Sec. 3.1).
+
+        Examples
+        --------
+        >>> round(ContactPair.paper_case("silicon").yield_velocity, 2)  # seed prints 7.59
+        7.52
+        """
+        key = str(name).lower()
+        if key not in PAPER_CASES:
+            raise ValueError(f"case must be one of {', '.join(PAPER_CASES)}, got {name!r}")
+        c = PAPER_CASES[key]
+        return cls.sphere_on_flat(c["radius"], c["density"], c["effective_modulus"],
+                                  c["limiting_pressure"], label=c["label"])
+
+    def replace(self, **changes) -> "ContactPair":
+        """A copy with some effective values changed (e.g. ``limiting_pressure``)."""
+        return replace(self, **changes)
+
+    def elastic_equivalent(self) -> "ContactPair":
+        """The same pair with no yielding (``p_y = inf``): the seed's "equivalent elastic impact" (Fig. 7)."""
+        return replace(self, limiting_pressure=math.inf, label=(self.label + " (elastic)").strip())
+
+    # ----------------------------------------------------------------- yield point
+    @property
+    def yield_velocity(self) -> float:
+        """``V_y`` [m/s], the speed below which impacts are elastic (eq. 28, general energy form)."""
+        return float(impact.yield_velocity(self.limiting_pressure, self.effective_modulus,
+                                           self.effective_radius, self.effective_mass))
+
+    @property
+    def yield_approach(self) -> float:
+        """``alpha_y`` [m] (eq. 5)."""
+        return float(contact.yield_approach(self.limiting_pressure, self.effective_modulus, self.effective_radius))
+
+    @property
+    def yield_force(self) -> float:
+        """``P_y`` [N] (eq. 7)."""
+        return float(contact.yield_force(self.limiting_pressure, self.effective_modulus, self.effective_radius))
+
+    @property
+    def yield_contact_radius(self) -> float:
+        """``a_y`` [m] (eq. 4)."""
+        return float(contact.yield_contact_radius(self.limiting_pressure, self.effective_modulus,
+                                                  self.effective_radius))
+
+    @property
+    def _args(self):
+        return (self.effective_modulus, self.effective_radius, self.effective_mass, self.limiting_pressure)
+
+    # ----------------------------------------------------------------- force law
+    def force(self, alpha, max_approach=None):
+        """Contact force [N] at approach ``alpha`` [m]: loading, or unloading from ``max_approach``."""
+        return contact.contact_force(alpha, self.effective_modulus, self.effective_radius,
+                                     self.limiting_pressure, max_approach=max_approach)
+
+    # ----------------------------------------------------------------- impact
+    def impact(self, velocity, *, warn: bool = True) -> ImpactResult:
+        """Outcome and contact times of impacts at ``velocity`` [m/s] (scalar or array).
+
+        Issues a :class:`LargeStrainWarning` (unless ``warn=False``) when some
+        impact reaches ``a*/R* > 0.3``; the ``large_strain`` attribute says which.
+        """
+        out = impact.impact_outcome(velocity, *self._args)
+        times = dynamics.contact_times(velocity, *self._args, outcome=out)
+        res = ImpactResult(**{k: _scalar_or_array(v) for k, v in {**out, **times}.items()})
+        if warn and res.any_large_strain:
+            vmin = np.min(np.asarray(res.velocity)[np.asarray(res.large_strain)])
+            warnings.warn(
+                f"contact radius exceeds {impact.LARGE_STRAIN_RATIO} R* from V = {vmin:.4g} m/s: "
+                "outside the small-strain range of the model (results flagged in .large_strain)",
+                LargeStrainWarning,
+                stacklevel=2,
+            )
+        return res
+
+    def restitution(self, velocity):
+        """Restitution coefficient only (eq. 27), the fastest path."""
+        return _scalar_or_array(impact.restitution_coefficient(velocity, self.yield_velocity))
+
+    def ning_loading_time(self) -> float:
+        """Ning's high-speed loading time (eq. 31) [s]."""
+        return float(dynamics.ning_loading_time(self.limiting_pressure, self.effective_radius, self.effective_mass))
+
+    def deresiewicz_contact_time(self, velocity):
+        """Deresiewicz's elastic contact time (eq. 30) [s]."""
+        return _scalar_or_array(dynamics.deresiewicz_contact_time(velocity, self.effective_modulus,
+                                                                  self.effective_radius, self.effective_mass))
+
+    def describe(self) -> str:
+        """A few lines naming the pair's effective values and yield point."""
+        lines = [
+            f"pair: {self.label or 'unnamed'}",
+            f"  E* = {self.effective_modulus:.6g} Pa   R* = {self.effective_radius:.6g} m   "
+            f"m* = {self.effective_mass:.6g} kg   p_y = {self.limiting_pressure:.6g} Pa",
+        ]
+        if math.isfinite(self.limiting_pressure):
+            lines.append(
+                f"  yield: V_y = {self.yield_velocity:.6g} m/s   alpha_y = {self.yield_approach:.6g} m   "
+                f"P_y = {self.yield_force:.6g} N"
+            )
+        return "\n".join(lines)
