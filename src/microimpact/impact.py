@@ -111,11 +111,16 @@ def _plastic_v(v):
     return np.maximum(v, 1.0)
 
 
+def _q(vp):
+    """``q = s/v = ((24 - 4/v^2)/5)^(1/2)``: written so that ``s = v q`` cannot overflow before ``v`` does."""
+    return np.sqrt((24.0 - 4.0 / vp**2) / 5.0)
+
+
 def normalized_max_approach(v):
     """``alpha*/alpha_y`` against ``v = V/V_y`` (seed eq. 22; Hertz ``v^(4/5)`` for ``v <= 1``)."""
     v = check_velocity("v", v)
     vp = _plastic_v(v)
-    s = np.sqrt((24.0 * vp**2 - 4.0) / 5.0)
+    s = vp * _q(vp)
     return np.where(v <= 1.0, v**0.8, (1.0 + s) / 3.0)
 
 
@@ -123,7 +128,7 @@ def normalized_max_force(v):
     """``P*/P_y = (3 alpha^* - 1)/2`` (seed eq. 14 at the maximum approach; ``v^(6/5)`` for ``v <= 1``)."""
     v = check_velocity("v", v)
     vp = _plastic_v(v)
-    return np.where(v <= 1.0, v**1.2, 0.5 * np.sqrt((24.0 * vp**2 - 4.0) / 5.0))
+    return np.where(v <= 1.0, v**1.2, 0.5 * vp * _q(vp))
 
 
 def normalized_plastic_approach(v):
@@ -158,9 +163,10 @@ def normalized_restitution(v):
     """
     v = check_velocity("v", v)
     vp = _plastic_v(v)
-    s = np.sqrt((24.0 * vp**2 - 4.0) / 5.0)
+    q = _q(vp)
     with np.errstate(invalid="ignore"):
-        e = 0.5 * s / (((1.0 + s) / 3.0) ** 0.25 * vp)
+        # e = P^*/(alpha^*^(1/4) v) with P^* = v q / 2: the v cancels.
+        e = 0.5 * q / np.sqrt(np.sqrt((1.0 + vp * q) / 3.0))
     e = np.where(v <= 1.0, 1.0, e)
     return np.where(np.isinf(v), 0.0, e)
 
@@ -255,7 +261,7 @@ def impact_outcome(velocity, effective_modulus, effective_radius, effective_mass
         A = normalized_max_approach(np.where(infinite, 1.0, v))
         Phat = normalized_max_force(np.where(infinite, 1.0, v))
         sqA = np.sqrt(A)
-        e_pl = Phat / (np.sqrt(sqA) * np.maximum(v, 1.0))
+        e_pl = 0.5 * _q(np.maximum(v, 1.0)) / np.sqrt(sqA)  # P^*/(alpha^*^(1/4) v), the v cancelled
 
         restitution = np.where(elastic, 1.0, np.where(infinite, 0.0, e_pl))
         max_approach = np.where(elastic, alpha_m, np.where(infinite, np.inf, a_y * A))
