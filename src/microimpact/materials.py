@@ -203,7 +203,7 @@ def effective_modulus(E1, nu1, E2, nu2):
 
     Examples
     --------
-    >>> round(effective_modulus(1.2e9, 0.3, 163e9, 0.22) / 1e9, 3)
+    >>> round(float(effective_modulus(1.2e9, 0.3, 163e9, 0.22)) / 1e9, 3)
     1.309
     """
     E1 = check_positive("E1", E1)
