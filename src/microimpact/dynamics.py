@@ -16,9 +16,13 @@ available"). They exist (THEORY.md §4):
 
 from __future__ import annotations
 
+from dataclasses import dataclass, fields
+
 import numpy as np
 from scipy import special
+from scipy.integrate import solve_ivp
 
+from . import contact
 from ._validation import check_positive, check_velocity
 from .impact import _check_pair, impact_outcome, yield_velocity
 
@@ -34,6 +38,13 @@ __all__ = [
     "plastic_stage_time",
     "unloading_time",
     "contact_times",
+    "STAGE_NAMES",
+    "HISTORY_COLUMNS",
+    "HISTORY_SCALARS",
+    "impact_history",
+    "hertz_force_along",
+    "ImpactHistory",
+    "integrate_impact",
 ]
 
 #: Complete beta function ``B(2/5, 1/2) = 3.67909...``, the Hertz time integral.
@@ -127,7 +138,8 @@ def elastic_stage_time(velocity, effective_modulus, effective_radius, effective_
 def plastic_stage_time(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure):
     """Duration ``t2`` of stage 2, plastic loading to the maximum approach (seed eq. 23) [s].
 
-    ``(pi/2 - atan2(2 omega alpha_y/3, (V^2 - V_y^2)^(1/2))) / omega``; 0 for ``V <= V_y``;
+    ``(pi/2 - atan2(2 omega alpha_y/3, (V^2 - V_y^2)^(1/2))) / omega``
+    ``= atan2((V^2 - V_y^2)^(1/2), 2 omega alpha_y/3) / omega``; 0 for ``V <= V_y``;
     tends to Ning's loading time (eq. 31) as ``V -> inf``.
     """
     V = check_velocity("velocity", velocity)
@@ -139,7 +151,8 @@ def plastic_stage_time(velocity, effective_modulus, effective_radius, effective_
     a_y = (np.pi * p_fin / (2.0 * E)) ** 2 * R
     with np.errstate(invalid="ignore", over="ignore"):
         v1 = np.sqrt(np.maximum(np.where(plastic, V**2 - Vy**2, 1.0), 0.0))
-        t = (0.5 * np.pi - np.arctan2(2.0 * omega * a_y / 3.0, v1)) / omega
+        # pi/2 - atan2(c, v1) written as atan2(v1, c): no cancellation just above V_y.
+        t = np.arctan2(v1, 2.0 * omega * a_y / 3.0) / omega
     return np.where(plastic, t, 0.0)
 
 
@@ -197,3 +210,542 @@ def contact_times(velocity, effective_modulus, effective_radius, effective_mass,
         "unloading_time": tU,
         "contact_time": tL + tU,
     }
+
+
+# ============================================================================ time histories
+#
+# One impact, from first contact (t = 0) to separation (t = t_c), in closed form
+# (seed eqs. 17-26; THEORY.md section 4):
+#
+# * stage 1, Hertz loading, ``0 <= t <= t1``: with ``T_m = (2/5) B(2/5,1/2) alpha_m / V``
+#   the time a purely elastic impact takes to reach ``alpha_m``, the fraction
+#   ``x = t / T_m = I_u(2/5, 1/2)`` gives ``u = (alpha/alpha_m)^(5/2)`` by inverting the
+#   regularised incomplete beta function; ``dalpha/dt = V (1 - u)^(1/2)`` (eq. 17),
+#   ``P = 4/3 E* R*^(1/2) alpha^(3/2)`` (eq. 2).
+# * stage 2, plastic loading, ``t1 < t <= t_L``: a harmonic oscillation about ``alpha_y/3``,
+#   ``alpha = alpha_y/3 + (alpha* - alpha_y/3) cos(omega (t_L - t))`` (eqs. 18-23),
+#   ``P = pi p_y R* (alpha - alpha_y/3)`` (eq. 8).
+# * stage 3, elastic unloading, ``t_L < t <= t_c``: the time reverse of a Hertz impact
+#   at speed ``V_r`` with radius ``R_p`` and approach ``alpha - alpha_p`` (eqs. 24-26):
+#   ``(t_c - t)/t_U = I_u(2/5, 1/2)``, ``u = ((alpha - alpha_p)/(alpha* - alpha_p))^(5/2)``,
+#   ``dalpha/dt = -V_r (1 - u)^(1/2)``, ``P = P* u^(3/5)`` (eq. 10).
+#
+# Where ``x > 1/2`` the complement ``1 - u = I^-1_{1-x}(1/2, 2/5)`` is inverted instead, so
+# that the velocity near the maximum approach keeps its full relative precision.
+
+#: Stage codes of a history.
+STAGE_NAMES = {
+    0: "no contact (free flight before first contact or after separation)",
+    1: "Hertz loading (eq. 2)",
+    2: "plastic loading (eq. 8)",
+    3: "elastic unloading (eq. 10)",
+}
+
+#: Columns of a history, with units and a short description (CSV headers, CLI).
+HISTORY_COLUMNS: dict[str, tuple[str, str]] = {
+    "time": ("s", "time since first contact t"),
+    "approach": ("m", "approach alpha (negative: a gap, no contact)"),
+    "approach_velocity": ("m/s", "approach velocity dalpha/dt (positive while approaching)"),
+    "force": ("N", "contact force P"),
+    "stage": ("1", "0 no contact, 1 Hertz loading, 2 plastic loading, 3 elastic unloading"),
+}
+
+#: Scalars of a history, with units and a short description.
+HISTORY_SCALARS: dict[str, tuple[str, str]] = {
+    "velocity": ("m/s", "impact speed V"),
+    "rebound_velocity": ("m/s", "rebound speed V_r"),
+    "max_approach": ("m", "maximum approach alpha*"),
+    "plastic_approach": ("m", "plastic approach alpha_p"),
+    "max_force": ("N", "maximum force P*"),
+    "elastic_stage_time": ("s", "stage 1 duration t1"),
+    "plastic_stage_time": ("s", "stage 2 duration t2"),
+    "loading_time": ("s", "loading time t_L = t1 + t2"),
+    "unloading_time": ("s", "unloading time t_U"),
+    "contact_time": ("s", "contact time t_c = t_L + t_U"),
+    "yield_velocity": ("m/s", "yield velocity V_y"),
+    "effective_modulus": ("Pa", "effective modulus E*"),
+    "effective_radius": ("m", "effective radius R*"),
+    "effective_mass": ("kg", "effective mass m*"),
+    "limiting_pressure": ("Pa", "limiting contact pressure p_y"),
+}
+
+
+def _scalar_pair(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure):
+    """Check the inputs of one impact; return them as floats."""
+    out = []
+    names = ("velocity", "effective_modulus", "effective_radius", "effective_mass", "limiting_pressure")
+    for name, value in zip(names, (velocity, effective_modulus, effective_radius, effective_mass,
+                                   limiting_pressure)):
+        if np.ndim(value) != 0:
+            raise ValueError(f"{name} must be a single number for a history, got shape {np.shape(value)}")
+        out.append(value)
+    V = float(check_velocity("velocity", out[0]))
+    if not (0.0 < V < np.inf):
+        raise ValueError(f"velocity must be positive and finite for a history, got {V!r}")
+    E, R, m, p_y = (float(x) for x in _check_pair(*out[1:]))
+    return V, E, R, m, p_y
+
+
+def _time_grid(n, times, boundaries, t_c):
+    """The times of a history: ``times`` as given, or ``n`` uniform points on ``[0, t_c]`` plus the boundaries."""
+    if times is not None:
+        try:
+            t = np.array(times, dtype=float, ndmin=1)
+        except (TypeError, ValueError):
+            raise ValueError(f"times must be an array of numbers, got {times!r}") from None
+        if t.ndim != 1 or t.size == 0:
+            raise ValueError(f"times must be a non-empty 1-d array, got shape {t.shape}")
+        if not np.all(np.isfinite(t)):
+            raise ValueError(f"times must be finite, got {float(t[~np.isfinite(t)][0])!r}")
+        return t
+    if isinstance(n, (bool, np.bool_)) or not isinstance(n, (int, np.integer)) or n < 2:
+        raise ValueError(f"n must be an integer >= 2, got {n!r}")
+    t = np.linspace(0.0, t_c, int(n))
+    t[-1] = t_c
+    return np.union1d(t, [b for b in boundaries if 0.0 < b < t_c])
+
+
+def _stage_of(t, t1, t_L, t_c):
+    """Stage code at each time: 1 on ``[0, t1]``, 2 on ``(t1, t_L]``, 3 on ``(t_L, t_c]``, 0 outside."""
+    stage = np.where(t <= t1, 1, np.where(t <= t_L, 2, 3))
+    return np.where((t < 0.0) | (t > t_c), 0, stage).astype(np.int8)
+
+
+def _hertz_fraction(x, xc):
+    """``u = I^-1_x(2/5, 1/2)`` and ``1 - u``, given ``x`` and its complement ``xc = 1 - x`` (both exact)."""
+    x = np.clip(x, 0.0, 1.0)
+    xc = np.clip(xc, 0.0, 1.0)
+    low = x <= 0.5
+    u_low = special.betaincinv(0.4, 0.5, np.where(low, x, 0.5))
+    w_high = special.betaincinv(0.5, 0.4, np.where(low, 0.5, xc))
+    u = np.where(low, u_low, 1.0 - w_high)
+    w = np.where(low, 1.0 - u_low, w_high)
+    return u, w
+
+
+def _free_flight(t, V, t_c, a_p, V_r):
+    """Approach and velocity outside the contact: ``V t`` before, ``alpha_p - V_r (t - t_c)`` after."""
+    approach = np.where(t < 0.0, V * t, a_p - V_r * (t - t_c))
+    velocity = np.where(t < 0.0, V, -V_r)
+    return approach, velocity
+
+
+def impact_history(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure,
+                   n=1001, times=None):
+    """Time history of one impact in closed form: approach, velocity, force and stage (seed eqs. 17-26).
+
+    Stages 1 (Hertz loading) and 3 (elastic unloading) follow by inverting the
+    incomplete beta function of the contact-time integrals (eqs. 20, 26), stage 2
+    (plastic loading, eq. 8) is a sinusoid about ``alpha_y/3`` (eqs. 21-23). An
+    elastic impact (``V <= V_y``, or ``p_y = inf``: the seed's "equivalent elastic
+    impact") has stages 1 and 3 only, symmetric about ``t_L``.
+
+    Parameters
+    ----------
+    velocity : float
+        Impact speed ``V`` [m/s], positive and finite.
+    effective_modulus, effective_radius, effective_mass, limiting_pressure : float
+        ``E*`` [Pa], ``R*`` [m], ``m*`` [kg], ``p_y`` [Pa] (``inf`` allowed).
+    n : int, optional
+        Number of points spaced uniformly on ``[0, t_c]``; the stage boundaries
+        ``t1`` and ``t_L`` are added to them (so the grid may hold ``n + 2`` points).
+    times : array_like, optional
+        Times [s] since first contact at which to evaluate instead (any order).
+        Outside ``[0, t_c]`` the bodies are apart (stage 0, force 0): the approach is
+        ``V t`` (negative, a gap) before contact and ``alpha_p - V_r (t - t_c)`` after
+        separation, the velocity ``V`` and ``-V_r``.
+
+    Returns
+    -------
+    dict
+        Arrays ``time`` [s], ``approach`` ``alpha`` [m], ``approach_velocity``
+        ``dalpha/dt`` [m/s] (``+V`` at first contact, ``-V_r`` at separation),
+        ``force`` ``P`` [N], ``stage`` (int: 0 no contact, 1 Hertz loading, 2 plastic
+        loading, 3 elastic unloading; a boundary time belongs to the stage it ends),
+        and the scalars of :data:`HISTORY_SCALARS` (``rebound_velocity``,
+        ``max_approach``, ``max_force``, ``loading_time``, ``contact_time``, ...).
+        :class:`ImpactHistory` takes it as keyword arguments.
+
+    Examples
+    --------
+    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350
+    >>> h = impact_history(50.0, 1.31e9, 2.45e-6, m, 156e6, n=5)
+    >>> h["stage"].tolist()
+    [1, 1, 2, 2, 2, 3, 3]
+    >>> round(float(h["approach_velocity"][-1]), 2)  # -V_r; seed: 36.31
+    -36.24
+    """
+    V, E, R, m, p_y = _scalar_pair(velocity, effective_modulus, effective_radius, effective_mass,
+                                   limiting_pressure)
+    out = {k: float(np.asarray(v)) for k, v in
+           impact_outcome(V, E, R, m, p_y).items()}
+    tm = contact_times(V, E, R, m, p_y)
+    t1, t2, t_L, t_U, t_c = (float(tm[k]) for k in ("elastic_stage_time", "plastic_stage_time",
+                                                     "loading_time", "unloading_time", "contact_time"))
+    elastic = bool(out["elastic"])
+    a_star, a_p, P_star, V_r = out["max_approach"], out["plastic_approach"], out["max_force"], \
+        out["rebound_velocity"]
+    alpha_m = (15.0 * m * V**2 / (16.0 * E * np.sqrt(R))) ** 0.4
+    T_m = 0.4 * BETA_25_12 * alpha_m / V  # time of a purely elastic impact to reach alpha_m
+
+    t = _time_grid(n, times, (t1, t_L), t_c)
+    stage = _stage_of(t, t1, t_L, t_c)
+    approach, vel = _free_flight(t, V, t_c, a_p, V_r)
+    force = np.zeros_like(t)
+
+    # Stage 1: Hertz loading (eqs. 2, 17, 20).
+    s1 = stage == 1
+    if elastic:  # x reaches 1 at t_L = T_m
+        u, w = _hertz_fraction(t[s1] / T_m, (t_L - t[s1]) / T_m)
+    else:
+        u, w = _hertz_fraction(t[s1] / T_m, 1.0 - t[s1] / T_m)
+    approach[s1] = alpha_m * u**0.4
+    vel[s1] = V * np.sqrt(w)
+    force[s1] = 4.0 / 3.0 * E * np.sqrt(R) * alpha_m**1.5 * u**0.6
+
+    # Stage 2: plastic loading, harmonic about alpha_y/3 (eqs. 8, 18-23).
+    s2 = stage == 2
+    if np.any(s2):
+        omega = float(plastic_frequency(p_y, R, m))
+        a_y = (np.pi * p_y / (2.0 * E)) ** 2 * R
+        amp = a_star - a_y / 3.0
+        phase = omega * (t_L - t[s2])
+        approach[s2] = a_y / 3.0 + amp * np.cos(phase)
+        vel[s2] = amp * omega * np.sin(phase)
+        force[s2] = np.pi * p_y * R * amp * np.cos(phase)
+
+    # Stage 3: elastic unloading, the time reverse of a Hertz impact at V_r (eqs. 10, 24-26).
+    s3 = stage == 3
+    u, w = _hertz_fraction((t_c - t[s3]) / t_U, (t[s3] - t_L) / t_U)
+    approach[s3] = a_p + (a_star - a_p) * u**0.4
+    vel[s3] = -V_r * np.sqrt(w)
+    force[s3] = P_star * u**0.6
+
+    return {
+        "time": t,
+        "approach": approach,
+        "approach_velocity": vel,
+        "force": force,
+        "stage": stage,
+        "velocity": V,
+        "rebound_velocity": V_r,
+        "max_approach": a_star,
+        "plastic_approach": a_p,
+        "max_force": P_star,
+        "elastic_stage_time": t1,
+        "plastic_stage_time": t2,
+        "loading_time": t_L,
+        "unloading_time": t_U,
+        "contact_time": t_c,
+        "yield_velocity": out["yield_velocity"],
+        "effective_modulus": E,
+        "effective_radius": R,
+        "effective_mass": m,
+        "limiting_pressure": p_y,
+    }
+
+
+def hertz_force_along(history, loading_only=True):
+    """Hertz force ``4/3 E* R*^(1/2) alpha^(3/2)`` evaluated along an elastic-plastic history [N] (eq. 2).
+
+    The seed's Fig. 7 "equivalent Hertz force during the loading process": the
+    force the same approach would need if the contact stayed elastic. It exceeds
+    the actual force once the contact yields (``t > t1``).
+
+    Parameters
+    ----------
+    history : ImpactHistory or dict
+        From :func:`impact_history`, :func:`integrate_impact` or :meth:`ContactPair.history`.
+    loading_only : bool
+        If True (default), NaN outside the loading stages 1 and 2.
+
+    Returns
+    -------
+    ndarray
+        Force [N] at each time of the history.
+    """
+    get = history.get if isinstance(history, dict) else (lambda k: getattr(history, k))
+    alpha = np.maximum(np.asarray(get("approach"), dtype=float), 0.0)
+    F = 4.0 / 3.0 * get("effective_modulus") * np.sqrt(get("effective_radius")) * alpha**1.5
+    if loading_only:
+        stage = np.asarray(get("stage"))
+        F = np.where((stage == 1) | (stage == 2), F, np.nan)
+    return F
+
+
+# ============================================================================ the history object
+
+
+@dataclass(frozen=True, eq=False)
+class ImpactHistory:
+    """Time history of one impact: what :meth:`ContactPair.history` returns.
+
+    Attributes
+    ----------
+    time : ndarray
+        Time since first contact [s].
+    approach : ndarray
+        Approach ``alpha`` [m] (negative outside the contact: a gap).
+    approach_velocity : ndarray
+        ``dalpha/dt`` [m/s]: ``+V`` at first contact, 0 at the maximum approach,
+        ``-V_r`` at separation.
+    force : ndarray
+        Contact force ``P`` [N].
+    stage : ndarray of int
+        0 no contact, 1 Hertz loading, 2 plastic loading, 3 elastic unloading.
+    velocity, rebound_velocity : float
+        Impact speed ``V`` and rebound speed ``V_r`` [m/s].
+    max_approach, plastic_approach : float
+        ``alpha*`` and ``alpha_p`` [m].
+    max_force : float
+        ``P*`` [N].
+    elastic_stage_time, plastic_stage_time, loading_time, unloading_time, contact_time : float
+        ``t1, t2, t_L, t_U, t_c`` [s].
+    yield_velocity : float
+        ``V_y`` [m/s].
+    effective_modulus, effective_radius, effective_mass, limiting_pressure : float
+        The pair [Pa, m, kg, Pa].
+    method : str
+        ``"closed"`` (closed form) or ``"ode"`` (numerical integration).
+    """
+
+    time: np.ndarray
+    approach: np.ndarray
+    approach_velocity: np.ndarray
+    force: np.ndarray
+    stage: np.ndarray
+    velocity: float
+    rebound_velocity: float
+    max_approach: float
+    plastic_approach: float
+    max_force: float
+    elastic_stage_time: float
+    plastic_stage_time: float
+    loading_time: float
+    unloading_time: float
+    contact_time: float
+    yield_velocity: float
+    effective_modulus: float
+    effective_radius: float
+    effective_mass: float
+    limiting_pressure: float
+    method: str = "closed"
+
+    def __post_init__(self):
+        for name in HISTORY_COLUMNS:
+            arr = np.array(getattr(self, name), dtype=np.int8 if name == "stage" else float)
+            arr.setflags(write=False)
+            object.__setattr__(self, name, arr)
+        for name in HISTORY_SCALARS:
+            object.__setattr__(self, name, float(getattr(self, name)))
+
+    @classmethod
+    def from_dict(cls, data: dict, method: str = "closed") -> "ImpactHistory":
+        """Build from the dict of :func:`impact_history` or :func:`integrate_impact` (extra keys ignored)."""
+        keys = [f.name for f in fields(cls) if f.name != "method"]
+        return cls(**{k: data[k] for k in keys}, method=data.get("method", method))
+
+    def __len__(self):
+        return int(self.time.size)
+
+    def to_dict(self) -> dict:
+        """All arrays and scalars as a dict."""
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+    def hertz_force(self):
+        """Hertz force along the loading stages, the seed's Fig. 7 comparison [N]: :func:`hertz_force_along`."""
+        return hertz_force_along(self)
+
+    def to_csv(self, path_or_buffer) -> None:
+        """Write the history as CSV: a header row with units, ``#`` lines with the scalars, then the rows.
+
+        ``path_or_buffer`` is a file name or an open text file. The first line names the
+        columns with their units (``time [s],approach [m],...``); the ``#`` lines that
+        follow give the impact's scalars (``# name = value unit``). Read it back with
+        ``numpy.genfromtxt(f, delimiter=",", names=True)``, ``numpy.loadtxt(f,
+        delimiter=",", skiprows=1)`` or ``pandas.read_csv(f, comment="#")``.
+        """
+        lines = [",".join(f"{name} [{unit}]" for name, (unit, _) in HISTORY_COLUMNS.items())]
+        lines.append(f"# microimpact impact history ({self.method}; seed eqs. 17-26)")
+        for name, (unit, desc) in HISTORY_SCALARS.items():
+            lines.append(f"# {name} = {getattr(self, name):.17g} {unit}  ({desc})")
+        lines.append("# stage: " + "; ".join(f"{k} = {v}" for k, v in STAGE_NAMES.items()))
+        cols = [getattr(self, name) for name in HISTORY_COLUMNS]
+        for row in zip(*cols):
+            lines.append(",".join([*(f"{x:.17g}" for x in row[:-1]), str(int(row[-1]))]))
+        text = "\n".join(lines) + "\n"
+        if hasattr(path_or_buffer, "write"):
+            path_or_buffer.write(text)
+        else:
+            with open(path_or_buffer, "w", encoding="utf-8", newline="") as f:
+                f.write(text)
+
+
+# ============================================================================ Newton's equation, numerically
+
+
+def _event(fun, direction):
+    fun.terminal = True
+    fun.direction = direction
+    return fun
+
+
+def _integrate_phase(rhs, t0, y0, span, events, method, rtol, atol):
+    """Integrate until a terminal event; extend the span if none occurred. Returns (pieces, event index, t, y)."""
+    pieces = []
+    for _ in range(60):
+        sol = solve_ivp(rhs, (t0, t0 + span), y0, method=method, rtol=rtol, atol=atol, events=events,
+                        dense_output=True)
+        if not sol.success:  # pragma: no cover - solver failure
+            raise RuntimeError(f"integration failed: {sol.message}")
+        pieces.append((sol.t[0], sol.t[-1], sol.sol))
+        if sol.status == 1:
+            for i, te in enumerate(sol.t_events):
+                if te.size:
+                    return pieces, i, float(te[0]), np.array(sol.y_events[i][0], dtype=float), sol.nfev
+        t0, y0, span = sol.t[-1], sol.y[:, -1], 2.0 * span
+    raise RuntimeError("integration did not reach the end of the stage")  # pragma: no cover
+
+
+def integrate_impact(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure, *,
+                     rtol=1e-12, atol=1e-14, method="DOP853", n=None, times=None):
+    """One impact by integrating Newton's equation ``m* d2alpha/dt2 = -P`` numerically (seed eqs. 16-26).
+
+    The independent check of the closed forms (:func:`contact_times`,
+    :func:`impact_history`), following the seed's own route. The force is the
+    history-dependent law of :mod:`microimpact.contact`: Hertz (eq. 2) up to the yield
+    approach, plastic loading (eq. 8) up to the maximum approach, then elastic
+    unloading (eq. 10) with ``R_p`` (eq. 9) and ``alpha_p`` (eq. 11) fixed by the
+    maximum approach the integration reached. :func:`scipy.integrate.solve_ivp`
+    locates, with terminal events, the yield (``alpha = alpha_y``), the maximum
+    approach (``dalpha/dt = 0``) and the separation (``alpha = alpha_p``).
+
+    The equation is integrated in scaled variables ``alpha/alpha_m`` and
+    ``t V/alpha_m`` (``alpha_m`` the maximum approach of a purely elastic impact), so
+    that the tolerances act on numbers of order one.
+
+    Parameters
+    ----------
+    velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure : float
+        ``V`` [m/s] (positive, finite), ``E*`` [Pa], ``R*`` [m], ``m*`` [kg], ``p_y`` [Pa].
+    rtol, atol : float
+        Tolerances of the solver (``atol`` on the scaled variables).
+    method : str
+        A :func:`~scipy.integrate.solve_ivp` method; ``"DOP853"`` (default) or ``"Radau"``.
+    n, times : optional
+        If either is given, also return the history on that grid, as :func:`impact_history`.
+
+    Returns
+    -------
+    dict
+        The scalars of :data:`HISTORY_SCALARS` (``elastic_stage_time``,
+        ``plastic_stage_time``, ``loading_time``, ``unloading_time``, ``contact_time``
+        [s], ``max_approach``, ``plastic_approach`` [m], ``max_force`` [N],
+        ``rebound_velocity`` [m/s], ...), ``nfev`` (right-hand-side evaluations),
+        ``method`` = ``"ode"``, and with ``n`` or ``times`` the arrays ``time``,
+        ``approach``, ``approach_velocity``, ``force``, ``stage``.
+    """
+    V, E, R, m, p_y = _scalar_pair(velocity, effective_modulus, effective_radius, effective_mass,
+                                   limiting_pressure)
+    if n is not None or times is not None:  # check the grid before integrating
+        _time_grid(1001 if n is None else n, times, (), 1.0)
+    Vy = float(yield_velocity(p_y, E, R, m))
+    plastic = V > Vy
+    L = (15.0 * m * V**2 / (16.0 * E * np.sqrt(R))) ** 0.4  # length scale alpha_m
+    T = L / V  # time scale
+    F = m * V**2 / L  # force scale
+
+    def hertz(a):
+        return float(contact.hertz_force(max(a, 0.0), E, R))
+
+    def plastic_force(a):
+        return float(contact.plastic_loading_force(max(a, 0.0), E, R, p_y))
+
+    def make_rhs(force):
+        return lambda t, y: [y[1], -force(L * y[0]) / F]
+
+    tm_elastic = 0.4 * BETA_25_12  # scaled time of the elastic loading
+    nfev = 0
+    pieces = []
+
+    # Stage 1: Hertz loading until yield or rest.
+    events = [_event(lambda t, y: y[1], -1)]
+    if plastic:
+        x_y = float(contact.yield_approach(p_y, E, R)) / L
+        events.append(_event(lambda t, y: y[0] - x_y, 1))
+    pc, which, t_ev, y_ev, nf = _integrate_phase(make_rhs(hertz), 0.0, [0.0, 1.0], 1.2 * tm_elastic, events,
+                                                 method, rtol, atol)
+    pieces += [(a, b, s, 1) for a, b, s in pc]
+    nfev += nf
+    t1 = t_ev
+    loading_force = hertz
+    if which == 1:
+        # Stage 2: plastic loading until rest.
+        y_ev[0] = x_y  # the event's own state, exactly on the boundary
+        omega = float(plastic_frequency(p_y, R, m)) * T
+        pc, _, t_ev, y_ev, nf = _integrate_phase(make_rhs(plastic_force), t1, y_ev, 0.6 * np.pi / omega,
+                                                 events[:1], method, rtol, atol)
+        pieces += [(a, b, s, 2) for a, b, s in pc]
+        nfev += nf
+        loading_force = plastic_force
+    t_L = t_ev
+    a_star = L * float(y_ev[0])
+    P_star = loading_force(a_star)
+    R_p = float(contact.unloading_radius(a_star, P_star, E, R))
+    a_p = float(contact.plastic_approach(a_star, P_star, E, R))
+
+    # Stage 3: elastic unloading from the maximum approach until separation.
+    def unloading(a):
+        return float(contact.unloading_force(a, a_p, R_p, E))
+
+    x_p = a_p / L
+    pc, _, t_ev, y_ev, nf = _integrate_phase(make_rhs(unloading), t_L, [a_star / L, 0.0], 1.2 * tm_elastic,
+                                             [_event(lambda t, y: y[0] - x_p, -1)], method, rtol, atol)
+    pieces += [(a, b, s, 3) for a, b, s in pc]
+    nfev += nf
+    t_c = t_ev
+    V_r = -V * float(y_ev[1])
+
+    out = {
+        "velocity": V,
+        "rebound_velocity": V_r,
+        "max_approach": a_star,
+        "plastic_approach": a_p,
+        "max_force": P_star,
+        "elastic_stage_time": T * t1,
+        "plastic_stage_time": T * (t_L - t1),
+        "loading_time": T * t_L,
+        "unloading_time": T * (t_c - t_L),
+        "contact_time": T * t_c,
+        "yield_velocity": Vy,
+        "effective_modulus": E,
+        "effective_radius": R,
+        "effective_mass": m,
+        "limiting_pressure": p_y,
+        "method": "ode",
+        "nfev": nfev,
+    }
+    if n is None and times is None:
+        return out
+
+    t = _time_grid(1001 if n is None else n, times, (T * t1, T * t_L), T * t_c)
+    stage = _stage_of(t, T * t1, T * t_L, T * t_c)
+    approach, vel = _free_flight(t, V, T * t_c, a_p, V_r)
+    force = np.zeros_like(t)
+    tau = t / T
+    force_of = {1: hertz, 2: plastic_force, 3: unloading}
+    for k in (1, 2, 3):
+        idx = np.flatnonzero(stage == k)
+        for a, b, sol, st in pieces:
+            if st != k or idx.size == 0:
+                continue
+            last = b == max(p[1] for p in pieces if p[3] == k)
+            sel = idx[(tau[idx] >= a) & ((tau[idx] <= b) | last)]
+            if sel.size:
+                y = sol(np.clip(tau[sel], a, b))
+                approach[sel] = L * y[0]
+                vel[sel] = V * y[1]
+                force[sel] = [force_of[k](x) for x in approach[sel]]
+            idx = np.setdiff1d(idx, sel)
+    out.update(time=t, approach=approach, approach_velocity=vel, force=force, stage=stage)
+    return out
