@@ -1,0 +1,160 @@
+"""``microimpact sweep``: the impact model over ranges of inputs, written to NetCDF or CSV.
+
+Every swept option takes numbers, comma lists or ranges ``start:stop:count``
+(:func:`~microimpact.cli._common.parse_values`). Two or more values make a
+dimension of the sweep; one value overrides the base pair. The sweep is
+evaluated lazily in dask blocks and streamed to the file, so its size is
+bounded by the disk, not the memory.
+"""
+
+from __future__ import annotations
+
+import pathlib
+import re
+import sys
+
+import numpy as np
+
+from ..materials import PAPER_CASES, list_materials
+from ..pair import ContactPair
+from ._common import parse_float, parse_values
+
+# option dest -> (unit, help); the dest is the sweep() keyword.
+SWEEP_OPTIONS = {
+    "velocity": ("m/s", "impact speed V"),
+    "limiting_pressure": ("Pa", "limiting contact pressure p_y"),
+    "particle_modulus": ("Pa", "particle Young's modulus E1"),
+    "surface_modulus": ("Pa", "surface Young's modulus E2"),
+    "density": ("kg/m^3", "particle density"),
+    "radius": ("m", "particle radius"),
+    "particle_poisson": ("-", "particle Poisson ratio nu1"),
+    "surface_poisson": ("-", "surface Poisson ratio nu2"),
+    "effective_modulus": ("Pa", "effective modulus E* (not with the moduli/Poisson ratios)"),
+}
+
+
+def register(sub) -> None:
+    p = sub.add_parser(
+        "sweep",
+        help="restitution, energy loss and contact times over ranges of inputs, to NetCDF or CSV",
+        description="Evaluate the impact model over every combination of the swept inputs and write "
+        "the labelled result to NetCDF (.nc) or a long CSV table (.csv; one row per point, units in "
+        "the header). Values: numbers, comma lists or ranges start:stop:count (inclusive), e.g. "
+        "--velocity 1:120:500 --limiting-pressure 50e6:250e6:5. Two or more values sweep that "
+        "input; one value overrides the base pair. Moduli with Poisson ratios left out take the "
+        "base pair's materials, or for the paper cases nu = 0.3 and E2 = 150 GPa (the seed's Fig. 4).",
+    )
+    # read -1:120:5 or -1,2 as (bad) values, not as options, so the error names the parameter
+    p._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?([:,].*)?$")
+    g = p.add_argument_group("swept inputs")
+    for dest, (unit, text) in SWEEP_OPTIONS.items():
+        g.add_argument(
+            "--" + dest.replace("_", "-"),
+            dest=dest,
+            nargs="+",
+            metavar="VALUES",
+            required=dest == "velocity",
+            help=f"{text} [{unit}]",
+        )
+    b = p.add_argument_group("base pair", "What the sweep starts from (default: the seed's NH4Fl-on-silicon case).")
+    b.add_argument("--case", choices=sorted(PAPER_CASES), help="one of the seed paper's cases")
+    b.add_argument("--particle", metavar="MATERIAL", help=f"particle material ({', '.join(list_materials())})")
+    b.add_argument("--surface", metavar="MATERIAL", help="surface material (flat); needs --radius")
+    b.add_argument("--yield-strength", metavar="PA",
+                   help="yield strength Y [Pa]: p_y = k Y when --limiting-pressure is not given")
+    b.add_argument("--k", metavar="K", help="p_y / Y (default 2.2)")
+    o = p.add_argument_group("output")
+    o.add_argument("--out", required=True, metavar="FILE", help="FILE.nc (NetCDF) or FILE.csv")
+    o.add_argument("--chunks", metavar="N",
+                   help="block size along each swept dimension (default: about 130 000 points per block)")
+    o.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+    p.set_defaults(func=run)
+
+
+def _base_pair(args, values):
+    if args.case and (args.particle or args.surface):
+        raise ValueError("give --case or --particle/--surface, not both")
+    k = parse_float(args.k, "--k") if args.k is not None else None
+    Y = parse_float(args.yield_strength, "--yield-strength") if args.yield_strength is not None else None
+    if args.particle or args.surface:
+        if not (args.particle and args.surface):
+            raise ValueError("give both --particle and --surface")
+        if "radius" not in values:
+            raise ValueError("--radius is needed with --particle/--surface")
+        p_y = values.get("limiting_pressure")
+        return ContactPair.from_materials(
+            args.particle, args.surface, float(np.atleast_1d(values["radius"])[0]),
+            limiting_pressure=None if p_y is None else float(np.atleast_1d(p_y)[0]),
+            k=k, yield_strength=Y,
+        )
+    pair = ContactPair.paper_case(args.case or "silicon")
+    if Y is not None and "limiting_pressure" not in values:
+        pair = pair.replace(limiting_pressure=ContactPair._limiting_pressure(None, k, Y))
+    elif k is not None and "limiting_pressure" not in values:
+        Y = PAPER_CASES[args.case or "silicon"]["yield_strength"]
+        pair = pair.replace(limiting_pressure=ContactPair._limiting_pressure(None, k, Y))
+    return pair
+
+
+def _chunks(text):
+    if text is None:
+        return "auto"
+    try:
+        n = int(text)
+    except ValueError:
+        raise ValueError(f"--chunks must be a positive integer, got {text!r}") from None
+    if n < 1:
+        raise ValueError(f"--chunks must be a positive integer, got {n}")
+    return n
+
+
+def _count_large_strain(path, kind) -> int:
+    """Points flagged ``large_strain``, read back from the written file (no second evaluation)."""
+    if kind == ".nc":
+        import xarray as xr
+
+        with xr.open_dataset(path) as back:
+            return int(back["large_strain"].sum())
+    import pandas as pd
+
+    total = 0
+    for part in pd.read_csv(path, usecols=["large_strain [1]"], chunksize=1_000_000):
+        total += int(part.iloc[:, 0].sum())
+    return total
+
+
+def run(args) -> int:
+    from ..sweep import sweep, sweep_to_csv, sweep_to_netcdf
+
+    out = pathlib.Path(args.out)
+    kind = out.suffix.lower()
+    if kind not in (".nc", ".csv"):
+        raise ValueError(f"--out must end in .nc (NetCDF) or .csv, got {args.out!r}")
+    values = {}
+    for dest in SWEEP_OPTIONS:
+        texts = getattr(args, dest)
+        if texts is None:
+            continue
+        v = parse_values(texts, "--" + dest.replace("_", "-"))
+        # velocity always becomes a dimension; other inputs only when two or more values are given
+        values[dest] = v if (v.size > 1 or dest == "velocity") else float(v[0])
+    pair = _base_pair(args, values)
+    ds = sweep(**values, base=pair, chunks=_chunks(args.chunks))
+    progress = not args.no_progress
+    npoints = int(np.prod(list(ds.sizes.values()))) if ds.sizes else 1
+    if progress:
+        dims = " x ".join(f"{d} {n}" for d, n in ds.sizes.items())
+        print(f"sweep: {npoints} points ({dims}), {len(ds.data_vars)} variables -> {out}", file=sys.stderr)
+    if kind == ".nc":
+        sweep_to_netcdf(ds, out, progress=progress)
+    else:
+        sweep_to_csv(ds, out, progress=progress)
+    n_large = _count_large_strain(out, kind)
+    if n_large:
+        print(
+            f"warning: {n_large} of {npoints} points reach a contact radius above 0.3 R*: outside the model's "
+            "small-strain range (variable large_strain)",
+            file=sys.stderr,
+        )
+    print(f"wrote {out}")
+    return 0
