@@ -415,6 +415,30 @@ def test_cli_fit_end_to_end(tmp_path, capsys):
     assert doc["conf_int"]["limiting_pressure"] == list(api.conf_int["limiting_pressure"])
 
 
+def test_cli_fit_fig2_layout_draws_the_fitted_curve(tmp_path, capsys, monkeypatch):
+    pytest.importorskip("matplotlib")
+    paper = pytest.importorskip("microimpact.figures.paper")
+    V = SILICON.yield_velocity * np.geomspace(0.5, 12, 12)
+    csv = write(tmp_path, "V,e\n" + "".join(f"{float(v)!r},{float(x)!r}\n" for v, x in zip(V, SILICON.restitution(V))))
+    seen = {}
+    original = paper.plot_restitution
+
+    def spy(pairs, data, *a, **k):
+        seen.update(pairs=pairs, data=data)
+        return original(pairs, data, *a, **k)
+
+    monkeypatch.setattr(paper, "plot_restitution", spy)
+    png = tmp_path / "fig2.png"
+    assert main(["fit", str(csv), "--case", "mica", "--fig2", str(png)]) == 0
+    assert "Fig. 2 layout written" in capsys.readouterr().out
+    (fitted,) = seen["pairs"].values()
+    # data are the silicon case's; mica's E* = 1.30 GPa (not 1.31) needs p_y scaled by (1.30/1.31)^(4/5)
+    assert fitted.yield_velocity == pytest.approx(SILICON.yield_velocity, rel=1e-6)
+    assert fitted.limiting_pressure == pytest.approx(156e6 * (1.30 / 1.31) ** 0.8, rel=1e-6)
+    np.testing.assert_array_equal(seen["data"]["data.csv"][0], V)
+    assert png.stat().st_size > 10_000
+
+
 def test_cli_fit_k_and_modulus(tmp_path, capsys):
     V = SILICON.yield_velocity * np.geomspace(2, 12, 10)
     csv = write(tmp_path, "V,e\n" + "".join(f"{float(v)!r},{float(x)!r}\n" for v, x in zip(V, SILICON.restitution(V))))

@@ -33,6 +33,8 @@ def register(sub) -> None:
     p.add_argument("--relative-sigma", action="store_true",
                    help="treat the sigma column as relative weights (scale by the reduced chi-square)")
     p.add_argument("--plot", metavar="FIT.png", help="write a plot of data, fit, confidence band and residuals")
+    p.add_argument("--fig2", metavar="FILE.png",
+                   help="also draw the fitted curve with the data in the layout of the seed's Fig. 2")
     p.add_argument("--json", action="store_true", help="print JSON (SI units) instead of text")
     p.set_defaults(func=run)
 
@@ -55,6 +57,20 @@ def _yield_strength(args):
     return None
 
 
+def plot_fig2(fit, data, path) -> None:
+    """The fitted curve and the measurements in the layout of the seed's Fig. 2 (log speed axis)."""
+    plt = require("matplotlib.pyplot", "--fig2")
+    from ..figures.paper import plot_restitution
+
+    name, value = next(iter(fit.params.items()))
+    info = FREE_PARAMETERS[name]
+    unit = f" {info['unit']}" if info["unit"] else ""
+    label = f"fit, {info['tex']} = {value * info['scale']:.4g}{unit}"
+    ax = plot_restitution({label: fit.pair}, {data.source or "data": (data.velocity, data.restitution)})
+    ax.figure.savefig(path, dpi=200)
+    plt.close(ax.figure)
+
+
 def run(args) -> int:
     free = [s.strip() for s in args.free.split(",") if s.strip()]
     data = load_restitution_csv(args.data)
@@ -73,10 +89,14 @@ def run(args) -> int:
         ax.set_title(f"{data.source}: {fit.pair.label}", fontsize="medium")
         ax.figure.savefig(args.plot, dpi=200)
         plt.close(ax.figure)
+    if args.fig2:
+        plot_fig2(fit, data, args.fig2)
     if args.json:
         doc = {"data": args.data, **fit.to_dict()}
         if args.plot:
             doc["plot"] = args.plot
+        if args.fig2:
+            doc["fig2"] = args.fig2
         json.dump(doc, sys.stdout, indent=2, allow_nan=True)
         sys.stdout.write("\n")
     else:
@@ -85,8 +105,9 @@ def run(args) -> int:
         print(fit.pair.describe())
         print()
         print(fit.summary())
-        if args.plot:
-            print(f"\nplot written to {args.plot}")
+        for what, path in (("plot", args.plot), ("Fig. 2 layout", args.fig2)):
+            if path:
+                print(f"{what} written to {path}")
     if not fit.success:
         print(f"warning: the fit did not converge: {fit.message}", file=sys.stderr)
     return 0
