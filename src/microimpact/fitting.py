@@ -302,17 +302,17 @@ def _check_data(velocity, restitution, sigma, line_numbers):
     bad = ~(np.isfinite(V) & (V > 0))
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
-        raise ValueError(f"velocity must be positive and finite, got {V[i]!r} ({_where(i, line_numbers)})")
+        raise ValueError(f"velocity must be positive and finite, got {float(V[i])!r} ({_where(i, line_numbers)})")
     bad = ~((e > 0) & (e <= 1))
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
-        raise ValueError(f"restitution must lie in (0, 1], got {e[i]!r} ({_where(i, line_numbers)})")
+        raise ValueError(f"restitution must lie in (0, 1], got {float(e[i])!r} ({_where(i, line_numbers)})")
     if sigma is not None:
         s = np.broadcast_to(np.asarray(sigma, dtype=float), V.shape).copy()
         bad = ~(np.isfinite(s) & (s > 0))
         if bad.any():
             i = int(np.flatnonzero(bad)[0])
-            raise ValueError(f"sigma must be positive and finite, got {s[i]!r} ({_where(i, line_numbers)})")
+            raise ValueError(f"sigma must be positive and finite, got {float(s[i])!r} ({_where(i, line_numbers)})")
         sigma = s
     return V, e, sigma, line_numbers
 
@@ -384,7 +384,9 @@ class _Model:
                 )
             self.ref = rho
         elif name == "yield_velocity":
-            self.ref = pair.yield_velocity if finite_py else 10.0
+            # V_y ~ p_y^(5/2) at fixed E*, m*: vary p_y from this base pair.
+            self.base = pair if finite_py else pair.replace(limiting_pressure=1e8)
+            self.ref = self.base.yield_velocity
         # Every free parameter enters V_y as a power law; a pair with p_y = inf has no
         # finite V_y, so the reference pair takes a nominal finite p_y there.
         self.ref_pair = self.pair_at(0.0) if not finite_py else pair
@@ -402,10 +404,8 @@ class _Model:
             return p.replace(effective_modulus=theta)
         if self.name == "density":
             return p.replace(density=theta, effective_mass=float(sphere_mass(p.effective_radius, theta)))
-        # yield_velocity: V_y ~ p_y^(5/2) at fixed E*, m*.
-        base = self.ref_pair if hasattr(self, "ref_pair") else p.replace(limiting_pressure=1e8)
-        vy0 = base.yield_velocity
-        return base.replace(limiting_pressure=base.limiting_pressure * (theta / vy0) ** 0.4)
+        # yield_velocity
+        return self.base.replace(limiting_pressure=self.base.limiting_pressure * (theta / self.ref) ** 0.4)
 
     def yield_velocity(self, u):
         """``V_y`` [m/s] at ``u``, from the pair (eq. 28, general energy form)."""
