@@ -215,7 +215,7 @@ def _material_defaults(pair):
     E1 = (1.0 - nu**2) / inv if inv > 0 else math.nan
     return (
         {"particle_modulus": E1, "particle_poisson": nu, "surface_modulus": E2, "surface_poisson": nu},
-        f"the base pair has effective values only: nu1 = nu2 = {nu}, E2 = {E2:g} Pa (as the seed's "
+        f"the base pair has effective values only: nu1 = nu2 = {nu}, E2 = {E2 / 1e9:g} GPa (as the seed's "
         f"Fig. 4) and E1 = {E1:.6g} Pa so that E* equals the base pair's {pair.effective_modulus:.6g} Pa",
     )
 

@@ -1,0 +1,378 @@
+"""Sweeps (:mod:`microimpact.sweep`) and the ``microimpact sweep`` command.
+
+A sweep must equal the pointwise results of :meth:`ContactPair.impact`; the
+lazy (dask) path must equal the eager one bit for bit and stay lazy until
+computed; files written by the CLI must read back equal to the API.
+"""
+
+import pickle
+import subprocess
+import sys
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+xr = pytest.importorskip("xarray")
+da = pytest.importorskip("dask.array")
+pd = pytest.importorskip("pandas")
+
+import microimpact as mi  # noqa: E402
+import microimpact.sweep as msweep  # noqa: E402
+from microimpact._optional import MissingExtraError  # noqa: E402
+from microimpact.cli import main  # noqa: E402
+from microimpact.materials import effective_modulus  # noqa: E402
+from microimpact.sweep import SWEEP_VARIABLES, sweep, sweep_to_csv, sweep_to_netcdf  # noqa: E402
+
+# speeds on both sides of V_y (7.52 m/s for silicon), the paper's 30/50/70, 0 and the top of its range
+V = np.array([0.0, 2.0, 7.5, 7.6, 30.0, 50.0, 70.0, 120.0])
+SILICON = mi.ContactPair.paper_case("silicon")
+IMPACT_FIELDS = [f for f in mi.pair.RESULT_FIELDS if f != "velocity"] + ["yield_velocity"]
+
+
+def assert_pointwise(ds, pair, **sel):
+    """Every field of ``pair.impact(V)`` equals the sweep at ``sel``.
+
+    Same formulas, same inputs; numpy's vectorized ``pow`` on arrays may differ from its scalar
+    ``pow`` in the last bit, hence 1e-14 rather than exact equality (infinities must match).
+    """
+    ref = pair.impact(ds.velocity.values, warn=False)
+    point = ds.sel(**sel)
+    for name in IMPACT_FIELDS:
+        got = point[name].broadcast_like(point.restitution).values
+        want = np.broadcast_to(getattr(ref, name), got.shape)
+        if got.dtype == bool:
+            np.testing.assert_array_equal(got, want, err_msg=name)
+        else:
+            np.testing.assert_allclose(got, want, rtol=1e-14, atol=0, err_msg=name)
+    np.testing.assert_allclose(point.effective_modulus.values, pair.effective_modulus, rtol=1e-15)
+    np.testing.assert_allclose(point.effective_mass.values, pair.effective_mass, rtol=1e-15)
+
+
+# --------------------------------------------------------------------------- pointwise equality
+def test_velocity_by_limiting_pressure_is_pointwise():
+    p_y = np.array([50e6, 100e6, 150e6, 200e6, 250e6])  # the seed's Fig. 3
+    ds = sweep(V, limiting_pressure=p_y)
+    assert dict(ds.sizes) == {"velocity": V.size, "limiting_pressure": p_y.size}
+    for p in p_y:
+        assert_pointwise(ds, SILICON.replace(limiting_pressure=p), limiting_pressure=p)
+    assert ds.yield_velocity.dims == ("limiting_pressure",)
+
+
+def test_velocity_by_particle_modulus_follows_fig4_definition():
+    # Fig. 4: E1 = 1.2 ... 21.2 GPa on a surface of E2 = 150 GPa, nu = 0.3 for both
+    E1 = np.array([1.2e9, 6.2e9, 11.2e9, 16.2e9, 21.2e9])
+    ds = sweep(V, particle_modulus=E1)
+    assert "150" in ds.attrs["material_defaults"]
+    for e1 in E1:
+        Estar = float(effective_modulus(e1, 0.3, 150e9, 0.3))
+        pair = mi.ContactPair.sphere_on_flat(2.45e-6, 1350.0, Estar, 156e6)
+        assert_pointwise(ds, pair, particle_modulus=e1)
+    # a stiffer particle: higher E*, lower V_y (eq. 28: V_y ~ E*^-2), lower e at 50 m/s
+    assert np.all(np.diff(ds.yield_velocity.values) < 0)
+    assert np.all(np.diff(ds.restitution.sel(velocity=50.0).values) < 0)
+
+
+def test_derived_particle_modulus_reproduces_base_pair():
+    # A material input given as a scalar switches E* to the material form; with the defaults it is
+    # the base pair's E* again (E1 = 1.2017 GPa for the silicon case, the paper's 1.2 GPa).
+    ds = sweep(V, surface_modulus=150e9)
+    assert float(ds.effective_modulus) == pytest.approx(SILICON.effective_modulus, rel=1e-12)
+    assert "E1 = 1.2016" in ds.attrs["material_defaults"]
+    ref = SILICON.impact(V, warn=False)
+    np.testing.assert_allclose(ds.restitution.values, ref.restitution, rtol=1e-12)
+
+
+def test_density_and_radius_are_pointwise():
+    rho = np.array([1350.0, 2350.0, 3350.0, 4350.0, 5350.0])  # Fig. 5
+    R = np.array([0.5e-6, 2.45e-6, 10e-6])
+    ds = sweep(V, density=rho, radius=R)
+    assert ds.effective_mass.dims == ("density", "radius")
+    assert ds.effective_radius.dims == ("radius",)
+    for r in R:
+        for d in rho:
+            pair = mi.ContactPair.sphere_on_flat(r, d, 1.31e9, 156e6)
+            assert_pointwise(ds, pair, density=d, radius=r)
+    # eq. 28: for a sphere on a flat V_y does not depend on the radius
+    vy = ds.yield_velocity.values
+    np.testing.assert_allclose(vy, np.broadcast_to(vy[:, :1], vy.shape), rtol=1e-13)
+    np.testing.assert_allclose(vy[:, 0], mi.yield_velocity_sphere_on_flat(156e6, 1.31e9, rho), rtol=1e-13)
+
+
+def test_material_base_pair_and_poisson_sweep():
+    base = mi.ContactPair.from_materials("nh4fl", "silicon", radius=2.45e-6, limiting_pressure=156e6)
+    nu2 = np.array([0.1, 0.22, 0.4])
+    ds = sweep(V, surface_poisson=nu2, surface_modulus=61e9, base=base)
+    assert "nh4fl" in ds.attrs["material_defaults"]
+    for nu in nu2:
+        Estar = float(effective_modulus(1.2e9, 0.3, 61e9, nu))
+        assert_pointwise(ds, base.replace(effective_modulus=Estar), surface_poisson=nu)
+    assert float(ds.surface_modulus) == 61e9 and "surface_modulus" not in ds.dims
+
+
+def test_effective_modulus_and_scalar_overrides():
+    Es = np.array([0.5e9, 1.31e9, 5e9])
+    ds = sweep(V, effective_modulus=Es, limiting_pressure=100e6, base="mica")
+    assert ds.limiting_pressure.ndim == 0 and float(ds.limiting_pressure) == 100e6
+    mica = mi.ContactPair.paper_case("mica")
+    for E in Es:
+        assert_pointwise(ds, mica.replace(effective_modulus=E, limiting_pressure=100e6), effective_modulus=E)
+
+
+def test_paper_rebound_velocity_through_a_sweep():
+    ds = sweep(np.array([50.0]))
+    # seed Sec. 3.2: rebound at 50 m/s is 36.31 m/s (its inputs rounded; within 1 %)
+    assert float(ds.rebound_velocity.sel(velocity=50.0)) == pytest.approx(36.31, rel=0.01)
+    assert float(ds.yield_velocity) == pytest.approx(7.59, rel=0.01)
+
+
+def test_scalar_velocity_gives_no_dimension():
+    ds = sweep(50.0)
+    assert ds.restitution.ndim == 0
+    assert float(ds.restitution) == float(SILICON.impact(50.0, warn=False).restitution)
+
+
+# --------------------------------------------------------------------------- attrs
+def test_units_in_attrs():
+    ds = sweep(V, limiting_pressure=np.array([1e8, 2e8]), density=np.array([1e3, 2e3]),
+               radius=np.array([1e-6, 2e-6]), particle_poisson=np.array([0.2, 0.3]))
+    for name in ds.variables:
+        assert "units" in ds[name].attrs and "long_name" in ds[name].attrs, name
+    expect = {"velocity": "m/s", "limiting_pressure": "Pa", "density": "kg/m^3", "radius": "m",
+              "particle_poisson": "1", "restitution": "1", "max_force": "N", "contact_time": "s",
+              "max_approach": "m", "yield_velocity": "m/s", "effective_mass": "kg", "effective_modulus": "Pa"}
+    for name, unit in expect.items():
+        assert ds[name].attrs["units"] == unit, name
+    assert set(ds.data_vars) == set(SWEEP_VARIABLES)
+    assert ds.elastic.dtype == bool and ds.large_strain.dtype == bool
+
+
+# --------------------------------------------------------------------------- dask
+BIG = dict(limiting_pressure=np.linspace(50e6, 250e6, 4), particle_modulus=np.array([1.2e9, 6.2e9, 21.2e9]),
+           density=np.array([1350.0, 5350.0]), radius=np.array([1e-6, 2.45e-6, 4e-6, 9e-6, 2e-5]))
+VV = np.concatenate([[0.0], np.linspace(1.0, 120.0, 37)])
+
+
+@pytest.mark.parametrize("chunks", [5, {"velocity": 7, "radius": 2}, "auto", {"limiting_pressure": 1}])
+def test_dask_equals_eager_exactly(chunks):
+    eager = sweep(VV, **BIG)
+    lazy = sweep(VV, chunks=chunks, **BIG)
+    computed = lazy.compute()
+    for name in eager.data_vars:
+        assert computed[name].dims == eager[name].dims
+        assert computed[name].dtype == eager[name].dtype, name
+        np.testing.assert_array_equal(computed[name].values, eager[name].values, err_msg=name)
+    xr.testing.assert_identical(computed, eager)
+
+
+@settings(max_examples=10, deadline=None)
+@given(cv=st.integers(1, 40), cp=st.integers(1, 4))
+def test_dask_equals_eager_any_blocks(cv, cp):
+    kw = dict(limiting_pressure=BIG["limiting_pressure"])
+    eager = sweep(VV, **kw)
+    lazy = sweep(VV, chunks={"velocity": cv, "limiting_pressure": cp}, **kw)
+    assert lazy.restitution.data.chunks[0][0] == min(cv, VV.size)
+    xr.testing.assert_identical(lazy.compute(), eager)
+
+
+def test_lazy_until_computed(monkeypatch):
+    calls = []
+    original = msweep._evaluate
+
+    def counting(group, p, spec):
+        calls.append(group)
+        return original(group, p, spec)
+
+    monkeypatch.setattr(msweep, "_evaluate", counting)
+    ds = sweep(VV, limiting_pressure=BIG["limiting_pressure"], radius=BIG["radius"], chunks=10)
+    assert "impact" not in calls and "yield_velocity" not in calls  # nothing swept evaluated yet
+    for name in ("restitution", "contact_time", "elastic", "yield_velocity", "effective_mass"):
+        assert isinstance(ds[name].data, da.Array), name
+    assert ds.restitution.data.numblocks == (4, 1, 1)
+    total = float(ds.restitution.sum())  # a reduction computes block by block
+    assert calls.count("impact") == 4  # once per block, not once per variable
+    assert total == pytest.approx(float(sweep(VV, limiting_pressure=BIG["limiting_pressure"],
+                                              radius=BIG["radius"]).restitution.sum()), rel=1e-14)
+
+
+def test_graph_pickles_for_a_cluster():
+    # a dask.distributed scheduler ships tasks by pickling them: the graph must survive
+    # plain pickle (module-level kernel, no closures) and compute to the same values
+    from dask.threaded import get
+
+    ds = sweep(VV, limiting_pressure=BIG["limiting_pressure"], chunks=9)
+    arr = ds.max_force.data
+    graph = pickle.loads(pickle.dumps(dict(arr.__dask_graph__())))
+    blocks = get(graph, arr.__dask_keys__())
+    np.testing.assert_array_equal(da.core.concatenate3(blocks), sweep(VV, **{"limiting_pressure":
+                                                                           BIG["limiting_pressure"]}).max_force)
+
+
+def test_progress_bar(capsys):
+    ds = sweep(VV, limiting_pressure=BIG["limiting_pressure"], progress=True)
+    err = capsys.readouterr().err
+    assert "100% Completed" in err
+    assert not ds.chunks  # computed, in memory
+    xr.testing.assert_identical(ds, sweep(VV, limiting_pressure=BIG["limiting_pressure"]))
+    with pytest.warns(UserWarning, match="computed by the caller"):
+        sweep(VV, chunks=10, progress=True)
+
+
+# --------------------------------------------------------------------------- bad input
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        (dict(velocity=np.array([10.0, -1.0])), "velocity"),
+        (dict(velocity=V, limiting_pressure=np.array([1e8, -5e7])), "limiting_pressure"),
+        (dict(velocity=V, density=np.array([0.0, 1e3])), "density"),
+        (dict(velocity=V, radius=np.array([np.nan, 1e-6])), "radius"),
+        (dict(velocity=V, particle_modulus=np.array([-1e9, 1e9])), "particle_modulus"),
+        (dict(velocity=V, surface_poisson=np.array([0.3, 0.6])), "surface_poisson"),
+        (dict(velocity=V, radius=np.ones((2, 2)) * 1e-6), "radius"),
+        (dict(velocity=V, density=np.array([])), "density"),
+        (dict(velocity=V, chunks={"temperature": 3}), "temperature"),
+        (dict(velocity=V, chunks=0), "chunks"),
+        (dict(velocity=V, chunks="big"), "chunks"),
+        (dict(velocity=V, effective_modulus=1e9, particle_modulus=np.array([1e9, 2e9])), "effective_modulus"),
+        (dict(velocity=V, base="granite"), "case"),
+        (dict(velocity=V, effective_modulus=np.array([1e9, np.inf])), "effective_modulus"),
+    ],
+)
+def test_bad_input_names_the_parameter(kwargs, name):
+    with pytest.raises(ValueError, match=name):
+        sweep(**kwargs)
+
+
+def test_two_sphere_base_needs_density_for_radius_sweeps():
+    pair = mi.ContactPair.two_spheres("glass", "glass", 1e-6, 2e-6, limiting_pressure=1e9)
+    with pytest.raises(ValueError, match="density"):
+        sweep(V, radius=np.array([1e-6, 2e-6]), base=pair)
+    # without radius/density the two-sphere R*, m* are used as they are
+    ds = sweep(V, limiting_pressure=np.array([1e9, 2e9]), base=pair)
+    assert_pointwise(ds, pair.replace(limiting_pressure=2e9), limiting_pressure=2e9)
+
+
+# --------------------------------------------------------------------------- writers and CLI
+def test_netcdf_round_trip_both_engines(tmp_path):
+    netCDF4 = pytest.importorskip("netCDF4")
+    ds = sweep(VV, density=BIG["density"], radius=BIG["radius"], chunks=11)
+    eager = sweep(VV, density=BIG["density"], radius=BIG["radius"])
+    for engine in ("netcdf4", "scipy"):
+        path = sweep_to_netcdf(ds, tmp_path / f"s_{engine}.nc", engine=engine)
+        with xr.open_dataset(path, engine=engine) as back:
+            for name in eager.variables:
+                np.testing.assert_array_equal(back[name].values, eager[name].values, err_msg=name)
+                assert back[name].attrs["units"] == eager[name].attrs["units"]
+            assert back.elastic.dtype == bool
+    with netCDF4.Dataset(tmp_path / "s_netcdf4.nc") as raw:  # stored as int8, as NetCDF needs
+        assert raw["elastic"].dtype == np.int8 and raw["large_strain"].dtype == np.int8
+
+
+def read_csv_sweep(path):
+    df = pd.read_csv(path)
+    units = {c.split(" [")[0]: c.split(" [")[1].rstrip("]") for c in df.columns}
+    df.columns = [c.split(" [")[0] for c in df.columns]
+    return df, units
+
+
+def test_csv_long_format_equals_api(tmp_path):
+    eager = sweep(VV, limiting_pressure=BIG["limiting_pressure"], density=BIG["density"])
+    lazy = sweep(VV, limiting_pressure=BIG["limiting_pressure"], density=BIG["density"], chunks=6)
+    for ds, name in ((eager, "eager.csv"), (lazy, "lazy.csv")):
+        df, units = read_csv_sweep(sweep_to_csv(ds, tmp_path / name, rows_per_block=5))
+        assert len(df) == VV.size * 4 * 2
+        assert list(df.columns[:3]) == ["velocity", "limiting_pressure", "density"]
+        assert units["velocity"] == "m/s" and units["max_force"] == "N"
+        flat = eager.to_dataframe(dim_order=["velocity", "limiting_pressure", "density"]).reset_index()
+        for col in df.columns:
+            np.testing.assert_array_equal(df[col].to_numpy(), flat[col].to_numpy().astype(df[col].dtype),
+                                          err_msg=col)
+
+
+def test_cli_netcdf_equals_api(tmp_path, capsys):
+    out = tmp_path / "fig3.nc"
+    rc = main(["sweep", "--velocity", "1:120:60", "--limiting-pressure", "50e6:250e6:5", "--out", str(out),
+               "--chunks", "25"])
+    cap = capsys.readouterr()
+    assert rc == 0, cap.err
+    assert "100% Completed" in cap.err and "300 points" in cap.err
+    ref = sweep(np.linspace(1, 120, 60), limiting_pressure=np.linspace(50e6, 250e6, 5))
+    with xr.open_dataset(out) as back:
+        xr.testing.assert_equal(back.load(), ref)  # values, dims, coords (attrs checked below)
+        assert back.velocity.attrs["units"] == "m/s"
+    n_large = int(ref.large_strain.sum())
+    assert f"{n_large} of 300 points" in cap.err
+
+
+def test_cli_csv_equals_api(tmp_path, capsys):
+    out = tmp_path / "fig4.csv"
+    rc = main(["sweep", "--velocity", "10,50,100", "--particle-modulus", "1.2e9:21.2e9:5", "--density", "2000",
+               "--out", str(out), "--no-progress"])
+    assert rc == 0
+    df, units = read_csv_sweep(out)
+    ref = sweep(np.array([10.0, 50.0, 100.0]), particle_modulus=np.linspace(1.2e9, 21.2e9, 5), density=2000.0)
+    assert "density" not in df.columns  # one value: an override, not a dimension
+    np.testing.assert_array_equal(df["restitution"], ref.restitution.values.ravel())
+    np.testing.assert_array_equal(df["contact_time"], ref.contact_time.values.ravel())
+    np.testing.assert_array_equal(df["elastic"], ref.elastic.values.ravel().astype(int))
+    assert units["particle_modulus"] == "Pa"
+
+
+def test_cli_materials_base(tmp_path, capsys):
+    out = tmp_path / "steel.csv"
+    rc = main(["sweep", "--velocity", "5:50:4", "--particle", "steel", "--surface", "copper",
+               "--radius", "1e-6,5e-6", "--out", str(out), "--no-progress"])
+    assert rc == 0, capsys.readouterr().err
+    df, _ = read_csv_sweep(out)
+    pair = mi.ContactPair.from_materials("steel", "copper", radius=5e-6)  # p_y = 2.2 * 70 MPa (copper)
+    ref = pair.impact(np.linspace(5, 50, 4), warn=False)
+    np.testing.assert_array_equal(df[df.radius == 5e-6]["restitution"], ref.restitution)
+
+
+@pytest.mark.parametrize(
+    "argv, text",
+    [
+        (["--velocity", "-1:120:5"], "velocity"),
+        (["--velocity", "1:120:5", "--limiting-pressure", "-5e6,5e6"], "limiting_pressure"),
+        (["--velocity", "1:120:x"], "--velocity"),
+        (["--velocity", "1:120:5", "--chunks", "0"], "--chunks"),
+        (["--velocity", "1:120:5", "--particle", "steel"], "--surface"),
+    ],
+)
+def test_cli_bad_input_exit_2(tmp_path, capsys, argv, text):
+    rc = main(["sweep", *argv, "--out", str(tmp_path / "x.nc")])
+    err = capsys.readouterr().err
+    assert rc == 2 and text in err and len(err.strip().splitlines()) == 1
+    rc = main(["sweep", "--velocity", "1", "--out", str(tmp_path / "x.txt")])
+    assert rc == 2 and ".csv" in capsys.readouterr().err
+
+
+# --------------------------------------------------------------------------- optional extras
+def test_missing_xarray_names_the_extra(monkeypatch, tmp_path, capsys):
+    monkeypatch.setitem(sys.modules, "xarray", None)  # makes `import xarray` fail
+    with pytest.raises(MissingExtraError, match=r"microimpact\[sweep\]"):
+        sweep(V)
+    rc = main(["sweep", "--velocity", "1:10:3", "--out", str(tmp_path / "x.nc")])
+    assert rc == 2 and "microimpact[sweep]" in capsys.readouterr().err
+
+
+def test_missing_dask_only_matters_for_lazy(monkeypatch):
+    monkeypatch.setitem(sys.modules, "dask.array", None)
+    eager = sweep(V, limiting_pressure=np.array([1e8, 2e8]))  # works without dask
+    assert eager.restitution.shape == (V.size, 2)
+    with pytest.raises(MissingExtraError, match=r"microimpact\[sweep\]"):
+        sweep(V, limiting_pressure=np.array([1e8, 2e8]), chunks=2)
+
+
+def test_core_import_needs_no_extras():
+    code = (
+        "import sys\n"
+        "for m in ('xarray', 'dask', 'dask.array', 'netCDF4', 'pandas'): sys.modules[m] = None\n"
+        "import microimpact, microimpact.sweep, microimpact.cli.sweep\n"
+        "print(microimpact.ContactPair.paper_case().impact(50.0).restitution)\n"
+    )
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr
+    assert float(res.stdout) == pytest.approx(0.7248, abs=1e-4)
