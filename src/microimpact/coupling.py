@@ -52,7 +52,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._validation import check_nonnegative, check_positive
-from .impact import yield_velocity
+from .impact import normalized_restitution, yield_velocity
 from .materials import DEFAULT_K, Material, effective_modulus as _effective_modulus, get_material
 
 __all__ = [
@@ -162,22 +162,19 @@ def sticking_velocity(work_of_adhesion, effective_modulus, effective_radius, eff
 
 
 def _seed_restitution(V, Vy):
-    """Seed eq. 27 with exactly the arithmetic of :func:`~microimpact.impact.impact_outcome`.
+    """Seed eq. 27 (:func:`~microimpact.impact.normalized_restitution`) of ``v = V/V_y``, ``v`` formed
+    as :func:`~microimpact.impact.impact_outcome` does: the same bits as ``pair.impact``.
 
-    ``V`` finite >= 0, ``Vy`` > 0 (``inf`` allowed: elastic). Same bits as ``pair.impact``.
+    ``V`` finite >= 0, ``Vy`` > 0 (``inf`` allowed: elastic).
     """
     with np.errstate(invalid="ignore", divide="ignore"):
         v = np.where(np.isinf(Vy), 0.0, V / np.where(np.isinf(Vy), 1.0, Vy))
-        vp = np.maximum(v, 1.0)
-        s = np.sqrt((24.0 * vp**2 - 4.0) / 5.0)
-        A = (1.0 + s) / 3.0
-        e = (0.5 * s) / (np.sqrt(np.sqrt(A)) * vp)
-    return np.where(v <= 1.0, 1.0, e)
+    return normalized_restitution(v)
 
 
 def _adhesive(V, e_p, Vs):
     """``(e, stuck)`` from the plastic restitution ``e_p`` and ``V_s`` (no checks)."""
-    with np.errstate(invalid="ignore", divide="ignore"):
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         stuck = (Vs > 0.0) & (e_p * V <= Vs)
         ratio = np.where(stuck, 0.0, Vs / np.where(V > 0.0, V, 1.0))
         e = np.sqrt(np.maximum(e_p * e_p - ratio * ratio, 0.0))
@@ -457,7 +454,7 @@ def wall_interaction(
         w = np.zeros((N, 3))
 
     r = 0.5 * d
-    m = 4.0 / 3.0 * np.pi * (r * r * r) * rho
+    m = 4.0 / 3.0 * np.pi * r**3 * rho  # as materials.sphere_mass: same bits as ContactPair
     Vy = np.broadcast_to(yield_velocity(p_y, E, r, m), (N,))
     Vs = np.broadcast_to(sticking_velocity(G, E, r, m), (N,))
 
@@ -536,7 +533,11 @@ def restitution_table(v_over_vy, vs_over_vy_values):
 
 
 def _fmt_num(x):
-    return f"{x:.10g}" if math.isfinite(x) else ("inf" if x > 0 else "nan")
+    """Shortest text that reads back to the same double."""
+    x = float(x)
+    if not math.isfinite(x):
+        return "inf" if x > 0 else ("-inf" if x < 0 else "nan")
+    return str(int(x)) if x.is_integer() and abs(x) < 1e15 else repr(x)
 
 
 def _slug(text):
@@ -730,7 +731,13 @@ typedef struct {{
     double friction;           /* Coulomb friction coefficient mu [-] */
 }} microimpact_wall_params;
 
-static const microimpact_wall_params microimpact_wall_default = {{
+#if defined(__GNUC__)
+#define MICROIMPACT_UNUSED __attribute__((unused))
+#else
+#define MICROIMPACT_UNUSED
+#endif
+
+static const microimpact_wall_params microimpact_wall_default MICROIMPACT_UNUSED = {{
     {E}, {p_y}, {G}, {mu}
 }};
 
@@ -769,12 +776,11 @@ double microimpact_sticking_velocity(double G, double E, double r, double m)
 /* Seed restitution e_p(V/V_y), eq. 27 with eq. 22. */
 double microimpact_restitution(double V, double V_y)
 {{
-    double v, s, A;
+    double v, q;
     v = isinf(V_y) ? 0.0 : V / V_y;
     if (v <= 1.0) return 1.0;
-    s = sqrt((24.0 * (v * v) - 4.0) / 5.0);
-    A = (1.0 + s) / 3.0;
-    return (0.5 * s) / (sqrt(sqrt(A)) * v);
+    q = sqrt((24.0 - 4.0 / (v * v)) / 5.0);   /* q = s / v, s = ((24 v^2 - 4)/5)^(1/2) */
+    return 0.5 * q / sqrt(sqrt((1.0 + v * q) / 3.0));   /* e = P^ / (A^(1/4) v), A = (1 + s)/3 */
 }}
 
 int microimpact_wall_interaction(const double v_in[3], const double n_in[3], const double omega_in[3],
