@@ -45,7 +45,6 @@ _RC = {
     "ytick.right": True,
     "hatch.linewidth": 0.4,
     "savefig.dpi": DPI,
-    "pdf.fonttype": 42,  # embed TrueType: editable text in the vector files
     "svg.fonttype": "none",
     "mathtext.default": "regular",
 }

@@ -140,7 +140,7 @@ def large_strain_velocity(pair) -> float:
     Examples
     --------
     >>> round(large_strain_velocity(ContactPair.paper_case("silicon")), 1)
-    44.8
+    23.3
     """
     R = pair.effective_radius
 
@@ -684,7 +684,7 @@ def plot_force_time(velocity=70.0, ax=None, *, pair=None, table=None):
     labels = {
         "elastic-plastic": ("elastic–plastic impact", _style.COLORS[0], "-"),
         "elastic": ("equivalent elastic impact", _style.COLORS[2], "--"),
-        "hertz": ("Hertz force of the elastic–plastic\napproach (loading)", _style.COLORS[1], "-."),
+        "hertz": (r"Hertz force at the same $\alpha$ (loading)", _style.COLORS[1], "-."),
     }
     with _style.style():
         ax = _style.new_axes(ax)
@@ -694,7 +694,7 @@ def plot_force_time(velocity=70.0, ax=None, *, pair=None, table=None):
             label, color, ls = labels.get(name, (name, "0.5", ":"))
             ax.plot(t[m], P[m], color=color, linestyle=ls, label=label)
         ax.set_xlim(0.0, float(t.max()) * 1.02)
-        ax.set_ylim(0.0, float(P.max()) * 1.12)
+        ax.set_ylim(0.0, float(P.max()) * 1.35)
         ax.set_xlabel(r"Time, $t$ (ns)")
         ax.set_ylabel(r"Contact force, $P$ (µN)")
         ax.legend(loc="upper right")
