@@ -297,6 +297,11 @@ def _per_particle(name, arr, n):
     return np.broadcast_to(arr.reshape(-1) if arr.ndim else arr, (n,))
 
 
+def _cross(a, b):
+    """Cross product of component rows: ``a``, ``b`` shaped (3, ...)."""
+    return np.stack([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+
+
 def _materials(material, n):
     """Per-particle arrays (E, nu, rho, Y) from one material or one per particle."""
     if isinstance(material, (str, Material)):
@@ -405,7 +410,7 @@ def wall_interaction(
     length = np.sqrt(np.einsum("ij,ij->i", nrm, nrm))
     if np.any(length == 0.0):
         raise ValueError("normal must not be a zero vector")
-    nrm = np.broadcast_to(nrm / length[:, None], (N, 3))
+    nrm = nrm / length[:, None]  # (1, 3) or (N, 3)
 
     d = _per_particle("diameter", check_positive("diameter", diameter), N)
     mats = _materials(material, N) if material is not None else None
@@ -450,16 +455,18 @@ def wall_interaction(
         if w.shape[0] not in (1, N):
             raise ValueError(f"spin must have one vector per particle ({N}), got {w.shape[0]}")
         w = np.broadcast_to(w, (N, 3))
-    else:
-        w = np.zeros((N, 3))
 
     r = 0.5 * d
     m = 4.0 / 3.0 * np.pi * r**3 * rho  # as materials.sphere_mass: same bits as ContactPair
     Vy = np.broadcast_to(yield_velocity(p_y, E, r, m), (N,))
-    Vs = np.broadcast_to(sticking_velocity(G, E, r, m), (N,))
+    Vs = np.broadcast_to(sticking_velocity(G, E, r, m), (N,)) if np.any(G > 0.0) else np.zeros(N)
+
+    # Components as contiguous rows (structure of arrays): (3, N) and (3, N or 1).
+    vT = np.ascontiguousarray(v.T)
+    nT = np.ascontiguousarray(nrm.T)
 
     # Normal direction.
-    vn = np.einsum("ij,ij->i", v, nrm)
+    vn = vT[0] * nT[0] + vT[1] * nT[1] + vT[2] * nT[2]
     approaching = vn < 0.0
     V = np.where(approaching, -vn, 0.0)
     e, stuck = _adhesive(V, _seed_restitution(V, Vy), Vs)
@@ -468,24 +475,31 @@ def wall_interaction(
     Jn_over_m = (1.0 + e) * V  # normal impulse / m
 
     # Tangential direction: slip of the contact point, u_t = v_t + r n x omega.
-    vt = v - vn[:, None] * nrm
-    ut = vt + r[:, None] * np.cross(nrm, w)
-    ut_mag = np.sqrt(np.einsum("ij,ij->i", ut, ut))
+    vtT = vT - vn * nT
+    if has_spin:
+        wT = np.ascontiguousarray(w.T)
+        utT = vtT + r * _cross(nT, wT)
+    else:
+        utT = vtT
+    ut_mag = np.sqrt(utT[0] * utT[0] + utT[1] * utT[1] + utT[2] * utT[2])
     stop = (2.0 / 7.0) * ut_mag  # |J_stop| / m
     limit = mu * Jn_over_m  # mu J_n / m
     rolling = approaching & ~stuck & (stop <= limit)
     with np.errstate(invalid="ignore", divide="ignore"):
         scale = np.where(rolling, 2.0 / 7.0, np.where(ut_mag > 0.0, limit / ut_mag, 0.0))
     scale = np.where(approaching, scale, 0.0)
-    Jt = -scale[:, None] * ut  # tangential impulse / m
+    JtT = -scale * utT  # tangential impulse / m
 
-    v_out = vt + Jt + (np.where(approaching, e * V, vn))[:, None] * nrm
-    v_out = np.where(approaching[:, None], v_out, v)
+    v_outT = vtT + JtT + np.where(approaching, e * V, vn) * nT
+    v_out = np.where(approaching[:, None], v_outT.T, v)
     v_out[stuck] = 0.0
     w_out = None
     if has_spin or np.any(mu > 0.0):
         # omega' = omega + (-r n) x J / I = omega - 5/(2 m r) n x J
-        w_out = w - (2.5 / r)[:, None] * np.cross(nrm, Jt)
+        w_outT = -(2.5 / r) * _cross(nT, JtT)
+        if has_spin:
+            w_outT += wT
+        w_out = np.ascontiguousarray(w_outT.T)
         w_out[stuck] = 0.0
     return WallInteraction(
         velocity=v_out[0] if single else v_out,
@@ -802,7 +816,7 @@ int microimpact_wall_interaction(const double v_in[3], const double n_in[3], con
     V = -vn;
 
     r = 0.5 * diameter;
-    m = 4.0 / 3.0 * MICROIMPACT_PI * (r * r * r) * density;
+    m = 4.0 / 3.0 * MICROIMPACT_PI * pow(r, 3.0) * density;
     V_y = microimpact_yield_velocity(params->limiting_pressure, params->effective_modulus, r, m);
     V_s = microimpact_sticking_velocity(params->work_of_adhesion, params->effective_modulus, r, m);
 
