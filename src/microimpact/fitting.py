@@ -80,7 +80,7 @@ import os
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import optimize, stats
+from scipy import optimize, special
 
 from ._optional import require
 from .impact import restitution_coefficient
@@ -640,7 +640,7 @@ def _check_confidence(confidence):
 
 def _quantile(confidence, dof, known_scale):
     p = 0.5 + confidence / 2.0
-    return float(stats.norm.ppf(p) if known_scale else stats.t.ppf(p, dof))
+    return float(special.ndtri(p) if known_scale else special.stdtrit(dof, p))
 
 
 # ---------------------------------------------------------------------- the fit
