@@ -8,7 +8,6 @@ computed; files written by the CLI must read back equal to the API.
 import pickle
 import subprocess
 import sys
-import warnings
 
 import numpy as np
 import pytest
