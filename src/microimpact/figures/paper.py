@@ -249,8 +249,10 @@ def plot_restitution(pairs=None, data=None, ax=None, *, velocity=None, table=Non
         V, e = np.asarray(table["velocity_m_s"], float), np.asarray(table["restitution"], float)
         i_model = i_meas = 0
         onset = math.inf
-        for name, m in _groups(table, "series"):
-            if np.all(kind[m] == "model"):
+        keys = {"series_kind": np.array([f"{s}\x00{k}" for s, k in zip(table["series"], kind)], dtype=object)}
+        for key, m in _groups(keys, "series_kind"):
+            name = key.split("\x00")[0]
+            if kind[m][0] == "model":
                 Vy = float(np.asarray(table["yield_velocity_m_s"], float)[m][0])
                 st = {**_style.series_style(i_model), **kws}
                 ax.plot(V[m], e[m], label=f"{name} (model, $V_y$ = {Vy:.2f} m/s)", **st)
@@ -654,7 +656,7 @@ def force_time_data(velocity=70.0, pair=None, n=1001) -> dict:
     pair = _default_pair(pair)
     ep = _history(pair, float(velocity), n)
     el = _history(pair.elastic_equivalent(), float(velocity), n)
-    loading = np.asarray(ep.stage) < 3
+    loading = np.isin(np.asarray(ep.stage), (1, 2))
     t_load = np.asarray(ep.time, float)[loading]
     a_load = np.asarray(ep.approach, float)[loading]
     hertz = contact.hertz_force(a_load, pair.effective_modulus, pair.effective_radius)
