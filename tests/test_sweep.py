@@ -5,6 +5,7 @@ lazy (dask) path must equal the eager one bit for bit and stay lazy until
 computed; files written by the CLI must read back equal to the API.
 """
 
+import importlib
 import pickle
 import subprocess
 import sys
@@ -19,11 +20,13 @@ da = pytest.importorskip("dask.array")
 pd = pytest.importorskip("pandas")
 
 import microimpact as mi  # noqa: E402
-import microimpact.sweep as msweep  # noqa: E402
 from microimpact._optional import MissingExtraError  # noqa: E402
 from microimpact.cli import main  # noqa: E402
 from microimpact.materials import effective_modulus  # noqa: E402
 from microimpact.sweep import SWEEP_VARIABLES, sweep, sweep_to_csv, sweep_to_netcdf  # noqa: E402
+
+# the module itself (robust if the package ever exports the function ``sweep`` under the same name)
+msweep = importlib.import_module("microimpact.sweep")
 
 # speeds on both sides of V_y (7.52 m/s for silicon), the paper's 30/50/70, 0 and the top of its range
 V = np.array([0.0, 2.0, 7.5, 7.6, 30.0, 50.0, 70.0, 120.0])
