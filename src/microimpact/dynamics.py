@@ -12,6 +12,12 @@ available"). They exist (THEORY.md §4):
   ``t_U = (2/5) B(2/5, 1/2) (alpha* - alpha_p) / V_r``
 
 ``B(u; a, b)`` is the incomplete beta function (not regularised).
+
+Time histories of one impact (:func:`impact_history`, :class:`ImpactHistory`)
+follow from the same integrals by inverting the incomplete beta function
+(stages 1 and 3) and as a sinusoid (stage 2). :func:`integrate_impact`
+integrates Newton's equation with the force law of :mod:`microimpact.contact`
+numerically: the seed's own route, kept as an independent check.
 """
 
 from __future__ import annotations
@@ -316,10 +322,12 @@ def _hertz_fraction(x, xc):
     x = np.clip(x, 0.0, 1.0)
     xc = np.clip(xc, 0.0, 1.0)
     low = x <= 0.5
-    u_low = special.betaincinv(0.4, 0.5, np.where(low, x, 0.5))
-    w_high = special.betaincinv(0.5, 0.4, np.where(low, 0.5, xc))
-    u = np.where(low, u_low, 1.0 - w_high)
-    w = np.where(low, 1.0 - u_low, w_high)
+    u = np.empty_like(x)
+    w = np.empty_like(x)
+    u[low] = special.betaincinv(0.4, 0.5, x[low])
+    w[low] = 1.0 - u[low]
+    w[~low] = special.betaincinv(0.5, 0.4, xc[~low])
+    u[~low] = 1.0 - w[~low]
     return u, w
 
 
@@ -377,9 +385,9 @@ def impact_history(velocity, effective_modulus, effective_radius, effective_mass
     """
     V, E, R, m, p_y = _scalar_pair(velocity, effective_modulus, effective_radius, effective_mass,
                                    limiting_pressure)
-    out = {k: float(np.asarray(v)) for k, v in
-           impact_outcome(V, E, R, m, p_y).items()}
-    tm = contact_times(V, E, R, m, p_y)
+    outcome = impact_outcome(V, E, R, m, p_y)
+    out = {k: float(np.asarray(v)) for k, v in outcome.items()}
+    tm = contact_times(V, E, R, m, p_y, outcome=outcome)
     t1, t2, t_L, t_U, t_c = (float(tm[k]) for k in ("elastic_stage_time", "plastic_stage_time",
                                                      "loading_time", "unloading_time", "contact_time"))
     elastic = bool(out["elastic"])
