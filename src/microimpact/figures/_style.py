@@ -46,7 +46,6 @@ _RC = {
     "hatch.linewidth": 0.4,
     "savefig.dpi": DPI,
     "svg.fonttype": "none",
-    "mathtext.default": "regular",
 }
 
 

@@ -248,6 +248,7 @@ def plot_restitution(pairs=None, data=None, ax=None, *, velocity=None, table=Non
         kind = np.asarray(table["kind"])
         V, e = np.asarray(table["velocity_m_s"], float), np.asarray(table["restitution"], float)
         i_model = i_meas = 0
+        model_colors = {}
         onset = math.inf
         keys = {"series_kind": np.array([f"{s}\x00{k}" for s, k in zip(table["series"], kind)], dtype=object)}
         for key, m in _groups(keys, "series_kind"):
@@ -255,13 +256,15 @@ def plot_restitution(pairs=None, data=None, ax=None, *, velocity=None, table=Non
             if kind[m][0] == "model":
                 Vy = float(np.asarray(table["yield_velocity_m_s"], float)[m][0])
                 st = {**_style.series_style(i_model), **kws}
+                model_colors[name] = st["color"]
                 ax.plot(V[m], e[m], label=f"{name} (model, $V_y$ = {Vy:.2f} m/s)", **st)
                 ls = np.asarray(table["large_strain"])[m].astype(bool)
                 if ls.any():
                     onset = min(onset, float(V[m][ls].min()))
                 i_model += 1
             else:
-                c = _style.COLORS[(i_meas + 1) % len(_style.COLORS)]
+                # the colour of the model curve of the same name, else one no model uses
+                c = model_colors.get(name, _style.COLORS[(len(model_colors) + i_meas) % len(_style.COLORS)])
                 ax.plot(V[m], e[m], linestyle="none", marker=_style.MARKERS[i_meas % len(_style.MARKERS)],
                         markersize=3.5, markerfacecolor="none", markeredgecolor=c, markeredgewidth=0.8,
                         label=f"{name} (measured)")
