@@ -2,11 +2,14 @@
 
 :mod:`microimpact.figures.paper` draws the seed paper's Figures 2-10; each plot
 function has a ``*_data`` companion returning the plotted numbers as columns.
+:func:`plot_history` (:mod:`microimpact.figures.history`) draws one impact's
+time history from :meth:`ContactPair.history`.
 Importing this package does not import matplotlib; the plot functions do, and
 raise :class:`~microimpact._optional.MissingExtraError` naming the extra when it
 is missing.
 """
 
+from .history import plot_history
 from .paper import (
     COLUMNS,
     approach_data,
@@ -43,4 +46,5 @@ __all__ = [
     "plot_contact_times",
     "dynamics_data",
     "plot_dynamics",
+    "plot_history",
 ]
