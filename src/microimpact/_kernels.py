@@ -206,7 +206,7 @@ def restitution_fast(velocity, yield_velocity, out=None, *, backend=None):
     Examples
     --------
     >>> restitution_fast([1.0, 7.5, 50.0, float("inf")], 7.523).round(4)
-    array([1.    , 1.    , 0.7247, 0.    ])
+    array([1.    , 1.    , 0.7248, 0.    ])
     """
     backend = BACKEND if backend is None else backend
     if backend not in ("numba", "numpy"):
@@ -297,7 +297,7 @@ def impact_scalar(velocity, effective_modulus, effective_radius, effective_mass,
     >>> m = 4 / 3 * math.pi * 2.45e-6**3 * 1350
     >>> out = impact_scalar(50.0, 1.31e9, 2.45e-6, m, 156e6)
     >>> round(out["rebound_velocity"], 2), round(out["contact_time"] * 1e9, 3)  # m/s, ns
-    (36.24, 24.772)
+    (36.24, 24.761)
     """
     V = float(velocity)
     if not V >= 0.0:
