@@ -66,7 +66,7 @@ math_numfig = False
 plot_include_source = True
 plot_html_show_source_link = False
 plot_html_show_formats = False
-plot_formats = [("png", 110)]
+plot_formats = [("png", 160)]
 plot_rcparams = {"savefig.bbox": "tight"}
 plot_pre_code = "import numpy as np\nimport matplotlib.pyplot as plt\nimport microimpact as mi\n"
 
