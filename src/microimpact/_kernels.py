@@ -43,6 +43,8 @@ __all__ = ["BACKEND", "available_backends", "restitution_fast", "impact_scalar"]
 
 #: Block length of the numpy backend: three float64 buffers of this length stay in L2 cache.
 BLOCK = 16384
+#: Iterations each numba thread takes at a time (dynamic scheduling).
+_CHUNK = 65536
 
 _BETA_25_12 = float(special.beta(0.4, 0.5))
 # e = P^*/(alpha^*^(1/4) v) = _C s / ((1 + s)^(1/4) v) with s = 2 P^*/P_y, _C = 3^(1/4)/2; written
@@ -117,6 +119,7 @@ def _numba_kernels():
 
         _NUMBA["scalar"] = scalar_vy
         _NUMBA["array"] = array_vy
+        _NUMBA["chunksize"] = numba.parallel_chunksize
     return _NUMBA
 
 
@@ -230,13 +233,17 @@ def restitution_fast(velocity, yield_velocity, out=None, *, backend=None):
     if Vy.size == 1:
         vy = float(Vy.reshape(-1)[0])
         if backend == "numba":
-            bad = _numba_kernels()["scalar"](Vflat, 1.0 / vy, oflat)
+            kern = _numba_kernels()
+            with kern["chunksize"](_CHUNK):  # dynamic scheduling: a busy core does not hold up the other
+                bad = kern["scalar"](Vflat, 1.0 / vy, oflat)
         else:
             bad = _restitution_numpy(Vflat, np.float64(vy), oflat)
     else:
         Vyflat = np.ascontiguousarray(np.broadcast_to(Vy, shape)).reshape(-1)
         if backend == "numba":
-            bad = _numba_kernels()["array"](Vflat, Vyflat, oflat)
+            kern = _numba_kernels()
+            with kern["chunksize"](_CHUNK):
+                bad = kern["array"](Vflat, Vyflat, oflat)
         else:
             bad = _restitution_numpy(Vflat, Vyflat, oflat)
     if bad:
