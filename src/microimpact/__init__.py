@@ -14,7 +14,7 @@ time histories.
 36.24
 """
 
-from . import contact, dynamics, impact, materials
+from . import contact, dynamics, fitting, impact, materials, sweep
 from .impact import (
     impact_outcome,
     restitution_coefficient,
@@ -22,7 +22,15 @@ from .impact import (
     yield_velocity,
     yield_velocity_sphere_on_flat,
 )
-from .dynamics import contact_times, deresiewicz_contact_time, ning_loading_time
+from .dynamics import (
+    ImpactHistory,
+    contact_times,
+    deresiewicz_contact_time,
+    impact_history,
+    integrate_impact,
+    ning_loading_time,
+)
+from .fitting import FitResult, fit_restitution, load_restitution_csv
 from .materials import MATERIALS, Material, effective_mass, effective_modulus, effective_radius, get_material
 from .pair import ContactPair, ImpactResult, LargeStrainWarning
 
@@ -46,9 +54,17 @@ __all__ = [
     "contact_times",
     "deresiewicz_contact_time",
     "ning_loading_time",
+    "ImpactHistory",
+    "impact_history",
+    "integrate_impact",
+    "FitResult",
+    "fit_restitution",
+    "load_restitution_csv",
     "contact",
     "impact",
     "dynamics",
     "materials",
+    "fitting",
+    "sweep",
     "__version__",
 ]

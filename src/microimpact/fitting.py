@@ -80,7 +80,7 @@ import os
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import optimize, special
+from scipy import special
 
 from ._optional import require
 from .impact import restitution_coefficient
@@ -764,6 +764,8 @@ def fit_restitution(
         return (model.restitution(u[0], V) - e) * w
 
     kw = {} if max_nfev is None else {"max_nfev": int(max_nfev)}
+    from scipy import optimize  # imported here: keeps `import microimpact` fast
+
     sol = optimize.least_squares(resid, u0, jac="3-point", loss=loss, f_scale=f_scale,
                                  x_scale=1.0, xtol=1e-12, ftol=1e-12, gtol=1e-12, **kw)
     u = np.asarray(sol.x, dtype=float)

@@ -237,7 +237,7 @@ def sphere_mass(radius, density):
 #: The seed paper's two validation cases (Section 3.1): ammonium fluorescein
 #: particles of 4.9 um diameter on silicon and on mica, as effective values. The
 #: quoted yield velocities are the paper's; eq. 28 with these (rounded) inputs
-#: gives 7.52 and 7.79 m/s (THEORY.md §5).
+#: gives 7.52 and 7.89 m/s (THEORY.md §5).
 PAPER_CASES: dict[str, dict] = {
     "silicon": {
         "radius": 2.45e-6,
