@@ -57,7 +57,10 @@ _SQ48 = math.sqrt(4.8)
 
 def available_backends() -> list[str]:
     """Backends :func:`restitution_fast` can use here, fastest first (``"numpy"`` always)."""
-    found = ["numba"] if importlib.util.find_spec("numba") is not None else []
+    try:
+        found = ["numba"] if importlib.util.find_spec("numba") is not None else []
+    except (ImportError, ValueError):  # e.g. numba blocked by sys.modules["numba"] = None
+        found = []
     return found + ["numpy"]
 
 
