@@ -432,8 +432,6 @@ def wall_interaction(
 
     if limiting_pressure is None:
         Y = np.full(N, math.nan) if mats is None else mats[3].copy()
-        if wall_mat is None and wall is not None and effective_modulus is None:
-            wall_mat = get_material(wall)
         if wall_mat is not None and wall_mat.yield_strength:
             Y = np.fmin(Y, wall_mat.yield_strength)
         if np.any(np.isnan(Y)):
@@ -475,28 +473,35 @@ def wall_interaction(
     Jn_over_m = (1.0 + e) * V  # normal impulse / m
 
     # Tangential direction: slip of the contact point, u_t = v_t + r n x omega.
+    # (In-place updates keep the number of passes over (3, N) arrays low.)
     vtT = vT - vn * nT
     if has_spin:
         wT = np.ascontiguousarray(w.T)
-        utT = vtT + r * _cross(nT, wT)
+        utT = _cross(nT, wT)
+        utT *= r
+        utT += vtT
     else:
         utT = vtT
     ut_mag = np.sqrt(utT[0] * utT[0] + utT[1] * utT[1] + utT[2] * utT[2])
     stop = (2.0 / 7.0) * ut_mag  # |J_stop| / m
-    limit = mu * Jn_over_m  # mu J_n / m
+    limit = mu * Jn_over_m  # mu J_n / m; 0 where not approaching (V = 0)
     rolling = approaching & ~stuck & (stop <= limit)
     with np.errstate(invalid="ignore", divide="ignore"):
         scale = np.where(rolling, 2.0 / 7.0, np.where(ut_mag > 0.0, limit / ut_mag, 0.0))
-    scale = np.where(approaching, scale, 0.0)
-    JtT = -scale * utT  # tangential impulse / m
+    JtT = utT * -scale  # tangential impulse / m; 0 where not approaching
 
-    v_outT = vtT + JtT + np.where(approaching, e * V, vn) * nT
-    v_out = np.where(approaching[:, None], v_outT.T, v)
+    v_outT = vtT + JtT
+    v_outT += np.where(approaching, e * V, vn) * nT
+    v_out = np.ascontiguousarray(v_outT.T)
+    away = ~approaching
+    if away.any():
+        v_out[away] = v[away]  # passed through bit for bit
     v_out[stuck] = 0.0
     w_out = None
     if has_spin or np.any(mu > 0.0):
         # omega' = omega + (-r n) x J / I = omega - 5/(2 m r) n x J
-        w_outT = -(2.5 / r) * _cross(nT, JtT)
+        w_outT = _cross(nT, JtT)
+        w_outT *= -2.5 / r
         if has_spin:
             w_outT += wT
         w_out = np.ascontiguousarray(w_outT.T)
