@@ -48,7 +48,6 @@ language = "en"
 # -- autodoc / autosummary / numpydoc ---------------------------------------
 autosummary_generate = True
 autosummary_imported_members = False
-autodoc_default_options = {"members": False}
 autodoc_typehints = "none"  # numpydoc sections carry the types and units
 autodoc_member_order = "bysource"
 numpydoc_show_class_members = False  # the class templates list members explicitly
