@@ -89,8 +89,8 @@ def _numba_kernels():
         def _e(x, w):
             # Same operations, same order, as _numpy_block below.
             v = x * w
-            if v != v:  # inf * 0 (V = inf, V_y = inf): the limit V -> inf wins
-                v = np.inf
+            if v != v:  # inf * 0 (V = inf, V_y = inf): p_y = inf is elastic at every speed
+                v = 0.0
             vp = v if v > 1.0 else 1.0
             big = vp > _BIG
             s = vp * _SQ48 if big else math.sqrt(0.8 * (6.0 * (vp * vp) - 1.0))
@@ -133,7 +133,7 @@ def _numpy_block(V, w, out, t, s, big, inf):
     """
     np.multiply(V, w, out=t)  # v = V/V_y
     if inf:
-        np.copyto(t, np.inf, where=np.isnan(t))  # inf * 0: V = inf wins over V_y = inf
+        np.copyto(t, 0.0, where=np.isnan(t))  # inf * 0 (V = inf, V_y = inf): p_y = inf is elastic
     np.maximum(t, 1.0, out=t)  # vp = max(v, 1): the formula gives e = 1 exactly at vp = 1
     np.multiply(t, t, out=s)
     s *= 6.0
@@ -185,7 +185,7 @@ def restitution_fast(velocity, yield_velocity, out=None, *, backend=None):
     Same result as :func:`microimpact.impact.restitution_coefficient` (to 1e-14
     relative), several times faster on large arrays: ``e = P^* / (alpha^*^(1/4) v)``
     with ``v = V/V_y``, ``alpha^* = (1 + s)/3``, ``P^* = s/2``, ``s = ((24 v^2 - 4)/5)^(1/2)``
-    for ``v > 1``; 1 for ``v <= 1``; 0 for ``V = inf``.
+    for ``v > 1``; 1 for ``v <= 1``; 0 for ``V = inf`` (1 if also ``V_y = inf``: no yielding).
 
     Parameters
     ----------

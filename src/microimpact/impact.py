@@ -183,9 +183,10 @@ def restitution_coefficient(velocity, yield_velocity):
     """
     V = check_velocity("velocity", velocity)
     Vy = check_positive("yield_velocity", yield_velocity, allow_inf=True)
+    # An infinite V_y (p_y = inf) makes every impact elastic, even at V = inf.
     with np.errstate(invalid="ignore"):
-        v = np.where(np.isinf(Vy) & ~np.isinf(V), 0.0, V / Vy)
-    return normalized_restitution(np.nan_to_num(v, nan=np.inf))
+        v = np.where(np.isinf(Vy), 0.0, V / np.where(np.isinf(Vy), 1.0, Vy))
+    return normalized_restitution(v)
 
 
 def thornton_ning_restitution(velocity, yield_velocity):

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 
-from . import contact, dynamics, impact
+from . import _kernels, contact, dynamics, impact
 from ._validation import check_positive
 from .materials import DEFAULT_K, PAPER_CASES, Material, effective_modulus, get_material, sphere_mass
 from .dynamics import ImpactHistory
@@ -359,9 +359,14 @@ class ContactPair:
         Issues a :class:`LargeStrainWarning` (unless ``warn=False``) when some
         impact reaches ``a*/R* > 0.3``; the ``large_strain`` attribute says which.
         """
-        out = impact.impact_outcome(velocity, *self._args)
-        times = dynamics.contact_times(velocity, *self._args, outcome=out)
-        res = ImpactResult(**{k: _scalar_or_array(v) for k, v in {**out, **times}.items()})
+        if isinstance(velocity, (int, float)) and not isinstance(velocity, bool):
+            # One speed: the same closed forms with the math module (~14 us instead of ~0.4 ms).
+            d = _kernels.impact_scalar(velocity, *self._args)
+            res = ImpactResult(**{k: (np.bool_(x) if type(x) is bool else np.float64(x)) for k, x in d.items()})
+        else:
+            out = impact.impact_outcome(velocity, *self._args)
+            times = dynamics.contact_times(velocity, *self._args, outcome=out)
+            res = ImpactResult(**{k: _scalar_or_array(v) for k, v in {**out, **times}.items()})
         if warn and res.any_large_strain:
             vmin = np.min(np.asarray(res.velocity)[np.asarray(res.large_strain)])
             warnings.warn(
