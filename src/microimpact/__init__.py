@@ -14,7 +14,8 @@ time histories.
 36.24
 """
 
-from . import contact, dynamics, fitting, impact, materials, sweep
+from . import contact, coupling, deposition, dynamics, fitting, impact, materials, sweep
+from .coupling import WallInteraction, adhesive_restitution, sticking_velocity, wall_interaction, work_of_adhesion
 from .impact import (
     impact_outcome,
     restitution_coefficient,
@@ -60,7 +61,14 @@ __all__ = [
     "FitResult",
     "fit_restitution",
     "load_restitution_csv",
+    "WallInteraction",
+    "wall_interaction",
+    "sticking_velocity",
+    "adhesive_restitution",
+    "work_of_adhesion",
     "contact",
+    "coupling",
+    "deposition",
     "impact",
     "dynamics",
     "materials",
