@@ -86,10 +86,12 @@ class Material:
 
 
 _W90 = (
-    "Wall, John, Wang & Brown (1990), Aerosol Sci. Technol. 12:926-946, as used in "
+    "Wall, John, Wang & Goren (1990), Aerosol Sci. Technol. 12:926-946, as used in "
     "the seed paper, Section 3.1"
 )
 
+#: Named materials (key -> :class:`Material`), each with the source of its values.
+#: ``"aluminum"`` is an alias of ``"aluminium"``. See :func:`list_materials`.
 MATERIALS: dict[str, Material] = {
     m.name: m
     for m in [
