@@ -2,7 +2,7 @@
 
 All functions take array_like arguments and broadcast them against each other
 (numpy rules). Symbols follow the seed paper (Aerosol Sci. Tech. 50(4), 2016)
-and ``THEORY.md``:
+and the :ref:`theory page <theory>`:
 
 ``alpha``  relative approach (overlap) of the two centres [m]
 ``E*``     effective modulus [Pa], ``R*`` effective radius [m]
@@ -51,6 +51,11 @@ def hertz_force(alpha, effective_modulus, effective_radius):
     effective_radius : array_like
         ``R*`` [m].
 
+    Returns
+    -------
+    ndarray
+        Contact force ``P`` [N].
+
     Examples
     --------
     >>> float(hertz_force(1e-8, 1.31e9, 2.45e-6))  # doctest: +ELLIPSIS
@@ -61,19 +66,92 @@ def hertz_force(alpha, effective_modulus, effective_radius):
 
 
 def hertz_contact_radius(alpha, effective_radius):
-    """Hertz contact radius ``a = (R* alpha)^(1/2)`` [m] (seed eq. 3)."""
+    """Hertz contact radius ``a = (R* alpha)^(1/2)`` [m] (seed eq. 3).
+
+    Parameters
+    ----------
+    alpha : array_like
+        Approach ``alpha`` [m], >= 0.
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
+
+    Returns
+    -------
+    ndarray
+        Contact radius ``a`` [m].
+
+    Raises
+    ------
+    ValueError
+        If ``alpha`` is negative.
+
+    Examples
+    --------
+    >>> round(float(hertz_contact_radius(1e-8, 2.45e-6)) * 1e9, 1)  # nm
+    156.5
+    """
     alpha = check_nonnegative("alpha", alpha)
     return np.sqrt(effective_radius * alpha)
 
 
 def hertz_central_pressure(alpha, effective_modulus, effective_radius):
-    """Hertz pressure at the contact centre, ``p0 = 3P/(2 pi a^2) = 2 E* a/(pi R*)`` [Pa] (eqs. 1, 4)."""
+    """Hertz pressure at the contact centre [Pa] (seed eqs. 1, 4).
+
+    ``p0 = 3P/(2 pi a^2) = 2 E* a/(pi R*)`` with ``a = (R* alpha)^(1/2)`` (eq. 3).
+
+    Parameters
+    ----------
+    alpha : array_like
+        Approach ``alpha`` [m], >= 0.
+        effective_modulus : array_like
+            Effective modulus ``E*`` [Pa].
+        effective_radius : array_like
+            Effective radius ``R*`` [m].
+
+    Returns
+    -------
+    ndarray
+        Central (maximum) contact pressure ``p0`` [Pa].
+
+    Raises
+    ------
+    ValueError
+        If ``alpha`` is negative.
+
+    Examples
+    --------
+    At the yield approach the central pressure is the limiting pressure ``p_y``:
+
+    >>> a_y = yield_approach(156e6, 1.31e9, 2.45e-6)
+    >>> round(float(hertz_central_pressure(a_y, 1.31e9, 2.45e-6)) / 1e6, 6)  # MPa
+    156.0
+    """
     a = hertz_contact_radius(alpha, effective_radius)
     return 2.0 * effective_modulus * a / (np.pi * effective_radius)
 
 
 def yield_contact_radius(limiting_pressure, effective_modulus, effective_radius):
-    """Contact radius at first yield, ``a_y = pi p_y R* / (2 E*)`` [m] (eq. 4 with ``p0 = p_y``)."""
+    """Contact radius at first yield, ``a_y = pi p_y R* / (2 E*)`` [m] (seed eq. 4 with ``p0 = p_y``).
+
+    Parameters
+    ----------
+    limiting_pressure : array_like
+        Limiting contact pressure ``p_y`` [Pa], positive (``inf``: never yields).
+        effective_modulus : array_like
+            Effective modulus ``E*`` [Pa].
+        effective_radius : array_like
+            Effective radius ``R*`` [m].
+
+    Returns
+    -------
+    ndarray
+        Contact radius at yield ``a_y`` [m].
+
+    Raises
+    ------
+    ValueError
+        If an argument is not positive (``p_y`` may be ``inf``).
+    """
     p_y = check_positive("limiting_pressure", limiting_pressure, allow_inf=True)
     E = check_positive("effective_modulus", effective_modulus)
     R = check_positive("effective_radius", effective_radius)
@@ -82,6 +160,25 @@ def yield_contact_radius(limiting_pressure, effective_modulus, effective_radius)
 
 def yield_approach(limiting_pressure, effective_modulus, effective_radius):
     """Approach at first yield, ``alpha_y = (pi p_y / (2 E*))^2 R*`` [m] (seed eq. 5).
+
+    Parameters
+    ----------
+    limiting_pressure : array_like
+        Limiting contact pressure ``p_y`` [Pa], positive (``inf``: never yields).
+        effective_modulus : array_like
+            Effective modulus ``E*`` [Pa].
+        effective_radius : array_like
+            Effective radius ``R*`` [m].
+
+    Returns
+    -------
+    ndarray
+        Yield approach ``alpha_y`` [m].
+
+    Raises
+    ------
+    ValueError
+        If an argument is not positive (``p_y`` may be ``inf``).
 
     Examples
     --------
@@ -93,7 +190,32 @@ def yield_approach(limiting_pressure, effective_modulus, effective_radius):
 
 
 def yield_force(limiting_pressure, effective_modulus, effective_radius):
-    """Force at first yield, ``P_y = 4/3 E* R*^(1/2) alpha_y^(3/2)`` [N] (seed eq. 7)."""
+    """Force at first yield, ``P_y = 4/3 E* R*^(1/2) alpha_y^(3/2)`` [N] (seed eq. 7).
+
+    Parameters
+    ----------
+    limiting_pressure : array_like
+        Limiting contact pressure ``p_y`` [Pa], positive (``inf``: never yields).
+        effective_modulus : array_like
+            Effective modulus ``E*`` [Pa].
+        effective_radius : array_like
+            Effective radius ``R*`` [m].
+
+    Returns
+    -------
+    ndarray
+        Yield force ``P_y`` [N].
+
+    Raises
+    ------
+    ValueError
+        If an argument is not positive (``p_y`` may be ``inf``).
+
+    Examples
+    --------
+    >>> round(float(yield_force(156e6, 1.31e9, 2.45e-6)) * 1e6, 3)  # uN, silicon case
+    68.622
+    """
     alpha_y = yield_approach(limiting_pressure, effective_modulus, effective_radius)
     return 4.0 / 3.0 * effective_modulus * np.sqrt(effective_radius) * alpha_y**1.5
 
@@ -103,6 +225,27 @@ def plastic_loading_force(alpha, effective_modulus, effective_radius, limiting_p
 
     Thornton & Ning (1998): once the central pressure reaches ``p_y`` the force
     grows linearly with the approach. Valid for ``alpha >= alpha_y``.
+
+    Parameters
+    ----------
+    alpha : array_like
+        Approach ``alpha`` [m], >= 0 (meaningful for ``alpha >= alpha_y``).
+        effective_modulus : array_like
+            Effective modulus ``E*`` [Pa].
+        effective_radius : array_like
+            Effective radius ``R*`` [m].
+    limiting_pressure : array_like
+        Limiting contact pressure ``p_y`` [Pa].
+
+    Returns
+    -------
+    ndarray
+        Contact force ``P`` [N] on the plastic branch.
+
+    Raises
+    ------
+    ValueError
+        If ``alpha`` is negative or a pair property is not positive.
     """
     alpha = check_nonnegative("alpha", alpha)
     alpha_y = yield_approach(limiting_pressure, effective_modulus, effective_radius)
@@ -111,7 +254,39 @@ def plastic_loading_force(alpha, effective_modulus, effective_radius, limiting_p
 
 
 def loading_force(alpha, effective_modulus, effective_radius, limiting_pressure):
-    """Force on the loading path, Hertz up to ``alpha_y`` then plastic (eqs. 2, 8) [N]."""
+    """Force on the loading path: Hertz up to ``alpha_y``, then plastic [N] (seed eqs. 2, 8).
+
+    Parameters
+    ----------
+    alpha : array_like
+        Approach ``alpha`` [m], >= 0.
+        effective_modulus : array_like
+            Effective modulus ``E*`` [Pa].
+        effective_radius : array_like
+            Effective radius ``R*`` [m].
+    limiting_pressure : array_like
+        Limiting contact pressure ``p_y`` [Pa] (``inf``: Hertz throughout).
+
+    Returns
+    -------
+    ndarray
+        Loading force ``P`` [N]: :func:`hertz_force` for ``alpha <= alpha_y``,
+        :func:`plastic_loading_force` above.
+
+    Raises
+    ------
+    ValueError
+        If ``alpha`` is negative or a pair property is not positive.
+
+    Examples
+    --------
+    At twice the yield approach the force is ``(3*2 - 1)/2 = 2.5`` yield forces (eq. 14):
+
+    >>> a_y = yield_approach(156e6, 1.31e9, 2.45e-6)
+    >>> P_y = yield_force(156e6, 1.31e9, 2.45e-6)
+    >>> round(float(loading_force(2 * a_y, 1.31e9, 2.45e-6, 156e6) / P_y), 12)
+    2.5
+    """
     alpha = check_nonnegative("alpha", alpha)
     alpha_y = yield_approach(limiting_pressure, effective_modulus, effective_radius)
     elastic = hertz_force(alpha, effective_modulus, effective_radius)
@@ -121,7 +296,25 @@ def loading_force(alpha, effective_modulus, effective_radius, limiting_pressure)
 
 
 def equivalent_elastic_force(max_approach, effective_modulus, effective_radius):
-    """``F_e = 4/3 E* R*^(1/2) alpha*^(3/2)``, the Hertz force at the maximum approach [N] (after eq. 9)."""
+    """Hertz force at the maximum approach, ``F_e = 4/3 E* R*^(1/2) alpha*^(3/2)`` [N] (seed, after eq. 9).
+
+    The force the maximum approach would need if the contact had stayed elastic;
+    it fixes the unloading radius (eq. 9) and the plastic approach (eq. 11).
+
+    Parameters
+    ----------
+    max_approach : array_like
+        Maximum approach ``alpha*`` [m], >= 0.
+        effective_modulus : array_like
+            Effective modulus ``E*`` [Pa].
+        effective_radius : array_like
+            Effective radius ``R*`` [m].
+
+    Returns
+    -------
+    ndarray
+        Equivalent elastic force ``F_e`` [N].
+    """
     return hertz_force(max_approach, effective_modulus, effective_radius)
 
 
@@ -130,6 +323,22 @@ def unloading_radius(max_approach, max_force, effective_modulus, effective_radiu
 
     ``R_p >= R*``: plastic loading flattens the contact. For an elastic impact
     (``P* = F_e``) ``R_p = R*``. Where both forces are zero (no contact), ``R*``.
+
+    Parameters
+    ----------
+    max_approach : array_like
+        Maximum approach ``alpha*`` [m], >= 0.
+    max_force : array_like
+        Maximum force ``P*`` [N] reached at ``alpha*``.
+        effective_modulus : array_like
+            Effective modulus ``E*`` [Pa].
+        effective_radius : array_like
+            Effective radius ``R*`` [m].
+
+    Returns
+    -------
+    ndarray
+        Unloading radius ``R_p`` [m].
     """
     F_e = equivalent_elastic_force(max_approach, effective_modulus, effective_radius)
     R = np.asarray(effective_radius, dtype=float)
@@ -139,7 +348,24 @@ def unloading_radius(max_approach, max_force, effective_modulus, effective_radiu
 
 
 def plastic_approach(max_approach, max_force, effective_modulus, effective_radius):
-    """Plastic (unrecoverable) approach ``alpha_p = alpha* (1 - P*/F_e)`` [m] (seed eq. 11)."""
+    """Plastic (unrecoverable) approach ``alpha_p = alpha* (1 - P*/F_e)`` [m] (seed eq. 11).
+
+    Parameters
+    ----------
+    max_approach : array_like
+        Maximum approach ``alpha*`` [m], >= 0.
+    max_force : array_like
+        Maximum force ``P*`` [N] reached at ``alpha*``.
+        effective_modulus : array_like
+            Effective modulus ``E*`` [Pa].
+        effective_radius : array_like
+            Effective radius ``R*`` [m].
+
+    Returns
+    -------
+    ndarray
+        Plastic approach ``alpha_p`` [m], >= 0 (0 for an elastic contact, ``P* = F_e``).
+    """
     alpha_m = np.asarray(max_approach, dtype=float)
     F_e = equivalent_elastic_force(alpha_m, effective_modulus, effective_radius)
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -151,6 +377,22 @@ def unloading_force(alpha, plastic_approach, unloading_radius, effective_modulus
     """Elastic unloading force ``P = 4/3 E* R_p^(1/2) (alpha - alpha_p)^(3/2)`` [N] (seed eq. 10).
 
     Zero for ``alpha <= alpha_p`` (the bodies have separated).
+
+    Parameters
+    ----------
+    alpha : array_like
+        Approach ``alpha`` [m].
+    plastic_approach : array_like
+        Plastic approach ``alpha_p`` [m] (eq. 11, :func:`plastic_approach`).
+    unloading_radius : array_like
+        Unloading radius ``R_p`` [m] (eq. 9, :func:`unloading_radius`).
+    effective_modulus : array_like
+        Effective modulus ``E*`` [Pa].
+
+    Returns
+    -------
+    ndarray
+        Unloading force ``P`` [N], >= 0.
     """
     alpha = np.asarray(alpha, dtype=float)
     d = np.maximum(alpha - plastic_approach, 0.0)
@@ -164,6 +406,38 @@ def contact_force(alpha, effective_modulus, effective_radius, limiting_pressure,
     plastic above (eqs. 2, 8). With the maximum approach ``alpha*`` reached so
     far, the contact is unloading from ``alpha*``: eq. 10 with ``R_p`` (eq. 9)
     and ``alpha_p`` (eq. 11) fixed by ``alpha*``.
+
+    Parameters
+    ----------
+    alpha : array_like
+        Approach ``alpha`` [m].
+        effective_modulus : array_like
+            Effective modulus ``E*`` [Pa].
+        effective_radius : array_like
+            Effective radius ``R*`` [m].
+    limiting_pressure : array_like
+        Limiting contact pressure ``p_y`` [Pa] (``inf``: elastic throughout).
+    max_approach : array_like or None, optional
+        Maximum approach ``alpha*`` [m] reached so far when unloading; ``None``
+        (default) for the loading path.
+
+    Returns
+    -------
+    ndarray
+        Contact force ``P`` [N].
+
+    Examples
+    --------
+    Unloading from ``alpha* = 3 alpha_y`` the force vanishes at the plastic approach:
+
+    >>> E, R, p_y = 1.31e9, 2.45e-6, 156e6
+    >>> a_m = 3 * yield_approach(p_y, E, R)
+    >>> P_m = loading_force(a_m, E, R, p_y)
+    >>> a_p = plastic_approach(a_m, P_m, E, R)
+    >>> float(contact_force(a_p, E, R, p_y, max_approach=a_m))
+    0.0
+    >>> bool(np.isclose(contact_force(a_m, E, R, p_y, max_approach=a_m), P_m))
+    True
     """
     if max_approach is None:
         return loading_force(alpha, effective_modulus, effective_radius, limiting_pressure)
@@ -174,19 +448,51 @@ def contact_force(alpha, effective_modulus, effective_radius, limiting_pressure,
 
 
 def normalized_loading_force(alpha_hat):
-    """Normalised loading force ``P/P_y`` against ``alpha/alpha_y`` (seed eqs. 13, 14).
+    """Normalised loading force ``P/P_y`` against ``alpha/alpha_y`` [-] (seed eqs. 13, 14).
 
-    ``alpha_hat^(3/2)`` up to 1, then ``(3 alpha_hat - 1)/2``.
+    ``alpha_hat^(3/2)`` up to 1 (eq. 13), then ``(3 alpha_hat - 1)/2`` (eq. 14).
+
+    Parameters
+    ----------
+    alpha_hat : array_like
+        Normalised approach ``alpha/alpha_y`` [-], >= 0.
+
+    Returns
+    -------
+    ndarray
+        Normalised force ``P/P_y`` [-].
+
+    Raises
+    ------
+    ValueError
+        If ``alpha_hat`` is negative.
+
+    Examples
+    --------
+    >>> normalized_loading_force([0.25, 1.0, 3.0]).tolist()
+    [0.125, 1.0, 4.0]
     """
     a = check_nonnegative("alpha_hat", alpha_hat)
     return np.where(a <= 1.0, a**1.5, (3.0 * a - 1.0) / 2.0)
 
 
 def normalized_unloading_force(alpha_hat, max_alpha_hat):
-    """Normalised unloading force ``P/P_y`` (seed eq. 15).
+    """Normalised unloading force ``P/P_y`` [-] (seed eq. 15).
 
     ``(R_p/R*)^(1/2) (alpha_hat - alpha_hat_p)^(3/2)`` with ``R_p/R* = alpha_hat*^(3/2)/P_hat*``
     and ``alpha_hat_p = alpha_hat* - P_hat*/alpha_hat*^(1/2)``.
+
+    Parameters
+    ----------
+    alpha_hat : array_like
+        Normalised approach ``alpha/alpha_y`` [-].
+    max_alpha_hat : array_like
+        Normalised maximum approach ``alpha*/alpha_y`` [-], > 0.
+
+    Returns
+    -------
+    ndarray
+        Normalised unloading force ``P/P_y`` [-], 0 below the plastic approach.
     """
     a = np.asarray(alpha_hat, dtype=float)
     am = np.asarray(max_alpha_hat, dtype=float)
