@@ -61,7 +61,29 @@ def yield_velocity(limiting_pressure, effective_modulus, effective_radius, effec
     The impact speed at which the Hertz pressure at the contact centre just
     reaches ``p_y`` (Davies 1949; Thornton & Ning 1998). Valid for two spheres
     with the effective radius and mass. For a sphere on a flat it is the seed's
-    eq. 28 (:func:`yield_velocity_sphere_on_flat`).
+    eq. 28 (:func:`yield_velocity_sphere_on_flat`); ``alpha_y`` and ``P_y`` are
+    eqs. 5 and 7.
+
+    Parameters
+    ----------
+    limiting_pressure : array_like
+        Limiting contact pressure ``p_y`` [Pa], positive (``inf`` gives ``V_y = inf``).
+    effective_modulus : array_like
+        Effective modulus ``E*`` [Pa].
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
+    effective_mass : array_like
+        Effective mass ``m*`` [kg].
+
+    Returns
+    -------
+    ndarray
+        Yield velocity ``V_y`` [m/s].
+
+    Raises
+    ------
+    ValueError
+        If an argument is not positive (``p_y`` may be ``inf``).
 
     Examples
     --------
@@ -76,18 +98,23 @@ def yield_velocity(limiting_pressure, effective_modulus, effective_radius, effec
 
 
 def yield_velocity_sphere_on_flat(limiting_pressure, effective_modulus, density):
-    """Yield velocity of a sphere on a flat, ``V_y = (pi^4/40)^(1/2) (p_y^5/(E*^4 rho))^(1/2)`` (seed eq. 28).
+    """Yield velocity of a sphere on a flat, ``V_y = (pi^4/40)^(1/2) (p_y^5/(E*^4 rho))^(1/2)`` [m/s] (seed eq. 28).
 
     ``(pi^4/40)^(1/2) = 1.5605``: the seed prints 1.56. Independent of the radius.
 
     Parameters
     ----------
     limiting_pressure : array_like
-        ``p_y`` [Pa].
+        Limiting contact pressure ``p_y`` [Pa].
     effective_modulus : array_like
-        ``E*`` [Pa].
+        Effective modulus ``E*`` [Pa].
     density : array_like
-        Particle density [kg/m^3].
+        Particle density ``rho`` [kg/m^3].
+
+    Returns
+    -------
+    ndarray
+        Yield velocity ``V_y`` [m/s].
 
     Examples
     --------
@@ -101,7 +128,44 @@ def yield_velocity_sphere_on_flat(limiting_pressure, effective_modulus, density)
 
 
 def elastic_max_approach(velocity, effective_modulus, effective_radius, effective_mass):
-    """Maximum approach of a purely elastic (Hertz) impact, ``alpha_m = (15 m* V^2 / (16 E* R*^(1/2)))^(2/5)`` [m]."""
+    """Maximum approach of a purely elastic (Hertz) impact [m].
+
+    ``alpha_m = (15 m* V^2 / (16 E* R*^(1/2)))^(2/5)``: the energy balance
+    ``1/2 m* V^2 = 8/15 E* R*^(1/2) alpha_m^(5/2)`` of Hertz's force (seed eq. 2):
+    the seed's stage-1 velocity (eq. 17) vanishes there.
+
+    Parameters
+    ----------
+    velocity : array_like
+        Impact speed ``V`` [m/s], >= 0.
+    effective_modulus : array_like
+        Effective modulus ``E*`` [Pa].
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
+    effective_mass : array_like
+        Effective mass ``m*`` [kg].
+
+    Returns
+    -------
+    ndarray
+        Maximum approach ``alpha_m`` [m].
+
+    Raises
+    ------
+    ValueError
+        If ``velocity`` is negative or NaN.
+
+    Examples
+    --------
+    At the yield velocity the elastic maximum approach is the yield approach (eq. 5):
+
+    >>> from microimpact.contact import yield_approach
+    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350
+    >>> V_y = yield_velocity(156e6, 1.31e9, 2.45e-6, m)
+    >>> a_m = elastic_max_approach(V_y, 1.31e9, 2.45e-6, m)
+    >>> round(float(a_m / yield_approach(156e6, 1.31e9, 2.45e-6)), 12)
+    1.0
+    """
     V = check_velocity("velocity", velocity)
     return (15.0 * effective_mass * V**2 / (16.0 * effective_modulus * np.sqrt(effective_radius))) ** 0.4
 
@@ -117,7 +181,31 @@ def _q(vp):
 
 
 def normalized_max_approach(v):
-    """``alpha*/alpha_y`` against ``v = V/V_y`` (seed eq. 22; Hertz ``v^(4/5)`` for ``v <= 1``)."""
+    """Normalised maximum approach ``alpha*/alpha_y`` against ``v = V/V_y`` [-] (seed eq. 22).
+
+    ``(1 + s)/3`` with ``s = ((24 v^2 - 4)/5)^(1/2)`` for ``v > 1``; the Hertz
+    value ``v^(4/5)`` for ``v <= 1``.
+
+    Parameters
+    ----------
+    v : array_like
+        Normalised impact speed ``v = V/V_y`` [-], >= 0 (``inf`` gives the limit).
+
+    Returns
+    -------
+    ndarray
+        ``alpha*/alpha_y`` [-].
+
+    Raises
+    ------
+    ValueError
+        If ``v`` is negative or NaN.
+
+    Examples
+    --------
+    >>> normalized_max_approach([1.0, 2.0]).round(6).tolist()
+    [1.0, 1.763174]
+    """
     v = check_velocity("v", v)
     vp = _plastic_v(v)
     s = vp * _q(vp)
@@ -125,14 +213,51 @@ def normalized_max_approach(v):
 
 
 def normalized_max_force(v):
-    """``P*/P_y = (3 alpha^* - 1)/2`` (seed eq. 14 at the maximum approach; ``v^(6/5)`` for ``v <= 1``)."""
+    """Normalised maximum force ``P*/P_y`` against ``v = V/V_y`` [-] (seed eq. 14 at the maximum approach).
+
+    ``(3 alpha^* - 1)/2 = s/2`` for ``v > 1`` (``alpha^*`` from eq. 22);
+    ``v^(6/5)`` for ``v <= 1``.
+
+    Parameters
+    ----------
+    v : array_like
+        Normalised impact speed ``v = V/V_y`` [-], >= 0 (``inf`` gives the limit).
+
+    Returns
+    -------
+    ndarray
+        ``P*/P_y`` [-].
+
+    Raises
+    ------
+    ValueError
+        If ``v`` is negative or NaN.
+    """
     v = check_velocity("v", v)
     vp = _plastic_v(v)
     return np.where(v <= 1.0, v**1.2, 0.5 * vp * _q(vp))
 
 
 def normalized_plastic_approach(v):
-    """``alpha_p/alpha_y = alpha^* - P^*/alpha^*^(1/2)`` (seed eq. 11, normalised); 0 for ``v <= 1``."""
+    """Normalised plastic approach ``alpha_p/alpha_y = alpha^* - P^*/alpha^*^(1/2)`` [-] (seed eq. 11, normalised).
+
+    0 for ``v <= 1`` (elastic impact), ``inf`` at ``v = inf``.
+
+    Parameters
+    ----------
+    v : array_like
+        Normalised impact speed ``v = V/V_y`` [-], >= 0 (``inf`` gives the limit).
+
+    Returns
+    -------
+    ndarray
+        ``alpha_p/alpha_y`` [-], >= 0.
+
+    Raises
+    ------
+    ValueError
+        If ``v`` is negative or NaN.
+    """
     A = normalized_max_approach(v)
     P = normalized_max_force(v)
     with np.errstate(invalid="ignore"):
@@ -141,7 +266,25 @@ def normalized_plastic_approach(v):
 
 
 def normalized_unloading_radius(v):
-    """``R_p/R* = alpha^*^(3/2)/P^*`` (seed eq. 9, normalised); 1 for ``v <= 1``."""
+    """Normalised unloading radius ``R_p/R* = alpha^*^(3/2)/P^*`` [-] (seed eq. 9, normalised).
+
+    1 for ``v <= 1`` (elastic impact), ``inf`` at ``v = inf``.
+
+    Parameters
+    ----------
+    v : array_like
+        Normalised impact speed ``v = V/V_y`` [-], >= 0 (``inf`` gives the limit).
+
+    Returns
+    -------
+    ndarray
+        ``R_p/R*`` [-], >= 1.
+
+    Raises
+    ------
+    ValueError
+        If ``v`` is negative or NaN.
+    """
     A = normalized_max_approach(v)
     P = normalized_max_force(v)
     with np.errstate(invalid="ignore"):
@@ -150,9 +293,24 @@ def normalized_unloading_radius(v):
 
 
 def normalized_restitution(v):
-    """Restitution coefficient against ``v = V/V_y`` (seed eq. 27).
+    """Restitution coefficient against ``v = V/V_y`` [-] (seed eq. 27).
 
     ``e = P^* / (alpha^*^(1/4) v)`` for ``v > 1``, 1 for ``v <= 1``, 0 at ``v = inf``.
+
+    Parameters
+    ----------
+    v : array_like
+        Normalised impact speed ``v = V/V_y`` [-], >= 0 (``inf`` gives the limit).
+
+    Returns
+    -------
+    ndarray
+        Coefficient of restitution ``e = V_r/V`` [-], in [0, 1].
+
+    Raises
+    ------
+    ValueError
+        If ``v`` is negative or NaN.
 
     Examples
     --------
@@ -172,7 +330,7 @@ def normalized_restitution(v):
 
 
 def restitution_coefficient(velocity, yield_velocity):
-    """Restitution coefficient ``e`` of an impact at ``velocity`` [m/s] (seed eq. 27).
+    """Restitution coefficient ``e`` of an impact at ``velocity`` [-] (seed eq. 27).
 
     Parameters
     ----------
@@ -180,6 +338,21 @@ def restitution_coefficient(velocity, yield_velocity):
         Impact speed ``V`` [m/s], >= 0.
     yield_velocity : array_like
         ``V_y`` [m/s] (eq. 28 or :func:`yield_velocity`); ``inf`` gives ``e = 1``.
+
+    Returns
+    -------
+    ndarray
+        Coefficient of restitution ``e = V_r/V`` [-]: 1 for ``V <= V_y``.
+
+    Raises
+    ------
+    ValueError
+        If ``velocity`` is negative or ``yield_velocity`` not positive.
+
+    Examples
+    --------
+    >>> round(float(restitution_coefficient(20.0, 7.52)), 4)
+    0.8836
     """
     V = check_velocity("velocity", velocity)
     Vy = check_positive("yield_velocity", yield_velocity, allow_inf=True)
@@ -190,11 +363,35 @@ def restitution_coefficient(velocity, yield_velocity):
 
 
 def thornton_ning_restitution(velocity, yield_velocity):
-    """Thornton & Ning's (1998) closed form of the restitution coefficient.
+    """Thornton & Ning's (1998) closed form of the restitution coefficient [-].
 
     ``e = (6 3^(1/2)/5)^(1/2) (1 - w^2/6)^(1/2) [w / (w + 2 (6/5 - w^2/5)^(1/2))]^(1/4)``
     with ``w = V_y/V`` for ``V > V_y``, and 1 otherwise. Written independently of
-    :func:`restitution_coefficient`; the two are algebraically equal (THEORY.md §3).
+    :func:`restitution_coefficient` (seed eq. 27); the two are algebraically equal
+    (see the :ref:`theory page <theory>`).
+
+    Parameters
+    ----------
+    velocity : array_like
+        Impact speed ``V`` [m/s], >= 0.
+    yield_velocity : array_like
+        Yield velocity ``V_y`` [m/s] (eq. 28); ``inf`` gives ``e = 1``.
+
+    Returns
+    -------
+    ndarray
+        Coefficient of restitution ``e`` [-].
+
+    Raises
+    ------
+    ValueError
+        If ``velocity`` is negative or ``yield_velocity`` not positive.
+
+    Examples
+    --------
+    >>> e_tn = thornton_ning_restitution(20.0, 7.52)
+    >>> bool(np.isclose(e_tn, restitution_coefficient(20.0, 7.52), rtol=1e-12))
+    True
     """
     V = check_velocity("velocity", velocity)
     Vy = check_positive("yield_velocity", yield_velocity, allow_inf=True)
@@ -209,7 +406,23 @@ def thornton_ning_restitution(velocity, yield_velocity):
 
 
 def energy_loss_fraction(restitution):
-    """Fraction of the incident kinetic energy lost to plastic deformation, ``1 - e^2`` (seed eq. 29)."""
+    """Fraction of the incident kinetic energy lost to plastic deformation, ``1 - e^2`` [-] (seed eq. 29).
+
+    Parameters
+    ----------
+    restitution : array_like
+        Coefficient of restitution ``e`` [-].
+
+    Returns
+    -------
+    ndarray
+        Energy-loss fraction ``1 - e^2`` [-].
+
+    Examples
+    --------
+    >>> float(energy_loss_fraction(0.5))
+    0.75
+    """
     e = np.asarray(restitution, dtype=float)
     return 1.0 - e**2
 
@@ -235,7 +448,8 @@ def impact_outcome(velocity, effective_modulus, effective_radius, effective_mass
     Returns
     -------
     dict of ndarray
-        ``yield_velocity`` [m/s], ``normalized_velocity`` ``V/V_y`` [-],
+        ``velocity`` ``V`` [m/s] (broadcast), ``yield_velocity`` [m/s],
+        ``normalized_velocity`` ``V/V_y`` [-],
         ``elastic`` (bool, ``V <= V_y``), ``restitution`` [-], ``rebound_velocity`` [m/s],
         ``max_approach`` ``alpha*`` [m], ``plastic_approach`` ``alpha_p`` [m],
         ``max_force`` ``P*`` [N], ``unloading_radius`` ``R_p`` [m],
