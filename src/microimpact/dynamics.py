@@ -1,7 +1,8 @@
 """Contact times of an elastic-plastic impact, in closed form (seed eqs. 20, 23, 26, 30-33).
 
 The seed integrates the times numerically ("no simple expressions are
-available"). They exist (THEORY.md §4):
+available"). They exist; the derivation is on the theory page, section
+"Contact times in closed form" (:ref:`theory-times`):
 
 * stage 1, Hertz loading to ``alpha_1 = min(alpha_y, alpha_m)``:
   ``t1 = (2/5)(alpha_m/V) B(u; 2/5, 1/2)``, ``u = (alpha_1/alpha_m)^(5/2) = min(1, (V_y/V)^2)``
@@ -60,7 +61,28 @@ HERTZ_TIME_CONSTANT = 0.8 * BETA_25_12 * (15.0 / 16.0) ** 0.4
 
 
 def incomplete_beta(u, a=0.4, b=0.5):
-    """Non-regularised incomplete beta function ``B(u; a, b) = I_u(a, b) B(a, b)``."""
+    """Non-regularised incomplete beta function ``B(u; a, b) = I_u(a, b) B(a, b)`` [-].
+
+    With the defaults ``a = 2/5``, ``b = 1/2`` it is the Hertz time integral of
+    the stage-1 and stage-3 times (seed eqs. 20, 26).
+
+    Parameters
+    ----------
+    u : array_like
+        Upper limit of the integral, in [0, 1] [-].
+    a, b : array_like, optional
+        Positive shape parameters [-] (default ``2/5`` and ``1/2``).
+
+    Returns
+    -------
+    ndarray
+        ``B(u; a, b) = int_0^u t^(a-1) (1 - t)^(b-1) dt`` [-].
+
+    Examples
+    --------
+    >>> bool(np.isclose(incomplete_beta(1.0), BETA_25_12))
+    True
+    """
     return special.betainc(a, b, u) * special.beta(a, b)
 
 
@@ -75,8 +97,36 @@ def _time_scale(velocity, effective_modulus, effective_radius, effective_mass):
 def hertz_contact_time(velocity, effective_modulus, effective_radius, effective_mass):
     """Duration of a perfectly elastic Hertz impact, ``(4/5) B(2/5,1/2) alpha_m / V`` [s].
 
-    Equals ``2.868 (m*^2/(R* E*^2 V))^(1/5)``: eq. 30 with its exact constant.
-    ``inf`` at ``V = 0`` (the limit), 0 at ``V = inf``.
+    Equals ``2.868 (m*^2/(R* E*^2 V))^(1/5)``: the seed's eq. 30 with its exact
+    constant :data:`HERTZ_TIME_CONSTANT`. ``inf`` at ``V = 0`` (the limit), 0 at
+    ``V = inf``.
+
+    Parameters
+    ----------
+    velocity : array_like
+        Impact speed ``V`` [m/s], >= 0.
+    effective_modulus : array_like
+        Effective modulus ``E*`` [Pa].
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
+    effective_mass : array_like
+        Effective mass ``m*`` [kg].
+
+    Returns
+    -------
+    ndarray
+        Contact time ``t_c`` [s] of the elastic impact.
+
+    Raises
+    ------
+    ValueError
+        If ``velocity`` is negative or a pair property is not positive.
+
+    Examples
+    --------
+    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
+    >>> round(float(hertz_contact_time(7.6, 1.31e9, 2.45e-6, m)) * 1e6, 5)  # us
+    0.03347
     """
     V = check_velocity("velocity", velocity)
     E, R, m, _ = _check_pair(effective_modulus, effective_radius, effective_mass, 1.0)
@@ -89,9 +139,32 @@ def deresiewicz_contact_time(velocity, effective_modulus, effective_radius, effe
     ``constant`` is the seed's printed 2.87 by default; the exact value is
     :data:`HERTZ_TIME_CONSTANT` (2.8683), which makes this :func:`hertz_contact_time`.
 
+    Parameters
+    ----------
+    velocity : array_like
+        Impact speed ``V`` [m/s], >= 0.
+    effective_modulus : array_like
+        Effective modulus ``E*`` [Pa].
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
+    effective_mass : array_like
+        Effective mass ``m*`` [kg].
+    constant : float, optional
+        Prefactor [-]; default 2.87, as printed in the seed.
+
+    Returns
+    -------
+    ndarray
+        Elastic contact time ``t_c`` [s].
+
+    Raises
+    ------
+    ValueError
+        If ``velocity`` is negative or a pair property is not positive.
+
     Examples
     --------
-    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350
+    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
     >>> round(float(deresiewicz_contact_time(7.6, 1.31e9, 2.45e-6, m)) * 1e6, 5)  # us; seed: 0.03348
     0.03349
     """
@@ -104,7 +177,27 @@ def deresiewicz_contact_time(velocity, effective_modulus, effective_radius, effe
 def plastic_frequency(limiting_pressure, effective_radius, effective_mass):
     """Angular frequency of the plastic stage, ``omega = (pi p_y R*/m*)^(1/2)`` [rad/s].
 
-    The plastic loading force (eq. 8) is linear in the approach with stiffness ``pi p_y R*``.
+    The plastic loading force (seed eq. 8) is linear in the approach with
+    stiffness ``pi p_y R*``, so stage 2 is a harmonic oscillation (eqs. 18-23).
+
+    Parameters
+    ----------
+    limiting_pressure : array_like
+        Limiting contact pressure ``p_y`` [Pa].
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
+    effective_mass : array_like
+        Effective mass ``m*`` [kg].
+
+    Returns
+    -------
+    ndarray
+        Angular frequency ``omega`` [rad/s].
+
+    Raises
+    ------
+    ValueError
+        If an argument is not positive (``p_y`` may be ``inf``).
     """
     p_y = check_positive("limiting_pressure", limiting_pressure, allow_inf=True)
     R = check_positive("effective_radius", effective_radius)
@@ -117,9 +210,28 @@ def ning_loading_time(limiting_pressure, effective_radius, effective_mass):
 
     The quarter period of the plastic-stage oscillation: the limit of ``t1 + t2`` as ``V -> inf``.
 
+    Parameters
+    ----------
+    limiting_pressure : array_like
+        Limiting contact pressure ``p_y`` [Pa].
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
+    effective_mass : array_like
+        Effective mass ``m*`` [kg].
+
+    Returns
+    -------
+    ndarray
+        Loading time ``t_L`` [s] in the limit ``V -> inf``.
+
+    Raises
+    ------
+    ValueError
+        If an argument is not positive.
+
     Examples
     --------
-    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350
+    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
     >>> round(float(ning_loading_time(156e6, 2.45e-6, m)) * 1e6, 5)  # us; seed: 0.01307
     0.01307
     """
@@ -127,9 +239,42 @@ def ning_loading_time(limiting_pressure, effective_radius, effective_mass):
 
 
 def elastic_stage_time(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure):
-    """Duration ``t1`` of stage 1, Hertz loading up to yield or to rest (seed eq. 20) [s].
+    """Duration ``t1`` of stage 1, Hertz loading up to yield or to rest [s] (seed eq. 20).
 
-    ``(2/5) (alpha_m/V) B(min(1, (V_y/V)^2); 2/5, 1/2)``.
+    ``(2/5) (alpha_m/V) B(min(1, (V_y/V)^2); 2/5, 1/2)``, with ``alpha_m`` the
+    maximum approach of a purely elastic impact.
+
+    Parameters
+    ----------
+    velocity : array_like
+        Impact speed ``V`` [m/s], >= 0.
+    effective_modulus : array_like
+        Effective modulus ``E*`` [Pa].
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
+    effective_mass : array_like
+        Effective mass ``m*`` [kg].
+    limiting_pressure : array_like
+        Limiting contact pressure ``p_y`` [Pa] (``inf``: elastic impact).
+
+    Returns
+    -------
+    ndarray
+        Stage-1 time ``t1`` [s]; ``inf`` at ``V = 0``, 0 at ``V = inf``.
+
+    Raises
+    ------
+    ValueError
+        If ``velocity`` is negative or a pair property is not positive.
+
+    Examples
+    --------
+    Below the yield velocity stage 1 is the whole loading, half the Hertz contact time:
+
+    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
+    >>> t1 = elastic_stage_time(5.0, 1.31e9, 2.45e-6, m, 156e6)
+    >>> bool(np.isclose(2 * t1, hertz_contact_time(5.0, 1.31e9, 2.45e-6, m)))
+    True
     """
     V = check_velocity("velocity", velocity)
     E, R, m, p_y = _check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
@@ -141,11 +286,42 @@ def elastic_stage_time(velocity, effective_modulus, effective_radius, effective_
 
 
 def plastic_stage_time(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure):
-    """Duration ``t2`` of stage 2, plastic loading to the maximum approach (seed eq. 23) [s].
+    """Duration ``t2`` of stage 2, plastic loading to the maximum approach [s] (seed eq. 23).
 
     ``(pi/2 - atan2(2 omega alpha_y/3, (V^2 - V_y^2)^(1/2))) / omega``
     ``= atan2((V^2 - V_y^2)^(1/2), 2 omega alpha_y/3) / omega``; 0 for ``V <= V_y``;
     tends to Ning's loading time (eq. 31) as ``V -> inf``.
+
+    Parameters
+    ----------
+    velocity : array_like
+        Impact speed ``V`` [m/s], >= 0.
+    effective_modulus : array_like
+        Effective modulus ``E*`` [Pa].
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
+    effective_mass : array_like
+        Effective mass ``m*`` [kg].
+    limiting_pressure : array_like
+        Limiting contact pressure ``p_y`` [Pa] (``inf``: elastic impact).
+
+    Returns
+    -------
+    ndarray
+        Stage-2 time ``t2`` [s].
+
+    Raises
+    ------
+    ValueError
+        If ``velocity`` is negative or a pair property is not positive.
+
+    Examples
+    --------
+    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
+    >>> float(plastic_stage_time(5.0, 1.31e9, 2.45e-6, m, 156e6))  # elastic impact
+    0.0
+    >>> round(float(plastic_stage_time(20.0, 1.31e9, 2.45e-6, m, 156e6)) * 1e6, 5)  # us
+    0.01012
     """
     V = check_velocity("velocity", velocity)
     E, R, m, p_y = _check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
@@ -162,9 +338,32 @@ def plastic_stage_time(velocity, effective_modulus, effective_radius, effective_
 
 
 def unloading_time(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure):
-    """Duration ``t_U`` of stage 3, elastic unloading from ``alpha*`` to ``alpha_p`` (seed eq. 26) [s].
+    """Duration ``t_U`` of stage 3, elastic unloading from ``alpha*`` to ``alpha_p`` [s] (seed eq. 26).
 
     ``(2/5) B(2/5, 1/2) (alpha* - alpha_p) / V_r``; equals the loading time for ``V <= V_y``.
+
+    Parameters
+    ----------
+    velocity : array_like
+        Impact speed ``V`` [m/s], >= 0.
+    effective_modulus : array_like
+        Effective modulus ``E*`` [Pa].
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
+    effective_mass : array_like
+        Effective mass ``m*`` [kg].
+    limiting_pressure : array_like
+        Limiting contact pressure ``p_y`` [Pa] (``inf``: elastic impact).
+
+    Returns
+    -------
+    ndarray
+        Unloading time ``t_U`` [s]; 0 at ``V = inf``.
+
+    Raises
+    ------
+    ValueError
+        If ``velocity`` is negative or a pair property is not positive.
     """
     out = impact_outcome(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)
     return _unloading_time_from(out, effective_modulus, effective_radius, effective_mass)
@@ -220,7 +419,7 @@ def contact_times(velocity, effective_modulus, effective_radius, effective_mass,
 # ============================================================================ time histories
 #
 # One impact, from first contact (t = 0) to separation (t = t_c), in closed form
-# (seed eqs. 17-26; THEORY.md section 4):
+# (seed eqs. 17-26; docs/theory.rst, section "Contact times in closed form"):
 #
 # * stage 1, Hertz loading, ``0 <= t <= t1``: with ``T_m = (2/5) B(2/5,1/2) alpha_m / V``
 #   the time a purely elastic impact takes to reach ``alpha_m``, the fraction
