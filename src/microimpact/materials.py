@@ -173,12 +173,47 @@ MATERIALS["aluminum"] = MATERIALS["aluminium"]  # US spelling, same entry
 
 
 def list_materials() -> list[str]:
-    """Names of the registered materials (aliases left out)."""
+    """Names of the registered materials, sorted (aliases left out).
+
+    Returns
+    -------
+    list of str
+        Keys of :data:`MATERIALS` that name their own entry.
+
+    Examples
+    --------
+    >>> "silicon" in list_materials(), "aluminum" in list_materials()
+    (True, False)
+    """
     return sorted(k for k, m in MATERIALS.items() if k == m.name)
 
 
 def get_material(name) -> Material:
-    """Look up a material by name (case-insensitive); a :class:`Material` passes through."""
+    """Look up a material by name (case-insensitive); a :class:`Material` passes through.
+
+    Hyphens and spaces in ``name`` are read as underscores (``"fused silica"``).
+
+    Parameters
+    ----------
+    name : str or Material
+        Registry key of :data:`MATERIALS` (``"silicon"``, ``"NH4Fl"``, ...) or a
+        :class:`Material`, returned as is.
+
+    Returns
+    -------
+    Material
+        The registered material.
+
+    Raises
+    ------
+    ValueError
+        If ``name`` is not a registered material; the message lists the names.
+
+    Examples
+    --------
+    >>> get_material("Silicon").youngs_modulus
+    163000000000.0
+    """
     if isinstance(name, Material):
         return name
     key = str(name).strip().lower().replace("-", "_").replace(" ", "_")
@@ -203,6 +238,16 @@ def effective_modulus(E1, nu1, E2, nu2):
     nu1, nu2 : array_like
         Poisson ratios in (-1, 0.5].
 
+    Returns
+    -------
+    ndarray
+        Effective modulus ``E*`` [Pa].
+
+    Raises
+    ------
+    ValueError
+        If a modulus is not positive or a Poisson ratio is outside (-1, 0.5].
+
     Examples
     --------
     >>> round(float(effective_modulus(1.2e9, 0.3, 163e9, 0.22)) / 1e9, 3)
@@ -216,21 +261,96 @@ def effective_modulus(E1, nu1, E2, nu2):
 
 
 def effective_radius(R1, R2=math.inf):
-    """Effective radius ``R* = 1 / (1/R1 + 1/R2)`` [m]; a flat has ``R2 = inf`` so ``R* = R1``."""
+    """Effective radius ``R* = 1 / (1/R1 + 1/R2)`` [m] (seed, definition after eq. 2).
+
+    A flat has ``R2 = inf``, so ``R* = R1``.
+
+    Parameters
+    ----------
+    R1 : array_like
+        Radius of the first body [m], positive.
+    R2 : array_like, optional
+        Radius of the second body [m], positive; ``inf`` (default) for a flat.
+
+    Returns
+    -------
+    ndarray
+        Effective radius ``R*`` [m].
+
+    Raises
+    ------
+    ValueError
+        If a radius is not positive.
+
+    Examples
+    --------
+    >>> float(effective_radius(2.45e-6))
+    2.45e-06
+    >>> float(effective_radius(2e-6, 2e-6))  # two equal spheres: R/2
+    1e-06
+    """
     R1 = check_positive("R1", R1, allow_inf=True)
     R2 = check_positive("R2", R2, allow_inf=True)
     return 1.0 / (1.0 / R1 + 1.0 / R2)
 
 
 def effective_mass(m1, m2=math.inf):
-    """Effective mass ``m* = 1 / (1/m1 + 1/m2)`` [kg]; a fixed wall has ``m2 = inf``."""
+    """Effective mass ``m* = 1 / (1/m1 + 1/m2)`` [kg] (seed, definition after eq. 2).
+
+    A fixed wall has ``m2 = inf``, so ``m* = m1``.
+
+    Parameters
+    ----------
+    m1 : array_like
+        Mass of the first body [kg], positive.
+    m2 : array_like, optional
+        Mass of the second body [kg], positive; ``inf`` (default) for a fixed wall.
+
+    Returns
+    -------
+    ndarray
+        Effective mass ``m*`` [kg].
+
+    Raises
+    ------
+    ValueError
+        If a mass is not positive.
+
+    Examples
+    --------
+    >>> round(float(effective_mass(3e-15, 3e-15)) * 1e15, 12)  # two equal particles: m/2, in 1e-15 kg
+    1.5
+    """
     m1 = check_positive("m1", m1, allow_inf=True)
     m2 = check_positive("m2", m2, allow_inf=True)
     return 1.0 / (1.0 / m1 + 1.0 / m2)
 
 
 def sphere_mass(radius, density):
-    """Mass of a solid sphere, ``4/3 pi R^3 rho`` [kg]."""
+    """Mass of a solid sphere, ``m = 4/3 pi R^3 rho`` [kg].
+
+    Parameters
+    ----------
+    radius : array_like
+        Sphere radius ``R`` [m], positive.
+    density : array_like
+        Mass density ``rho`` [kg/m^3], positive.
+
+    Returns
+    -------
+    ndarray
+        Mass ``m`` [kg].
+
+    Raises
+    ------
+    ValueError
+        If ``radius`` or ``density`` is not positive.
+
+    Examples
+    --------
+    >>> round(float(sphere_mass(2.45e-6, 1350.0)) * 1e14, 4)  # 4.9 um NH4Fl particle, 1e-14 kg
+    8.3161
+    """
     radius = check_positive("radius", radius)
     density = check_positive("density", density)
     return 4.0 / 3.0 * np.pi * radius**3 * density
@@ -239,7 +359,7 @@ def sphere_mass(radius, density):
 #: The seed paper's two validation cases (Section 3.1): ammonium fluorescein
 #: particles of 4.9 um diameter on silicon and on mica, as effective values. The
 #: quoted yield velocities are the paper's; eq. 28 with these (rounded) inputs
-#: gives 7.52 and 7.89 m/s (THEORY.md §5).
+#: gives 7.52 and 7.89 m/s (:func:`~microimpact.impact.yield_velocity_sphere_on_flat`).
 PAPER_CASES: dict[str, dict] = {
     "silicon": {
         "radius": 2.45e-6,
