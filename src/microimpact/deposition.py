@@ -71,7 +71,26 @@ CRITICAL_STOKES_NUMBER = 0.25
 def cunningham_correction(diameter, mean_free_path=AIR_MEAN_FREE_PATH):
     """Cunningham slip correction ``C_c = 1 + Kn (1.257 + 0.4 exp(-1.1/Kn))``, ``Kn = 2 lambda/d`` [-].
 
-    Davies (1945) coefficients, as in Hinds, Aerosol Technology (2nd ed., 1999), eq. 3.20.
+    Davies (1945) coefficients, as in Hinds, Aerosol Technology (2nd ed., 1999),
+    eq. 3.20. Not part of the seed paper: it sets the drag of the example flow.
+
+    Parameters
+    ----------
+    diameter : array_like
+        Particle diameter ``d`` [m], positive.
+    mean_free_path : array_like, optional
+        Mean free path of the gas molecules ``lambda`` [m]; default
+        :data:`AIR_MEAN_FREE_PATH` (air at 293 K, 101.3 kPa).
+
+    Returns
+    -------
+    ndarray
+        Slip correction factor ``C_c`` [-], >= 1.
+
+    Raises
+    ------
+    ValueError
+        If ``diameter`` or ``mean_free_path`` is not positive.
 
     Examples
     --------
@@ -85,7 +104,34 @@ def cunningham_correction(diameter, mean_free_path=AIR_MEAN_FREE_PATH):
 
 
 def relaxation_time(diameter, density, viscosity=AIR_VISCOSITY, mean_free_path=AIR_MEAN_FREE_PATH):
-    """Particle relaxation time ``tau = rho d^2 C_c / (18 mu)`` [s] (Stokes drag with slip correction)."""
+    """Particle relaxation time ``tau = rho d^2 C_c / (18 mu)`` [s] (Stokes drag with slip correction).
+
+    Parameters
+    ----------
+    diameter : array_like
+        Particle diameter ``d`` [m], positive.
+    density : array_like
+        Particle density ``rho`` [kg/m^3], positive.
+    viscosity : array_like, optional
+        Dynamic viscosity of the gas ``mu`` [Pa s]; default :data:`AIR_VISCOSITY`.
+    mean_free_path : array_like, optional
+        Mean free path of the gas ``lambda`` [m]; default :data:`AIR_MEAN_FREE_PATH`.
+
+    Returns
+    -------
+    ndarray
+        Relaxation time ``tau`` [s].
+
+    Raises
+    ------
+    ValueError
+        If an argument is not positive.
+
+    Examples
+    --------
+    >>> round(float(relaxation_time(4.9e-6, 1350.0)) * 1e6, 2)  # us, the seed's NH4Fl particle in air
+    102.96
+    """
     d = check_positive("diameter", diameter)
     rho = check_positive("density", density)
     mu = check_positive("viscosity", viscosity)
@@ -93,7 +139,31 @@ def relaxation_time(diameter, density, viscosity=AIR_VISCOSITY, mean_free_path=A
 
 
 def stokes_number(diameter, density, strain_rate, viscosity=AIR_VISCOSITY, mean_free_path=AIR_MEAN_FREE_PATH):
-    """Stokes number of the stagnation-point flow, ``Stk = a tau`` [-]; impaction needs ``Stk > 1/4``."""
+    """Stokes number of the stagnation-point flow, ``Stk = a tau`` [-]; impaction needs ``Stk > 1/4``.
+
+    Parameters
+    ----------
+    diameter : array_like
+        Particle diameter ``d`` [m], positive.
+    density : array_like
+        Particle density ``rho`` [kg/m^3], positive.
+    strain_rate : array_like
+        Strain rate of the flow ``a = U/H`` [1/s], positive.
+    viscosity : array_like, optional
+        Dynamic viscosity of the gas ``mu`` [Pa s]; default :data:`AIR_VISCOSITY`.
+    mean_free_path : array_like, optional
+        Mean free path of the gas ``lambda`` [m]; default :data:`AIR_MEAN_FREE_PATH`.
+
+    Returns
+    -------
+    ndarray
+        Stokes number ``a tau`` [-]; compare with :data:`CRITICAL_STOKES_NUMBER`.
+
+    Raises
+    ------
+    ValueError
+        If an argument is not positive.
+    """
     a = check_positive("strain_rate", strain_rate)
     return a * relaxation_time(diameter, density, viscosity, mean_free_path)
 
@@ -140,16 +210,16 @@ def flight_to_wall(x0, z0, u0, w0, strain_rate, tau):
     u0, w0 : array_like
         Start velocity, radial and axial [m/s].
     strain_rate : array_like
-        ``a`` [1/s].
+        Strain rate of the flow ``a`` [1/s].
     tau : array_like
-        Relaxation time [s].
+        Relaxation time ``tau`` [s] (:func:`relaxation_time`).
 
     Returns
     -------
     dict of ndarray
         ``time`` to impact [s] (``inf`` when the particle never reaches the
-        wall), ``x``, ``u``, ``w`` at impact (radial position, radial and axial
-        velocity; NaN without impact).
+        wall), ``x``, ``u``, ``w`` at impact (radial position [m], radial and axial
+        velocity [m/s]; NaN without impact).
     """
     a = check_positive("strain_rate", strain_rate)
     tau = check_positive("tau", tau)
@@ -168,6 +238,29 @@ def flight_to_wall_ode(x0, z0, u0, w0, strain_rate, tau, *, t_max=None, rtol=1e-
     round-off cannot fake an impact of a particle creeping toward the wall; the
     price is that impacts just above the critical Stokes number, which arrive
     after the axial motion has decayed by more than ``1e-10``, are not seen.
+
+    Parameters
+    ----------
+    x0, z0 : float
+        Start: radial distance from the axis and height above the plate [m].
+    u0, w0 : float
+        Start velocity, radial and axial [m/s].
+    strain_rate : float
+        Strain rate of the flow ``a`` [1/s].
+    tau : float
+        Relaxation time ``tau`` [s].
+    t_max : float, optional
+        End of the integration [s]; default ``40 (tau + 1/a)``.
+    rtol : float, optional
+        Relative tolerance of the solver (default ``1e-11``).
+    atol : float, optional
+        Absolute tolerance [m, m/s]; default ``1e-14`` times the start scale.
+
+    Returns
+    -------
+    dict
+        ``time`` to impact [s] (``inf`` if none before ``t_max``), ``x`` [m],
+        ``u``, ``w`` [m/s] at impact (NaN without impact), as :func:`flight_to_wall`.
     """
     from scipy.integrate import solve_ivp
 
@@ -202,16 +295,26 @@ class DepositionResult:
 
     Attributes
     ----------
-    diameters : (D,) [m]
-    jet_speeds : (S,) [m/s]
-    strain_rate : (S,) ``a = U/H`` [1/s]
-    stokes_number : ``a tau`` [-]
-    deposited_fraction : fraction of the released particles that stick on the plate [-]
-    impacted_fraction : fraction that reach the plate at least once (within ``R_plate``) [-]
-    first_impact_speed : normal impact speed at the first impact [m/s] (NaN: none)
-    mean_impacts : mean number of impacts per released particle [-]
-    yield_velocity, sticking_velocity : (D,) ``V_y`` and ``V_s`` [m/s]
-    parameters : dict of the inputs
+    diameters : ndarray, shape (D,)
+        Particle diameters [m].
+    jet_speeds : ndarray, shape (S,)
+        Jet speeds ``U`` [m/s].
+    strain_rate : ndarray, shape (S,)
+        Strain rate ``a = U/H`` [1/s].
+    stokes_number : ndarray
+        Stokes number ``a tau`` [-].
+    deposited_fraction : ndarray
+        Fraction of the released particles that stick on the plate [-].
+    impacted_fraction : ndarray
+        Fraction that reach the plate at least once (within ``R_plate``) [-].
+    first_impact_speed : ndarray
+        Normal impact speed at the first impact [m/s] (NaN: none).
+    mean_impacts : ndarray
+        Mean number of impacts per released particle [-].
+    yield_velocity, sticking_velocity : ndarray, shape (D,)
+        Yield velocity ``V_y`` and sticking velocity ``V_s`` [m/s].
+    parameters : dict
+        The inputs of :func:`simulate_deposition`.
     """
 
     diameters: np.ndarray
@@ -295,6 +398,8 @@ def simulate_deposition(
     Returns
     -------
     DepositionResult
+        Deposited and impacted fractions, Stokes numbers, first-impact speeds
+        and mean impact counts on the (jet speed, diameter) grid.
     """
     d = np.atleast_1d(check_positive("diameters", diameters)).astype(float).reshape(-1)
     U = np.atleast_1d(check_positive("jet_speeds", jet_speeds)).astype(float).reshape(-1)
@@ -398,18 +503,23 @@ def plot_deposition(result: DepositionResult, ax=None, *, x="diameter", show_imp
     Parameters
     ----------
     result : DepositionResult
+        From :func:`simulate_deposition`.
     ax : matplotlib Axes, optional
+        Axes to draw on; a new figure if None.
     x : {"diameter", "stokes"}
         Abscissa: diameter [um] or Stokes number ``a tau`` (critical value 1/4 marked).
     show_impacted : bool
         Also draw (dashed) the fraction that reached the plate: the gap to the
         solid line is what bounced off.
     legend : bool
-    line_kws : passed to ``ax.plot`` for the deposited-fraction lines.
+        Draw a legend (one entry per jet speed [m/s]).
+    **line_kws
+        Passed to ``ax.plot`` for the deposited-fraction lines.
 
     Returns
     -------
     matplotlib Axes
+        The Axes drawn on.
     """
     plt = require("matplotlib.pyplot", "plotting")
     from matplotlib.lines import Line2D
