@@ -206,6 +206,12 @@ def compare_with_paper(tolerance: float = TOLERANCE) -> list[dict]:
     (:meth:`ContactPair.paper_case`, :meth:`ContactPair.impact`, ...) from the
     paper's inputs in :data:`microimpact.materials.PAPER_CASES`.
 
+    Parameters
+    ----------
+    tolerance : float, optional
+        Largest relative difference [-] counted as agreement; default
+        :data:`TOLERANCE` (1 %).
+
     Returns
     -------
     list of dict
@@ -347,7 +353,14 @@ PAPER_STATEMENTS: list[dict] = [{"name": n, "where": w, "statement": s} for n, w
 
 
 def check_statements() -> list[dict]:
-    """Check each of :data:`PAPER_STATEMENTS` against the model now: rows with ``holds`` and ``detail``."""
+    """Check each of :data:`PAPER_STATEMENTS` against the model now.
+
+    Returns
+    -------
+    list of dict
+        One row per statement: ``name``, ``where`` (place in the seed paper),
+        ``statement``, ``holds`` (bool) and ``detail`` (the numbers behind the verdict).
+    """
     rows = []
     for (name, where, statement, fn) in _S:
         ok, detail = fn()
@@ -372,6 +385,32 @@ def write_table(path, table: dict, title: str = "", columns: dict | None = None)
 
     Floats are written with Python's shortest exact representation, so reading
     the file back (:func:`read_table`) gives the same numbers bit for bit.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        File to write (overwritten).
+    table : dict of str to array_like
+        Columns of equal length, by name; bools are written as 0/1.
+    title : str, optional
+        First comment line of the file.
+    columns : dict of str to (str, str), optional
+        Column name -> (unit, description) for the ``#`` header lines; default
+        :data:`microimpact.figures.paper.COLUMNS`.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     path = write_table(Path(tmp) / "e.csv", {"velocity_m_s": [5.0, 20.0], "restitution": [1.0, 0.8836]})
+    ...     back = read_table(path)
+    >>> back["velocity_m_s"].tolist(), back["restitution"].tolist()
+    ([5.0, 20.0], [1.0, 0.8836])
     """
     columns = figs.COLUMNS if columns is None else columns
     path = Path(path)
@@ -394,7 +433,20 @@ def write_table(path, table: dict, title: str = "", columns: dict | None = None)
 
 
 def read_table(path) -> dict:
-    """Read a CSV written by :func:`write_table` back into a dict of arrays (float where numeric)."""
+    """Read a CSV written by :func:`write_table` back into a dict of arrays.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file; ``#`` lines are skipped.
+
+    Returns
+    -------
+    dict of str to ndarray
+        One array per column, in file order: float where every cell is numeric,
+        otherwise ``object`` (strings). Units are those of the ``#`` header lines
+        (SI; see :data:`microimpact.figures.paper.COLUMNS`).
+    """
     import csv
 
     with open(path, encoding="utf-8") as fh:
@@ -411,9 +463,28 @@ def read_table(path) -> dict:
 
 
 def load_measurements(path):
-    """Measured ``(velocity [m/s], restitution [-])`` from a CSV file (columns ``velocity``, ``restitution``).
+    """Measured impact speeds and restitution coefficients from a CSV file.
 
-    Uses :func:`microimpact.fitting.load_restitution_csv` (errors name the file and line).
+    Uses :func:`microimpact.fitting.load_restitution_csv` (columns ``velocity``,
+    ``restitution``; errors name the file and line); an uncertainty column is
+    ignored here.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The CSV file.
+
+    Returns
+    -------
+    velocity : ndarray
+        Impact speeds ``V`` [m/s].
+    restitution : ndarray
+        Coefficients of restitution ``e`` [-].
+
+    Raises
+    ------
+    ValueError
+        If the file is malformed (the message gives the line number).
     """
     from .fitting import load_restitution_csv
 
@@ -498,6 +569,7 @@ class PaperReport:
     Attributes
     ----------
     out_dir : Path
+        Directory the files were written to.
     figures : dict of str -> list of Path
         Image files of each figure (``fig02`` ... ``fig10``).
     tables : dict of str -> Path
