@@ -907,10 +907,21 @@ def generate_c_source(
         Takes ``E*`` and ``p_y`` from it.
     effective_modulus, limiting_pressure : float, optional
         ``E*`` [Pa], ``p_y`` [Pa] (override the pair's).
-    work_of_adhesion : float
-        ``G`` [J/m^2], the work of adhesion (``2 gamma`` for identical surfaces).
-    friction : float
-        Coulomb coefficient ``mu``.
+    work_of_adhesion : float, optional
+        ``G`` [J/m^2], the work of adhesion (``2 gamma`` for identical surfaces); default 0.
+    friction : float, optional
+        Coulomb coefficient ``mu`` [-]; default 0.
+
+    Returns
+    -------
+    str
+        The C99 source text.
+
+    Raises
+    ------
+    ValueError
+        If neither a pair nor both ``effective_modulus`` and ``limiting_pressure``
+        are given, or a value is out of range.
     """
     from . import __version__
 
@@ -933,7 +944,30 @@ def generate_c_source(
 
 
 def write_c_source(path, pair=None, **kwargs):
-    """Write :func:`generate_c_source` to ``path`` (a file, or a directory: ``microimpact_wall.c``); returns the path."""
+    """Write the C99 source of :func:`generate_c_source` to a file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        File to write (overwritten; missing parent directories are made), or an
+        existing directory, in which case the file is ``microimpact_wall.c`` in it.
+    pair : ContactPair, optional
+        Takes ``E*`` [Pa] and ``p_y`` [Pa] from it.
+    **kwargs
+        ``effective_modulus`` [Pa], ``limiting_pressure`` [Pa], ``work_of_adhesion``
+        ``G`` [J/m^2] and ``friction`` ``mu`` [-], as for :func:`generate_c_source`.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Raises
+    ------
+    ValueError
+        If neither a pair nor both ``effective_modulus`` and ``limiting_pressure`` are
+        given, or a value is out of range.
+    """
     from pathlib import Path
 
     path = Path(path)

@@ -858,6 +858,7 @@ def plot_fit(fit_result, data_velocity, data_restitution, ax=None, *, sigma=None
     Parameters
     ----------
     fit_result : FitResult
+        From :func:`fit_restitution`.
     data_velocity, data_restitution : array_like
         The measured points [m/s], [-].
     ax : matplotlib Axes, optional
@@ -926,7 +927,28 @@ def plot_fit(fit_result, data_velocity, data_restitution, ax=None, *, sigma=None
 
 
 def plot_residuals(fit_result, data_velocity, data_restitution, ax=None, *, sigma=None, data_kws=None):
-    """Residuals ``e - e_fit`` against the impact speed; returns the Axes."""
+    """Residuals ``e - e_fit`` of a restitution fit against the impact speed.
+
+    Parameters
+    ----------
+    fit_result : FitResult
+        From :func:`fit_restitution`; ``e_fit`` is ``fit_result.predict(V)``.
+    data_velocity : array_like
+        Measured impact speeds ``V`` [m/s].
+    data_restitution : array_like
+        Measured coefficients of restitution ``e`` [-].
+    ax : matplotlib Axes, optional
+        Axes to draw on; a new figure if None.
+    sigma : array_like, optional
+        Error bars [-]; default the fit's ``sigma`` when the data are the fitted ones.
+    data_kws : dict, optional
+        Passed to ``ax.errorbar`` for the points.
+
+    Returns
+    -------
+    matplotlib Axes
+        The Axes drawn on (speed [m/s] against ``e - e_fit`` [-]).
+    """
     plt = require("matplotlib.pyplot", "plotting")
     V = np.asarray(data_velocity, dtype=float).ravel()
     e = np.asarray(data_restitution, dtype=float).ravel()
