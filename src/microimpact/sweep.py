@@ -526,9 +526,22 @@ def sweep_to_netcdf(ds, path, *, engine=None, progress=False):
     computed and written (the local scheduler; on a ``dask.distributed`` cluster
     use its dashboard or ``distributed.progress``).
 
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep from :func:`sweep`, eager or lazy (dask-backed); the units of its
+        variables (SI) are kept in their ``units`` attributes.
+    path : str or os.PathLike
+        File to write (overwritten).
+    engine : str, optional
+        xarray's NetCDF back end (``"netcdf4"`` or ``"scipy"``); default as above.
+    progress : bool, optional
+        Show a progress bar on stderr while a lazy sweep is written (default False).
+
     Returns
     -------
     pathlib.Path
+        The file written.
     """
     import pathlib
 
@@ -569,9 +582,23 @@ def sweep_to_csv(ds, path, *, progress=False, rows_per_block=None):
     fastest. A lazy sweep is computed one slab (a block of the first
     dimension) at a time; ``progress=True`` draws a bar on stderr.
 
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep from :func:`sweep`, eager or lazy (dask-backed).
+    path : str or os.PathLike
+        File to write (overwritten).
+    progress : bool, optional
+        Draw a progress bar on stderr, one step per slab (default False).
+    rows_per_block : int, optional
+        Entries of the first dimension per slab of an eager sweep; by default
+        chosen to keep each slab to a bounded number of points. A lazy sweep uses
+        its own chunks.
+
     Returns
     -------
     pathlib.Path
+        The file written.
     """
     import pathlib
 
