@@ -137,6 +137,16 @@ def large_strain_velocity(pair) -> float:
     Found by root finding on ``pair.impact(V).max_contact_radius / R* - 0.3``;
     ``inf`` if not reached below 1e6 m/s.
 
+    Parameters
+    ----------
+    pair : ContactPair
+        The contact pair.
+
+    Returns
+    -------
+    float
+        Impact speed [m/s] at which ``a*/R* = 0.3`` (``inf`` if above 1e6 m/s).
+
     Examples
     --------
     >>> round(large_strain_velocity(ContactPair.paper_case("silicon")), 1)
@@ -184,8 +194,8 @@ def restitution_data(pairs=None, data=None, velocity=None) -> dict:
     Returns
     -------
     dict of ndarray
-        ``series``, ``kind`` ('model' or 'measured'), ``velocity_m_s``,
-        ``restitution``, ``yield_velocity_m_s`` (NaN for measured points),
+        ``series``, ``kind`` ('model' or 'measured'), ``velocity_m_s`` [m/s],
+        ``restitution`` [-], ``yield_velocity_m_s`` [m/s] (NaN for measured points),
         ``large_strain`` (0 for measured points).
     """
     parts = []
@@ -223,13 +233,18 @@ def restitution_data(pairs=None, data=None, velocity=None) -> dict:
 
 
 def plot_restitution(pairs=None, data=None, ax=None, *, velocity=None, table=None, logx=True, **kws):
-    """Fig. 2: coefficient of restitution against impact speed (eq. 27).
+    """Fig. 2: coefficient of restitution against impact speed (seed eq. 27).
 
     Parameters
     ----------
-    pairs, data, velocity
-        As :func:`restitution_data` (default: the seed's silicon and mica cases).
+    pairs : dict of str -> ContactPair, optional
+        Model curves, as :func:`restitution_data` (default: the seed's silicon and mica cases).
+    data : dict of str -> (velocity, restitution), optional
+        Measured points [m/s], [-], as :func:`restitution_data`.
     ax : matplotlib Axes, optional
+        Axes to draw on; a new single-column figure if None.
+    velocity : array_like, optional
+        Speeds of the model curves [m/s], as :func:`restitution_data`.
     table : dict, optional
         Output of :func:`restitution_data` to draw instead of computing it.
     logx : bool
@@ -240,6 +255,7 @@ def plot_restitution(pairs=None, data=None, ax=None, *, velocity=None, table=Non
     Returns
     -------
     matplotlib Axes
+        The Axes drawn on.
     """
     if table is None:
         table = restitution_data(pairs, data, velocity)
@@ -352,24 +368,35 @@ def energy_loss_data(parameter, values, pair=None, velocity=None, *, particle_po
 
 def plot_energy_loss(parameter, values, ax=None, *, pair=None, velocity=None, table=None, legend_loc="above",
                      **kws):
-    """Figs. 3-5: fraction of energy lost ``1 - e^2`` against impact speed for several values of an input.
+    """Figs. 3-5: fraction of energy lost ``1 - e^2`` against impact speed for several values of an input (seed eq. 29).
 
     Parameters
     ----------
-    parameter, values, pair, velocity
-        As :func:`energy_loss_data` (e.g. ``"limiting_pressure", [50e6, ..., 250e6]``
-        for the seed's Fig. 3). Extra keywords of :func:`energy_loss_data`
-        (``surface_modulus`` ...) are accepted too.
+    parameter : {'limiting_pressure', 'particle_modulus', 'effective_modulus', 'density'}
+        The swept input, as :func:`energy_loss_data` (e.g. ``"limiting_pressure"``
+        with ``values = [50e6, ..., 250e6]`` [Pa] for the seed's Fig. 3).
+    values : sequence of float
+        Values of the parameter (in its SI unit), one curve each.
     ax : matplotlib Axes, optional
+        Axes to draw on; a new single-column figure if None.
+    pair : ContactPair, optional
+        The other inputs, as :func:`energy_loss_data`.
+    velocity : array_like, optional
+        Speeds [m/s], as :func:`energy_loss_data`.
     table : dict, optional
         Output of :func:`energy_loss_data` to draw.
     legend_loc : str
         ``"above"`` (default: a legend in columns above the axes, clear of the curves)
         or a matplotlib ``loc`` for a legend inside the axes.
+    **kws
+        The keywords of :func:`energy_loss_data` (``particle_poisson``,
+        ``surface_modulus`` [Pa], ``surface_poisson``) go to it; the rest to
+        ``ax.plot`` for the curves.
 
     Returns
     -------
     matplotlib Axes
+        The Axes drawn on.
 
     Notes
     -----
@@ -412,15 +439,26 @@ def plot_energy_loss(parameter, values, ax=None, *, pair=None, velocity=None, ta
 def force_displacement_data(velocities=(30.0, 50.0, 70.0), pair=None, n=201) -> dict:
     """Data of Fig. 6: force against approach, loading and unloading branches.
 
-    Loading from 0 to ``alpha*`` (``pair.force(alpha)``: Hertz then plastic, eqs. 2, 8;
+    Loading from 0 to ``alpha*`` (``pair.force(alpha)``: Hertz then plastic, seed eqs. 2, 8;
     ``alpha_y`` is one of the points), unloading from ``alpha*`` down to ``alpha_p``
     (``pair.force(alpha, max_approach=alpha*)``, eq. 10), ``n`` points each.
+
+    Parameters
+    ----------
+    velocities : sequence of float, optional
+        Impact speeds [m/s], one pair of branches each; default 30, 50, 70 m/s (the seed's Fig. 6).
+    pair : ContactPair, optional
+        The contact pair; default the seed's silicon case
+        (:meth:`ContactPair.paper_case`).
+    n : int, optional
+        Points per branch (default 201).
 
     Returns
     -------
     dict of ndarray
-        ``velocity_m_s``, ``branch``, ``approach_m``, ``force_N``, ``max_approach_m``,
-        ``plastic_approach_m`` (the last two repeat ``pair.impact(V)`` on every row).
+        ``velocity_m_s`` [m/s], ``branch``, ``approach_m`` [m], ``force_N`` [N],
+        ``max_approach_m``, ``plastic_approach_m`` [m] (the last two repeat
+        ``pair.impact(V)`` on every row).
     """
     pair = _default_pair(pair)
     a_y = pair.yield_approach if math.isfinite(pair.limiting_pressure) else math.inf
@@ -449,13 +487,28 @@ def force_displacement_data(velocities=(30.0, 50.0, 70.0), pair=None, n=201) -> 
 def plot_force_displacement(velocities=(30.0, 50.0, 70.0), ax=None, *, pair=None, table=None, **kws):
     """Fig. 6: contact force against approach at several impact speeds.
 
-    Solid: loading (Hertz, then plastic, eqs. 2, 8); dashed: elastic unloading with
+    Solid: loading (Hertz, then plastic, seed eqs. 2, 8); dashed: elastic unloading with
     the flattened radius ``R_p`` (eq. 10). A marker on the axis labels each plastic
     approach ``alpha_p`` (eq. 11).
+
+    Parameters
+    ----------
+    velocities : sequence of float, optional
+        Impact speeds [m/s]; default 30, 50, 70 m/s.
+    ax : matplotlib Axes, optional
+        Axes to draw on; a new single-column figure if None.
+    pair : ContactPair, optional
+        The contact pair; default the seed's silicon case
+        (:meth:`ContactPair.paper_case`).
+    table : dict, optional
+        Output of :func:`force_displacement_data` to draw.
+    **kws
+        Passed to ``ax.plot`` for the curves.
 
     Returns
     -------
     matplotlib Axes
+        The Axes drawn on.
     """
     if table is None:
         table = force_displacement_data(velocities, pair)
@@ -494,11 +547,19 @@ def plot_force_displacement(velocities=(30.0, 50.0, 70.0), ax=None, *, pair=None
 def approach_data(pair=None, velocity=None) -> dict:
     """Data of Fig. 8: maximum approach ``alpha*`` and ``alpha_p/alpha*`` against impact speed.
 
+    Parameters
+    ----------
+    pair : ContactPair, optional
+        The contact pair; default the seed's silicon case
+        (:meth:`ContactPair.paper_case`).
+    velocity : array_like, optional
+        Impact speeds [m/s]; default 0.25-120 m/s plus ``V_y``.
+
     Returns
     -------
     dict of ndarray
-        ``velocity_m_s``, ``max_approach_m``, ``plastic_approach_m``, ``plastic_ratio``,
-        ``large_strain``. Default speeds 0.25-120 m/s plus ``V_y``.
+        ``velocity_m_s`` [m/s], ``max_approach_m`` [m], ``plastic_approach_m`` [m],
+        ``plastic_ratio`` ``alpha_p/alpha*`` [-], ``large_strain``.
     """
     pair = _default_pair(pair)
     V = _grid(velocity, pair.yield_velocity, start=0.25, num=479)
@@ -518,6 +579,18 @@ def approach_data(pair=None, velocity=None) -> dict:
 
 def plot_approach(pair=None, ax=None, *, velocity=None, table=None):
     """Fig. 8: maximum approach (left axis) and the plastic share ``alpha_p/alpha*`` (right axis).
+
+    Parameters
+    ----------
+    pair : ContactPair, optional
+        The contact pair; default the seed's silicon case
+        (:meth:`ContactPair.paper_case`).
+    ax : matplotlib Axes, optional
+        Axes to draw on; a new single-column figure if None.
+    velocity : array_like, optional
+        Impact speeds [m/s], as :func:`approach_data`.
+    table : dict, optional
+        Output of :func:`approach_data` to draw.
 
     Returns
     -------
@@ -556,15 +629,23 @@ def plot_approach(pair=None, ax=None, *, velocity=None, table=None):
 def contact_time_data(pair=None, velocity=None) -> dict:
     """Data of Fig. 9: stage, loading, unloading and contact times against impact speed.
 
+    Parameters
+    ----------
+    pair : ContactPair, optional
+        The contact pair; default the seed's silicon case
+        (:meth:`ContactPair.paper_case`).
+    velocity : array_like, optional
+        Impact speeds [m/s]; default 2-120 m/s plus ``V_y``.
+
     Returns
     -------
     dict of ndarray
-        ``velocity_m_s``, ``elastic_stage_time_s`` ``t1``, ``plastic_stage_time_s`` ``t2``,
+        ``velocity_m_s`` [m/s]; ``elastic_stage_time_s`` ``t1``, ``plastic_stage_time_s`` ``t2``,
         ``loading_time_s`` ``t_L``, ``unloading_time_s`` ``t_U``, ``contact_time_s`` ``t_c``
-        (``pair.impact``), ``deresiewicz_time_s`` (eq. 30, ``pair.deresiewicz_contact_time``),
-        ``ning_loading_time_s`` (eq. 31, ``pair.ning_loading_time()``), ``yield_velocity_m_s``,
+        [s] (``pair.impact``, seed eqs. 20, 23, 26, 32, 33); ``deresiewicz_time_s`` [s]
+        (eq. 30, ``pair.deresiewicz_contact_time``), ``ning_loading_time_s`` [s]
+        (eq. 31, ``pair.ning_loading_time()``), ``yield_velocity_m_s`` [m/s],
         ``large_strain``.
-        Default speeds 2-120 m/s plus ``V_y``.
     """
     pair = _default_pair(pair)
     V = _grid(velocity, pair.yield_velocity, start=2.0, num=473)
@@ -601,11 +682,24 @@ _TIME_SERIES = [
 
 
 def plot_contact_times(pair=None, ax=None, *, velocity=None, table=None):
-    """Fig. 9: contact times ``t1, t2, t_L, t_U, t_c`` against impact speed, with eqs. 30 and 31.
+    """Fig. 9: contact times ``t1, t2, t_L, t_U, t_c`` against impact speed, with seed eqs. 30 and 31.
+
+    Parameters
+    ----------
+    pair : ContactPair, optional
+        The contact pair; default the seed's silicon case
+        (:meth:`ContactPair.paper_case`).
+    ax : matplotlib Axes, optional
+        Axes to draw on; a new single-column figure if None.
+    velocity : array_like, optional
+        Impact speeds [m/s], as :func:`contact_time_data`.
+    table : dict, optional
+        Output of :func:`contact_time_data` to draw.
 
     Returns
     -------
     matplotlib Axes
+        The Axes drawn on.
     """
     if table is None:
         table = contact_time_data(pair, velocity)
@@ -649,12 +743,22 @@ def force_time_data(velocity=70.0, pair=None, n=1001) -> dict:
     ``series`` is ``'elastic-plastic'`` (``pair.history(V)``), ``'elastic'``
     (``pair.elastic_equivalent().history(V)``: no yielding) or ``'hertz'`` (the Hertz
     force ``4/3 E* R*^(1/2) alpha^(3/2)`` of the elastic-plastic approach during its
-    loading, eq. 2).
+    loading, seed eq. 2).
+
+    Parameters
+    ----------
+    velocity : float, optional
+        Impact speed [m/s]; default 70 m/s.
+    pair : ContactPair, optional
+        The contact pair; default the seed's silicon case
+        (:meth:`ContactPair.paper_case`).
+    n : int, optional
+        Points per history (default 1001).
 
     Returns
     -------
     dict of ndarray
-        ``series``, ``time_s``, ``approach_m``, ``force_N``.
+        ``series``, ``time_s`` [s], ``approach_m`` [m], ``force_N`` [N].
     """
     pair = _default_pair(pair)
     ep = _history(pair, float(velocity), n)
@@ -680,9 +784,22 @@ def force_time_data(velocity=70.0, pair=None, n=1001) -> dict:
 def plot_force_time(velocity=70.0, ax=None, *, pair=None, table=None):
     """Fig. 7: contact force against time, elastic-plastic and equivalent elastic impacts.
 
+    Parameters
+    ----------
+    velocity : float, optional
+        Impact speed [m/s]; default 70 m/s.
+    ax : matplotlib Axes, optional
+        Axes to draw on; a new single-column figure if None.
+    pair : ContactPair, optional
+        The contact pair; default the seed's silicon case
+        (:meth:`ContactPair.paper_case`).
+    table : dict, optional
+        Output of :func:`force_time_data` to draw.
+
     Returns
     -------
     matplotlib Axes
+        The Axes drawn on.
     """
     if table is None:
         table = force_time_data(velocity, pair)
@@ -709,11 +826,21 @@ def plot_force_time(velocity=70.0, ax=None, *, pair=None, table=None):
 def dynamics_data(velocity=50.0, pair=None, n=1001) -> dict:
     """Data of Fig. 10: approach velocity, force and approach against time for one impact.
 
+    Parameters
+    ----------
+    velocity : float, optional
+        Impact speed [m/s]; default 50 m/s.
+    pair : ContactPair, optional
+        The contact pair; default the seed's silicon case
+        (:meth:`ContactPair.paper_case`).
+    n : int, optional
+        Points of the history (default 1001).
+
     Returns
     -------
     dict of ndarray
-        ``time_s``, ``approach_velocity_m_s``, ``force_N``, ``approach_m``, ``stage``
-        (exactly ``pair.history(velocity, n=n)``).
+        ``time_s`` [s], ``approach_velocity_m_s`` [m/s], ``force_N`` [N],
+        ``approach_m`` [m], ``stage`` (exactly ``pair.history(velocity, n=n)``).
     """
     pair = _default_pair(pair)
     h = _history(pair, float(velocity), n)
@@ -731,12 +858,20 @@ def plot_dynamics(velocity=50.0, ax=None, *, pair=None, table=None):
 
     Parameters
     ----------
+    velocity : float, optional
+        Impact speed [m/s]; default 50 m/s.
     ax : sequence of three matplotlib Axes, optional
         Panels for velocity, force and approach; default a new figure.
+    pair : ContactPair, optional
+        The contact pair; default the seed's silicon case
+        (:meth:`ContactPair.paper_case`).
+    table : dict, optional
+        Output of :func:`dynamics_data` to draw.
 
     Returns
     -------
     ndarray of three matplotlib Axes
+        The velocity, force and approach panels.
     """
     if table is None:
         table = dynamics_data(velocity, pair)
