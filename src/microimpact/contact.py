@@ -103,10 +103,10 @@ def hertz_central_pressure(alpha, effective_modulus, effective_radius):
     ----------
     alpha : array_like
         Approach ``alpha`` [m], >= 0.
-        effective_modulus : array_like
-            Effective modulus ``E*`` [Pa].
-        effective_radius : array_like
-            Effective radius ``R*`` [m].
+    effective_modulus : array_like
+        Effective modulus ``E*`` [Pa].
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
 
     Returns
     -------
@@ -137,10 +137,10 @@ def yield_contact_radius(limiting_pressure, effective_modulus, effective_radius)
     ----------
     limiting_pressure : array_like
         Limiting contact pressure ``p_y`` [Pa], positive (``inf``: never yields).
-        effective_modulus : array_like
-            Effective modulus ``E*`` [Pa].
-        effective_radius : array_like
-            Effective radius ``R*`` [m].
+    effective_modulus : array_like
+        Effective modulus ``E*`` [Pa].
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
 
     Returns
     -------
@@ -165,10 +165,10 @@ def yield_approach(limiting_pressure, effective_modulus, effective_radius):
     ----------
     limiting_pressure : array_like
         Limiting contact pressure ``p_y`` [Pa], positive (``inf``: never yields).
-        effective_modulus : array_like
-            Effective modulus ``E*`` [Pa].
-        effective_radius : array_like
-            Effective radius ``R*`` [m].
+    effective_modulus : array_like
+        Effective modulus ``E*`` [Pa].
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
 
     Returns
     -------
@@ -196,10 +196,10 @@ def yield_force(limiting_pressure, effective_modulus, effective_radius):
     ----------
     limiting_pressure : array_like
         Limiting contact pressure ``p_y`` [Pa], positive (``inf``: never yields).
-        effective_modulus : array_like
-            Effective modulus ``E*`` [Pa].
-        effective_radius : array_like
-            Effective radius ``R*`` [m].
+    effective_modulus : array_like
+        Effective modulus ``E*`` [Pa].
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
 
     Returns
     -------
@@ -230,10 +230,10 @@ def plastic_loading_force(alpha, effective_modulus, effective_radius, limiting_p
     ----------
     alpha : array_like
         Approach ``alpha`` [m], >= 0 (meaningful for ``alpha >= alpha_y``).
-        effective_modulus : array_like
-            Effective modulus ``E*`` [Pa].
-        effective_radius : array_like
-            Effective radius ``R*`` [m].
+    effective_modulus : array_like
+        Effective modulus ``E*`` [Pa].
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
     limiting_pressure : array_like
         Limiting contact pressure ``p_y`` [Pa].
 
@@ -260,10 +260,10 @@ def loading_force(alpha, effective_modulus, effective_radius, limiting_pressure)
     ----------
     alpha : array_like
         Approach ``alpha`` [m], >= 0.
-        effective_modulus : array_like
-            Effective modulus ``E*`` [Pa].
-        effective_radius : array_like
-            Effective radius ``R*`` [m].
+    effective_modulus : array_like
+        Effective modulus ``E*`` [Pa].
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
     limiting_pressure : array_like
         Limiting contact pressure ``p_y`` [Pa] (``inf``: Hertz throughout).
 
@@ -305,10 +305,10 @@ def equivalent_elastic_force(max_approach, effective_modulus, effective_radius):
     ----------
     max_approach : array_like
         Maximum approach ``alpha*`` [m], >= 0.
-        effective_modulus : array_like
-            Effective modulus ``E*`` [Pa].
-        effective_radius : array_like
-            Effective radius ``R*`` [m].
+    effective_modulus : array_like
+        Effective modulus ``E*`` [Pa].
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
 
     Returns
     -------
@@ -330,10 +330,10 @@ def unloading_radius(max_approach, max_force, effective_modulus, effective_radiu
         Maximum approach ``alpha*`` [m], >= 0.
     max_force : array_like
         Maximum force ``P*`` [N] reached at ``alpha*``.
-        effective_modulus : array_like
-            Effective modulus ``E*`` [Pa].
-        effective_radius : array_like
-            Effective radius ``R*`` [m].
+    effective_modulus : array_like
+        Effective modulus ``E*`` [Pa].
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
 
     Returns
     -------
@@ -356,10 +356,10 @@ def plastic_approach(max_approach, max_force, effective_modulus, effective_radiu
         Maximum approach ``alpha*`` [m], >= 0.
     max_force : array_like
         Maximum force ``P*`` [N] reached at ``alpha*``.
-        effective_modulus : array_like
-            Effective modulus ``E*`` [Pa].
-        effective_radius : array_like
-            Effective radius ``R*`` [m].
+    effective_modulus : array_like
+        Effective modulus ``E*`` [Pa].
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
 
     Returns
     -------
@@ -411,10 +411,10 @@ def contact_force(alpha, effective_modulus, effective_radius, limiting_pressure,
     ----------
     alpha : array_like
         Approach ``alpha`` [m].
-        effective_modulus : array_like
-            Effective modulus ``E*`` [Pa].
-        effective_radius : array_like
-            Effective radius ``R*`` [m].
+    effective_modulus : array_like
+        Effective modulus ``E*`` [Pa].
+    effective_radius : array_like
+        Effective radius ``R*`` [m].
     limiting_pressure : array_like
         Limiting contact pressure ``p_y`` [Pa] (``inf``: elastic throughout).
     max_approach : array_like or None, optional

@@ -63,21 +63,42 @@ class ImpactResult:
 
     Attributes
     ----------
-    velocity : impact speed ``V`` [m/s]
-    yield_velocity : ``V_y`` [m/s] (eq. 28)
-    restitution : ``e`` [-] (eq. 27)
-    rebound_velocity : ``V_r = e V`` [m/s]
-    energy_loss : ``1 - e^2`` [-] (eq. 29)
-    max_approach : ``alpha*`` [m] (eq. 22)
-    plastic_approach : ``alpha_p`` [m] (eq. 11)
-    max_force : ``P*`` [N]
-    unloading_radius : ``R_p`` [m] (eq. 9)
-    max_contact_radius : ``a*`` [m]
-    elastic_stage_time, plastic_stage_time, loading_time, unloading_time, contact_time : [s]
-        ``t1, t2, t_L, t_U, t_c`` (eqs. 20, 23, 32, 26, 33)
-    normalized_velocity : ``V/V_y`` [-]
-    elastic : bool, ``V <= V_y``
-    large_strain : bool, ``a*/R* > 0.3``: outside the model's small-strain range
+    velocity : ndarray
+        Impact speed ``V`` [m/s].
+    yield_velocity : ndarray
+        Yield velocity ``V_y`` [m/s] (seed eq. 28).
+    normalized_velocity : ndarray
+        ``v = V/V_y`` [-].
+    elastic : ndarray of bool
+        True where the impact is elastic, ``V <= V_y``.
+    restitution : ndarray
+        Coefficient of restitution ``e`` [-] (eq. 27).
+    rebound_velocity : ndarray
+        Rebound speed ``V_r = e V`` [m/s].
+    energy_loss : ndarray
+        Fraction of the kinetic energy lost, ``1 - e^2`` [-] (eq. 29).
+    max_approach : ndarray
+        Maximum approach ``alpha*`` [m] (eq. 22).
+    plastic_approach : ndarray
+        Plastic approach ``alpha_p`` [m] (eq. 11).
+    max_force : ndarray
+        Maximum force ``P*`` [N] (eq. 14 at ``alpha*``).
+    unloading_radius : ndarray
+        Radius of the flattened contact ``R_p`` [m] (eq. 9).
+    max_contact_radius : ndarray
+        Contact radius at the maximum approach ``a* = (R* alpha*)^(1/2)`` [m] (eq. 3).
+    large_strain : ndarray of bool
+        True where ``a*/R* > 0.3``: outside the model's small-strain range.
+    elastic_stage_time : ndarray
+        Stage-1 (Hertz loading) time ``t1`` [s] (eq. 20).
+    plastic_stage_time : ndarray
+        Stage-2 (plastic loading) time ``t2`` [s] (eq. 23).
+    loading_time : ndarray
+        Loading time ``t_L = t1 + t2`` [s] (eq. 32).
+    unloading_time : ndarray
+        Unloading time ``t_U`` [s] (eq. 26).
+    contact_time : ndarray
+        Contact time ``t_c = t_L + t_U`` [s] (eq. 33).
     """
 
     velocity: np.ndarray
@@ -221,6 +242,25 @@ class ContactPair:
         limiting_pressure : float
             ``p_y`` [Pa]; or give ``yield_strength`` ``Y`` [Pa] and optionally ``k``
             (default :data:`~microimpact.materials.DEFAULT_K` = 2.2): ``p_y = k Y``.
+        mass : float, optional
+            Particle mass [kg] (``m* = m``), instead of ``density``.
+        yield_strength : float, optional
+            Yield strength ``Y`` [Pa], instead of ``limiting_pressure``.
+        k : float, optional
+            ``p_y / Y`` [-], with ``yield_strength``.
+        label : str, optional
+            A name for tables and legends.
+
+        Returns
+        -------
+        ContactPair
+            The pair (``m* = m``, ``R* = R``).
+
+        Raises
+        ------
+        ValueError
+            If a value is out of range, or ``limiting_pressure`` is given together with
+            ``k``/``yield_strength``, or neither is available.
         """
         if effective_modulus is None:
             raise ValueError("effective_modulus is needed for sphere_on_flat (or use from_materials)")
@@ -249,6 +289,9 @@ class ContactPair:
     ) -> "ContactPair":
         """A sphere of a named material hitting a flat of another.
 
+        ``E*`` follows from the two materials (seed, after eq. 2), ``m*`` is the
+        particle's mass from its density.
+
         Parameters
         ----------
         particle, surface : str or Material
@@ -257,7 +300,24 @@ class ContactPair:
             Particle radius [m].
         limiting_pressure : float, optional
             ``p_y`` [Pa]. If not given, ``p_y = k Y`` with ``Y`` the smaller yield
-            strength of the two materials (or ``yield_strength``), ``k`` default 2.2.
+            strength of the two materials (or ``yield_strength``).
+        k : float, optional
+            ``p_y / Y`` [-]; default :data:`~microimpact.materials.DEFAULT_K` = 2.2.
+        yield_strength : float, optional
+            Yield strength ``Y`` [Pa], overriding the materials'.
+        label : str, optional
+            A name for tables and legends; default ``"<particle> on <surface>"``.
+
+        Returns
+        -------
+        ContactPair
+            The pair, with ``particle`` and ``surface`` set.
+
+        Raises
+        ------
+        ValueError
+            If a value is out of range, or ``limiting_pressure`` is given together with
+            ``k``/``yield_strength``, or neither is available.
 
         Examples
         --------
@@ -292,6 +352,33 @@ class ContactPair:
 
         ``R* = 1/(1/R1 + 1/R2)``, ``m* = 1/(1/m1 + 1/m2)``; the rebound velocity is
         the relative separation speed ``e V``.
+
+        Parameters
+        ----------
+        material1, material2 : str or Material
+            Names from :data:`~microimpact.materials.MATERIALS` or :class:`Material` objects.
+        radius1, radius2 : float
+            Radii of the two spheres [m].
+        limiting_pressure : float, optional
+            ``p_y`` [Pa]. If not given, ``p_y = k Y`` with ``Y`` the smaller yield
+            strength of the two materials (or ``yield_strength``).
+        k : float, optional
+            ``p_y / Y`` [-]; default :data:`~microimpact.materials.DEFAULT_K` = 2.2.
+        yield_strength : float, optional
+            Yield strength ``Y`` [Pa], overriding the materials'.
+        label : str, optional
+            A name for tables and legends.
+
+        Returns
+        -------
+        ContactPair
+            The pair of effective values.
+
+        Raises
+        ------
+        ValueError
+            If a value is out of range, or ``limiting_pressure`` is given together with
+            ``k``/``yield_strength``, or neither is available.
         """
         p, s = get_material(material1), get_material(material2)
         E = float(effective_modulus(p.youngs_modulus, p.poisson_ratio, s.youngs_modulus, s.poisson_ratio))
@@ -306,6 +393,21 @@ class ContactPair:
     def paper_case(cls, name: str = "silicon") -> "ContactPair":
         """The seed paper's NH4Fl particle (d = 4.9 um) on ``"silicon"`` or ``"mica"`` (Sec. 3.1).
 
+        Parameters
+        ----------
+        name : {"silicon", "mica"}
+            The case of :data:`~microimpact.materials.PAPER_CASES`.
+
+        Returns
+        -------
+        ContactPair
+            The sphere-on-flat pair with the paper's effective values.
+
+        Raises
+        ------
+        ValueError
+            If ``name`` is not one of the cases.
+
         Examples
         --------
         >>> round(ContactPair.paper_case("silicon").yield_velocity, 2)  # seed prints 7.59
@@ -319,11 +421,29 @@ class ContactPair:
                                   c["limiting_pressure"], label=c["label"])
 
     def replace(self, **changes) -> "ContactPair":
-        """A copy with some effective values changed (e.g. ``limiting_pressure``)."""
+        """A copy with some effective values changed (e.g. ``limiting_pressure``).
+
+        Parameters
+        ----------
+        **changes
+            New values of the fields, by name, in their SI units
+            (``effective_modulus`` [Pa], ``limiting_pressure`` [Pa], ...).
+
+        Returns
+        -------
+        ContactPair
+            The new pair; this one is unchanged.
+        """
         return replace(self, **changes)
 
     def elastic_equivalent(self) -> "ContactPair":
-        """The same pair with no yielding (``p_y = inf``): the seed's "equivalent elastic impact" (Fig. 7)."""
+        """The same pair with no yielding (``p_y = inf``): the seed's "equivalent elastic impact" (Fig. 7).
+
+        Returns
+        -------
+        ContactPair
+            A copy with ``limiting_pressure = inf``.
+        """
         return replace(self, limiting_pressure=math.inf, label=(self.label + " (elastic)").strip())
 
     # ----------------------------------------------------------------- yield point
@@ -355,7 +475,20 @@ class ContactPair:
 
     # ----------------------------------------------------------------- force law
     def force(self, alpha, max_approach=None):
-        """Contact force [N] at approach ``alpha`` [m]: loading, or unloading from ``max_approach``."""
+        """Contact force [N] at approach ``alpha`` [m]: loading, or unloading from ``max_approach`` (seed eqs. 2, 8, 10).
+
+        Parameters
+        ----------
+        alpha : array_like
+            Approach ``alpha`` [m].
+        max_approach : array_like, optional
+            Maximum approach ``alpha*`` [m] when unloading; None (default) for loading.
+
+        Returns
+        -------
+        ndarray
+            Contact force ``P`` [N], as :func:`microimpact.contact.contact_force`.
+        """
         return contact.contact_force(alpha, self.effective_modulus, self.effective_radius,
                                      self.limiting_pressure, max_approach=max_approach)
 
@@ -365,6 +498,24 @@ class ContactPair:
 
         Issues a :class:`LargeStrainWarning` (unless ``warn=False``) when some
         impact reaches ``a*/R* > 0.3``; the ``large_strain`` attribute says which.
+
+        Parameters
+        ----------
+        velocity : float or array_like
+            Impact speed ``V`` [m/s], >= 0.
+        warn : bool, optional
+            Warn about large strain (default True).
+
+        Returns
+        -------
+        ImpactResult
+            Restitution, rebound speed, approaches, forces and contact times (seed
+            eqs. 5-33), shaped like ``velocity``.
+
+        Raises
+        ------
+        ValueError
+            If ``velocity`` is negative or NaN.
         """
         if isinstance(velocity, (int, float)) and not isinstance(velocity, bool):
             # One speed: the same closed forms with the math module (~10 us instead of ~0.4 ms).
@@ -424,20 +575,54 @@ class ContactPair:
         return ImpactHistory.from_dict(data, method=method)
 
     def restitution(self, velocity):
-        """Restitution coefficient only (eq. 27), the fastest path."""
+        """Restitution coefficient only (seed eq. 27), the fastest path.
+
+        Parameters
+        ----------
+        velocity : array_like
+            Impact speed ``V`` [m/s], >= 0.
+
+        Returns
+        -------
+        numpy scalar or ndarray
+            Coefficient of restitution ``e`` [-], shaped like ``velocity``.
+        """
         return _scalar_or_array(impact.restitution_coefficient(velocity, self.yield_velocity))
 
     def ning_loading_time(self) -> float:
-        """Ning's high-speed loading time (eq. 31) [s]."""
+        """Ning's high-speed loading time [s] (seed eq. 31).
+
+        Returns
+        -------
+        float
+            ``t_L = (pi/2)(m*/(pi p_y R*))^(1/2)`` [s].
+        """
         return float(dynamics.ning_loading_time(self.limiting_pressure, self.effective_radius, self.effective_mass))
 
     def deresiewicz_contact_time(self, velocity):
-        """Deresiewicz's elastic contact time (eq. 30) [s]."""
+        """Deresiewicz's elastic contact time [s] (seed eq. 30).
+
+        Parameters
+        ----------
+        velocity : array_like
+            Impact speed ``V`` [m/s], >= 0.
+
+        Returns
+        -------
+        numpy scalar or ndarray
+            ``t_c = 2.87 (m*^2/(R* E*^2 V))^(1/5)`` [s], shaped like ``velocity``.
+        """
         return _scalar_or_array(dynamics.deresiewicz_contact_time(velocity, self.effective_modulus,
                                                                   self.effective_radius, self.effective_mass))
 
     def describe(self) -> str:
-        """A few lines naming the pair's effective values and yield point."""
+        """A few lines naming the pair's effective values and yield point.
+
+        Returns
+        -------
+        str
+            Text with ``E*`` [Pa], ``R*`` [m], ``m*`` [kg], ``p_y`` [Pa] and the yield point.
+        """
         lines = [
             f"pair: {self.label or 'unnamed'}",
             f"  E* = {self.effective_modulus:.6g} Pa   R* = {self.effective_radius:.6g} m   "
