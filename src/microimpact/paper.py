@@ -56,7 +56,7 @@ TOLERANCE = 0.01
 _SEED = ("Dynamic impact model of plastic deformation between micro-particles and flat surfaces "
          "without adhesion, Aerosol Science and Technology 50(4):321-330 (2016)")
 
-# Parameters of the paper's figures (Section 3; THEORY.md section 5).
+# Parameters of the paper's figures (the paper's Section 3).
 FIG3_PRESSURES = (50e6, 100e6, 150e6, 200e6, 250e6)  # p_y [Pa]
 FIG4_MODULI = (1.2e9, 6.2e9, 11.2e9, 16.2e9, 21.2e9)  # particle E1 [Pa]
 FIG4_SURFACE = {"surface_modulus": 150e9, "particle_poisson": 0.3, "surface_poisson": 0.3}
@@ -189,7 +189,7 @@ _quote("ning_loading_time", "Ning's loading time (eq. 31)", 0.01307, "us", "Sec.
        "pair.ning_loading_time() = (pi/2) (m*/(pi p_y R*))^(1/2)",
        lambda: _silicon().ning_loading_time() * 1e6)
 _quote("high_speed_restitution_constant", "C in e -> C (V_y/V)^(1/4) at high speed", 1.185, "-",
-       "Sec. 3.1, after eq. 28 (equation body restored in THEORY.md section 3)",
+       "Sec. 3.1, after eq. 28 (equation body restored in the docs' theory page)",
        "restitution_coefficient(v V_y, V_y) v^(1/4) at v = V/V_y = 1e12 (eq. 27)",
        _high_speed_constant)
 
