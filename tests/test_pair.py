@@ -190,3 +190,14 @@ def test_result_to_dict_round_trip():
                       "unloading_radius", "energy_loss", "elastic_stage_time", "plastic_stage_time",
                       "loading_time", "unloading_time", "contact_time"}
     assert len(out) == 2
+
+
+def test_pair_restitution_fast_path_equals_full_result():
+    pair = mi.ContactPair.paper_case("mica")
+    V = np.concatenate([[0.0, pair.yield_velocity, np.inf], np.logspace(-2, 4, 500)])
+    fast = pair.restitution(V)
+    full = pair.impact(V, warn=False).restitution
+    np.testing.assert_allclose(fast, full, rtol=1e-14, atol=0)
+    assert float(pair.restitution(50.0)) == pytest.approx(float(full[V == 50.0][0]) if (V == 50.0).any()
+                                                          else float(pair.impact(50.0, warn=False).restitution),
+                                                          rel=1e-14)
