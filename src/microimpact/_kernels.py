@@ -37,6 +37,7 @@ import numpy as np
 from scipy import special
 
 from ._validation import check_positive, check_velocity
+from .dynamics import BETA_25_12 as _BETA_25_12
 from .impact import LARGE_STRAIN_RATIO
 
 __all__ = ["BACKEND", "available_backends", "restitution_fast", "impact_scalar"]
@@ -46,7 +47,6 @@ BLOCK = 16384
 #: Iterations each numba thread takes at a time (dynamic scheduling).
 _CHUNK = 65536
 
-_BETA_25_12 = float(special.beta(0.4, 0.5))
 # e = P^*/(alpha^*^(1/4) v) = _C s / ((1 + s)^(1/4) v) with s = 2 P^*/P_y, _C = 3^(1/4)/2; written
 # so that v = 1 gives s = 2 and e = 1 exactly (0.5 * x is exact, so _C * 2 == sqrt(sqrt(3.0))).
 _C = 0.5 * math.sqrt(math.sqrt(3.0))
@@ -365,10 +365,8 @@ def impact_scalar(velocity, effective_modulus, effective_radius, effective_mass,
         t1 = 0.4 * ts * (float(special.betainc(0.4, 0.5, u)) * _BETA_25_12)
     if V > Vy:
         omega = math.sqrt(math.pi * p_y * R / m)
-        q = math.pi * p_y / (2.0 * E)
-        a_y2 = q * q * R
         v1 = math.sqrt(max(V * V - Vy * Vy, 0.0))
-        t2 = math.atan2(v1, 2.0 * omega * a_y2 / 3.0) / omega
+        t2 = math.atan2(v1, 2.0 * omega * a_y / 3.0) / omega
     else:
         t2 = 0.0
     if V == inf:

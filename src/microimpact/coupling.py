@@ -46,13 +46,12 @@ feed back on the normal restitution.
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ._validation import check_nonnegative, check_positive
-from .impact import normalized_restitution, yield_velocity
+from .impact import _restitution, yield_velocity
 from .materials import DEFAULT_K, Material, effective_modulus as _effective_modulus, get_material
 
 __all__ = [
@@ -161,17 +160,6 @@ def sticking_velocity(work_of_adhesion, effective_modulus, effective_radius, eff
     return np.sqrt(STICKING_CONSTANT / m) * (G**5 * R**4 / E**2) ** (1.0 / 6.0)
 
 
-def _seed_restitution(V, Vy):
-    """Seed eq. 27 (:func:`~microimpact.impact.normalized_restitution`) of ``v = V/V_y``, ``v`` formed
-    as :func:`~microimpact.impact.impact_outcome` does: the same bits as ``pair.impact``.
-
-    ``V`` finite >= 0, ``Vy`` > 0 (``inf`` allowed: elastic).
-    """
-    with np.errstate(invalid="ignore", divide="ignore"):
-        v = np.where(np.isinf(Vy), 0.0, V / np.where(np.isinf(Vy), 1.0, Vy))
-    return normalized_restitution(v)
-
-
 def _adhesive(V, e_p, Vs):
     """``(e, stuck)`` from the plastic restitution ``e_p`` and ``V_s`` (no checks)."""
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
@@ -215,7 +203,7 @@ def adhesive_restitution(velocity, yield_velocity, sticking_velocity):
         raise ValueError(f"velocity must be finite, got {float(V[np.isinf(V)].flat[0])!r}")
     Vy = check_positive("yield_velocity", yield_velocity, allow_inf=True)
     Vs = check_nonnegative("sticking_velocity", sticking_velocity)
-    e, _ = _adhesive(V, _seed_restitution(V, Vy), Vs)
+    e, _ = _adhesive(V, _restitution(V, Vy), Vs)
     return e
 
 
@@ -467,7 +455,7 @@ def wall_interaction(
     vn = vT[0] * nT[0] + vT[1] * nT[1] + vT[2] * nT[2]
     approaching = vn < 0.0
     V = np.where(approaching, -vn, 0.0)
-    e, stuck = _adhesive(V, _seed_restitution(V, Vy), Vs)
+    e, stuck = _adhesive(V, _restitution(V, Vy), Vs)
     stuck &= approaching
     e = np.where(approaching, e, 1.0)
     Jn_over_m = (1.0 + e) * V  # normal impulse / m
@@ -576,8 +564,7 @@ def _write_csv(path, comments, header, rows):
 def _sized_pair(pair, diameter):
     if pair.density is None:
         raise ValueError("the pair needs a particle density to be rescaled to other diameters")
-    r = 0.5 * float(check_positive("diameter", diameter))
-    return pair.replace(effective_radius=r, effective_mass=4.0 / 3.0 * np.pi * r**3 * pair.density)
+    return pair.resized(radius=0.5 * float(check_positive("diameter", diameter)))
 
 
 #: Default grid of :func:`write_tables`: ``V/V_y`` from 0 to 100.

@@ -442,7 +442,6 @@ def simulate_deposition(
     first_speed = np.full(x.size, np.nan)
     wall_kw = dict(material=material, wall=wall, limiting_pressure=limiting_pressure,
                    effective_modulus=effective_modulus, work_of_adhesion=work_of_adhesion, friction=friction)
-    Vy = Vs = None
     for k in range(int(max_impacts)):
         idx = np.flatnonzero(alive)
         if idx.size == 0:
@@ -464,8 +463,6 @@ def simulate_deposition(
         spin[idx] *= np.exp(-fl["time"] / tau_rot[idx])[:, None]
         vel = np.column_stack([fl["u"], np.zeros(idx.size), fl["w"]])
         out = wall_interaction(vel, [0.0, 0.0, 1.0], dia[idx], rho, spin=spin[idx], **wall_kw)
-        if Vy is None:
-            Vy, Vs = out.yield_velocity, out.sticking_velocity  # only used for the report below
         deposited[idx[out.stuck]] = True
         alive[idx[out.stuck]] = False
         bounce = ~out.stuck

@@ -30,7 +30,7 @@ from scipy import special
 
 from . import contact
 from ._validation import check_positive, check_velocity
-from .impact import _check_pair, impact_outcome, yield_velocity
+from .impact import _check_pair, elastic_max_approach, impact_outcome, yield_velocity
 
 __all__ = [
     "BETA_25_12",
@@ -278,7 +278,11 @@ def elastic_stage_time(velocity, effective_modulus, effective_radius, effective_
     """
     V = check_velocity("velocity", velocity)
     E, R, m, p_y = _check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
-    Vy = yield_velocity(p_y, E, R, m)
+    return _elastic_stage_time(V, E, R, m, yield_velocity(p_y, E, R, m))
+
+
+def _elastic_stage_time(V, E, R, m, Vy):
+    """``t1`` for checked arrays and their yield velocity ``V_y`` (eq. 20)."""
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         u = np.where(V > Vy, (Vy / V) ** 2, 1.0)
     t = 0.4 * _time_scale(V, E, R, m) * incomplete_beta(u)
@@ -325,7 +329,11 @@ def plastic_stage_time(velocity, effective_modulus, effective_radius, effective_
     """
     V = check_velocity("velocity", velocity)
     E, R, m, p_y = _check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
-    Vy = yield_velocity(p_y, E, R, m)
+    return _plastic_stage_time(V, E, R, m, p_y, yield_velocity(p_y, E, R, m))
+
+
+def _plastic_stage_time(V, E, R, m, p_y, Vy):
+    """``t2`` for checked arrays and their yield velocity ``V_y`` (eq. 23)."""
     plastic = V > Vy
     p_fin = np.where(plastic, p_y, 1.0)  # finite wherever it is used
     omega = plastic_frequency(p_fin, R, m)
@@ -387,7 +395,8 @@ def contact_times(velocity, effective_modulus, effective_radius, effective_mass,
         As for :func:`microimpact.impact.impact_outcome`; they broadcast.
     outcome : dict, optional
         The result of :func:`~microimpact.impact.impact_outcome` for the same inputs,
-        to avoid computing it again.
+        to avoid computing it again (its velocity and yield velocity are reused, and the
+        inputs, which it checked, are not checked again).
 
     Returns
     -------
@@ -400,11 +409,14 @@ def contact_times(velocity, effective_modulus, effective_radius, effective_mass,
     """
     if outcome is None:
         outcome = impact_outcome(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)
+    # The outcome was computed from these same inputs, which it checked: reuse its V and V_y.
     E = np.asarray(effective_modulus, dtype=float)
     R = np.asarray(effective_radius, dtype=float)
     m = np.asarray(effective_mass, dtype=float)
-    t1 = elastic_stage_time(velocity, E, R, m, limiting_pressure)
-    t2 = plastic_stage_time(velocity, E, R, m, limiting_pressure)
+    p_y = np.asarray(limiting_pressure, dtype=float)
+    V, Vy = outcome["velocity"], outcome["yield_velocity"]
+    t1 = _elastic_stage_time(V, E, R, m, Vy)
+    t2 = _plastic_stage_time(V, E, R, m, p_y, Vy)
     tU = _unloading_time_from(outcome, E, R, m)
     tL = t1 + t2
     return {
@@ -591,7 +603,7 @@ def impact_history(velocity, effective_modulus, effective_radius, effective_mass
     elastic = bool(out["elastic"])
     a_star, a_p, P_star, V_r = out["max_approach"], out["plastic_approach"], out["max_force"], \
         out["rebound_velocity"]
-    alpha_m = (15.0 * m * V**2 / (16.0 * E * np.sqrt(R))) ** 0.4
+    alpha_m = float(elastic_max_approach(V, E, R, m))
     T_m = 0.4 * BETA_25_12 * alpha_m / V  # time of a purely elastic impact to reach alpha_m
 
     t = _time_grid(n, times, (t1, t_L), t_c)
@@ -613,7 +625,7 @@ def impact_history(velocity, effective_modulus, effective_radius, effective_mass
     s2 = stage == 2
     if np.any(s2):
         omega = float(plastic_frequency(p_y, R, m))
-        a_y = (np.pi * p_y / (2.0 * E)) ** 2 * R
+        a_y = float(contact.yield_approach(p_y, E, R))
         amp = a_star - a_y / 3.0
         phase = omega * (t_L - t[s2])
         approach[s2] = a_y / 3.0 + amp * np.cos(phase)
@@ -798,10 +810,10 @@ def _event(fun, direction):
 
 def _integrate_phase(rhs, t0, y0, span, events, method, rtol, atol):
     """Integrate until a terminal event; extend the span if none occurred. Returns (pieces, event index, t, y)."""
+    from scipy.integrate import solve_ivp  # imported here: the ODE is only the cross-check
+
     pieces = []
     for _ in range(60):
-        from scipy.integrate import solve_ivp  # imported here: the ODE is only the cross-check
-
         sol = solve_ivp(rhs, (t0, t0 + span), y0, method=method, rtol=rtol, atol=atol, events=events,
                         dense_output=True)
         if not sol.success:  # pragma: no cover - solver failure
@@ -859,7 +871,7 @@ def integrate_impact(velocity, effective_modulus, effective_radius, effective_ma
         _time_grid(1001 if n is None else n, times, (), 1.0)
     Vy = float(yield_velocity(p_y, E, R, m))
     plastic = V > Vy
-    L = (15.0 * m * V**2 / (16.0 * E * np.sqrt(R))) ** 0.4  # length scale alpha_m
+    L = float(elastic_max_approach(V, E, R, m))  # length scale alpha_m
     T = L / V  # time scale
     F = m * V**2 / L  # force scale
 

@@ -403,7 +403,7 @@ class _Model:
         if self.name == "effective_modulus":
             return p.replace(effective_modulus=theta)
         if self.name == "density":
-            return p.replace(density=theta, effective_mass=float(sphere_mass(p.effective_radius, theta)))
+            return p.resized(density=theta)
         # yield_velocity
         return self.base.replace(limiting_pressure=self.base.limiting_pressure * (theta / self.ref) ** 0.4)
 

@@ -23,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._validation import check_positive, check_velocity
-from .contact import yield_approach, yield_force
+from .contact import hertz_force, yield_approach, yield_force
 
 __all__ = [
     "LARGE_STRAIN_RATIO",
@@ -180,6 +180,28 @@ def _q(vp):
     return np.sqrt((24.0 - 4.0 / vp**2) / 5.0)
 
 
+def _normalized_speed(V, Vy):
+    """``v = V/V_y`` for checked arrays; an infinite ``V_y`` (``p_y = inf``) gives 0 (elastic), even at ``V = inf``."""
+    with np.errstate(invalid="ignore"):
+        return np.where(np.isinf(Vy), 0.0, V / np.where(np.isinf(Vy), 1.0, Vy))
+
+
+def _restitution_of_v(v):
+    """Eq. 27 for a checked ``v`` (no validation: the hot path of the public functions)."""
+    vp = _plastic_v(v)
+    q = _q(vp)
+    with np.errstate(invalid="ignore"):
+        # e = P^*/(alpha^*^(1/4) v) with P^* = v q / 2: the v cancels.
+        e = 0.5 * q / np.sqrt(np.sqrt((1.0 + vp * q) / 3.0))
+    e = np.where(v <= 1.0, 1.0, e)
+    return np.where(np.isinf(v), 0.0, e)
+
+
+def _restitution(V, Vy):
+    """Eq. 27 for checked speeds ``V`` and yield velocities ``V_y`` (used by :mod:`microimpact.coupling`)."""
+    return _restitution_of_v(_normalized_speed(V, Vy))
+
+
 def normalized_max_approach(v):
     """Normalised maximum approach ``alpha*/alpha_y`` against ``v = V/V_y`` [-] (seed eq. 22).
 
@@ -319,14 +341,7 @@ def normalized_restitution(v):
     >>> round(float(normalized_restitution(1e8) * 1e8**0.25), 3)  # high-speed limit 1.185 v^(-1/4)
     1.185
     """
-    v = check_velocity("v", v)
-    vp = _plastic_v(v)
-    q = _q(vp)
-    with np.errstate(invalid="ignore"):
-        # e = P^*/(alpha^*^(1/4) v) with P^* = v q / 2: the v cancels.
-        e = 0.5 * q / np.sqrt(np.sqrt((1.0 + vp * q) / 3.0))
-    e = np.where(v <= 1.0, 1.0, e)
-    return np.where(np.isinf(v), 0.0, e)
+    return _restitution_of_v(check_velocity("v", v))
 
 
 def restitution_coefficient(velocity, yield_velocity):
@@ -356,10 +371,7 @@ def restitution_coefficient(velocity, yield_velocity):
     """
     V = check_velocity("velocity", velocity)
     Vy = check_positive("yield_velocity", yield_velocity, allow_inf=True)
-    # An infinite V_y (p_y = inf) makes every impact elastic, even at V = inf.
-    with np.errstate(invalid="ignore"):
-        v = np.where(np.isinf(Vy), 0.0, V / np.where(np.isinf(Vy), 1.0, Vy))
-    return normalized_restitution(v)
+    return _restitution(V, Vy)
 
 
 def thornton_ning_restitution(velocity, yield_velocity):
@@ -458,25 +470,29 @@ def impact_outcome(velocity, effective_modulus, effective_radius, effective_mass
     """
     V = check_velocity("velocity", velocity)
     E, R, m, p_y = _check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
-    Vy = yield_velocity(p_y, E, R, m)
-    finite_py = np.isfinite(p_y)
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        a_y = np.where(finite_py, yield_approach(np.where(finite_py, p_y, 1.0), E, R), np.inf)
-        P_y = np.where(finite_py, yield_force(np.where(finite_py, p_y, 1.0), E, R), np.inf)
+        # Yield point (eqs. 5, 7) and yield velocity (1/2 m* V_y^2 = 2/5 P_y alpha_y), each once;
+        # p_y = inf gives alpha_y = P_y = V_y = inf.
+        a_y = yield_approach(p_y, E, R)
+        P_y = hertz_force(a_y, E, R)
+        Vy = np.sqrt(0.8 * P_y * a_y / m)
         # v = V/V_y; an infinite V_y (p_y = inf) makes every finite or infinite V elastic.
-        v = np.where(np.isinf(Vy), 0.0, V / np.where(np.isinf(Vy), 1.0, Vy))
+        v = _normalized_speed(V, Vy)
         elastic = v <= 1.0
         infinite = np.isinf(v)
 
         # Elastic branch, dimensional (so p_y = inf works): Hertz at alpha_m.
         alpha_m = elastic_max_approach(V, E, R, m)
-        F_m = 4.0 / 3.0 * E * np.sqrt(R) * alpha_m**1.5
+        F_m = hertz_force(alpha_m, E, R)
 
-        # Plastic branch, normalised (eqs. 22, 14, 11, 9, 27).
-        A = normalized_max_approach(np.where(infinite, 1.0, v))
-        Phat = normalized_max_force(np.where(infinite, 1.0, v))
+        # Plastic branch, normalised (eqs. 22, 14, 11, 9, 27), from q = s/v computed once;
+        # entries where the impact is elastic or infinite are replaced below.
+        vp = _plastic_v(np.where(infinite, 1.0, v))
+        q = _q(vp)
+        A = (1.0 + vp * q) / 3.0  # alpha^* (eq. 22)
+        Phat = 0.5 * vp * q  # P^* = (3 alpha^* - 1)/2
         sqA = np.sqrt(A)
-        e_pl = 0.5 * _q(np.maximum(v, 1.0)) / np.sqrt(sqA)  # P^*/(alpha^*^(1/4) v), the v cancelled
+        e_pl = 0.5 * q / np.sqrt(sqA)  # P^*/(alpha^*^(1/4) v), the v cancelled
 
         restitution = np.where(elastic, 1.0, np.where(infinite, 0.0, e_pl))
         max_approach = np.where(elastic, alpha_m, np.where(infinite, np.inf, a_y * A))

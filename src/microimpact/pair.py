@@ -436,6 +436,41 @@ class ContactPair:
         """
         return replace(self, **changes)
 
+    def resized(self, radius=None, density=None) -> "ContactPair":
+        """The same sphere-on-flat pair with another particle radius and/or density.
+
+        ``R* = R`` and ``m* = 4/3 pi R^3 rho`` are recomputed; ``E*`` and ``p_y`` are kept.
+
+        Parameters
+        ----------
+        radius : float, optional
+            New particle radius [m]; default this pair's.
+        density : float, optional
+            New particle density [kg/m^3]; default this pair's.
+
+        Returns
+        -------
+        ContactPair
+            The new pair; this one is unchanged.
+
+        Raises
+        ------
+        ValueError
+            If a value is not positive and finite, or the pair has no density and none is given
+            (a two-sphere pair).
+
+        Examples
+        --------
+        >>> pair = ContactPair.paper_case("silicon")
+        >>> round(pair.resized(radius=1e-6).effective_mass / pair.effective_mass, 5)  # (1/2.45)^3
+        0.068
+        """
+        if density is None and self.density is None:
+            raise ValueError("density is needed to resize this pair (it has no particle density)")
+        r = self.effective_radius if radius is None else float(check_positive("radius", radius))
+        rho = self.density if density is None else float(check_positive("density", density))
+        return replace(self, effective_radius=r, effective_mass=float(sphere_mass(r, rho)), density=rho)
+
     def elastic_equivalent(self) -> "ContactPair":
         """The same pair with no yielding (``p_y = inf``): the seed's "equivalent elastic impact" (Fig. 7).
 

@@ -96,14 +96,9 @@ def pair_from_args(args) -> ContactPair:
         )
     pair = ContactPair.paper_case(args.case or "silicon")
     # Single overrides on top of a paper case.
+    if radius is not None or args.density is not None:
+        pair = pair.resized(radius=radius, density=args.density)
     changes = {}
-    if radius is not None:
-        changes["effective_radius"] = radius
-    if args.density is not None or radius is not None:
-        rho = args.density if args.density is not None else pair.density
-        r = radius if radius is not None else pair.effective_radius
-        changes["density"] = rho
-        changes["effective_mass"] = 4.0 / 3.0 * np.pi * r**3 * rho
     if args.limiting_pressure is not None:
         changes["limiting_pressure"] = args.limiting_pressure
     elif args.yield_strength is not None:

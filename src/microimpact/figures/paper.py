@@ -37,7 +37,6 @@ from scipy import optimize
 
 from .. import contact
 from ..materials import effective_modulus as _effective_modulus
-from ..materials import sphere_mass
 from ..pair import ContactPair
 from . import _style
 
@@ -311,8 +310,7 @@ def _pair_with(pair, parameter, value, particle_poisson, surface_modulus, surfac
         E = float(_effective_modulus(value, particle_poisson, surface_modulus, surface_poisson))
         return pair.replace(effective_modulus=E), {"effective_modulus_Pa": E}
     if parameter == "density":
-        m = float(sphere_mass(pair.effective_radius, value))
-        return pair.replace(density=float(value), effective_mass=m), {}
+        return pair.resized(density=value), {}
     raise ValueError(f"parameter must be one of {', '.join(ENERGY_LOSS_PARAMETERS)}, got {parameter!r}")
 
 
@@ -515,7 +513,6 @@ def plot_force_displacement(velocities=(30.0, 50.0, 70.0), ax=None, *, pair=None
     pair = _default_pair(pair)
     with _style.style():
         ax = _style.new_axes(ax)
-        Vcol = np.asarray(table["velocity_m_s"], float)
         branch = np.asarray(table["branch"])
         a = np.asarray(table["approach_m"], float) * 1e9
         P = np.asarray(table["force_N"], float) * 1e6
