@@ -79,8 +79,12 @@ def test_table_lists_every_benchmark(tiny_report):
 
 def test_script_entry_point(tmp_path):
     out = tmp_path / "r.json"
-    proc = subprocess.run([sys.executable, str(ROOT / "benchmarks" / "run.py"), "--tiny", "--only", "2,3",
-                           "--json", str(out)], capture_output=True, text=True, timeout=120)
+    proc = subprocess.run(
+        [sys.executable, str(ROOT / "benchmarks" / "run.py"), "--tiny", "--only", "2,3", "--json", str(out)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert proc.returncode == 0, proc.stderr
     report = json.loads(out.read_text())
     assert [x["number"] for x in report["results"]] == [2, 3]

@@ -43,16 +43,44 @@ def test_table_shows_values_and_flags(capsys):
 
 
 def test_materials_pair(capsys):
-    rc, out, _ = run(["impact", "50", "--particle", "nh4fl", "--surface", "mica", "--diameter", "4.9e-6",
-                      "--limiting-pressure", "158e6", "--json"], capsys)
+    rc, out, _ = run(
+        [
+            "impact",
+            "50",
+            "--particle",
+            "nh4fl",
+            "--surface",
+            "mica",
+            "--diameter",
+            "4.9e-6",
+            "--limiting-pressure",
+            "158e6",
+            "--json",
+        ],
+        capsys,
+    )
     assert rc == 0
     ref = mi.ContactPair.from_materials("nh4fl", "mica", radius=2.45e-6, limiting_pressure=158e6)
     assert json.loads(out)["results"]["restitution"][0] == pytest.approx(float(ref.restitution(50.0)), rel=1e-15)
 
 
 def test_effective_values_pair(capsys):
-    rc, out, _ = run(["impact", "20", "--effective-modulus", "2e9", "--radius", "1e-6", "--density", "2000",
-                      "--limiting-pressure", "2e8", "--json"], capsys)
+    rc, out, _ = run(
+        [
+            "impact",
+            "20",
+            "--effective-modulus",
+            "2e9",
+            "--radius",
+            "1e-6",
+            "--density",
+            "2000",
+            "--limiting-pressure",
+            "2e8",
+            "--json",
+        ],
+        capsys,
+    )
     ref = mi.ContactPair.sphere_on_flat(1e-6, 2000.0, 2e9, 2e8).impact(20.0, warn=False)
     assert json.loads(out)["results"]["rebound_velocity"][0] == pytest.approx(float(ref.rebound_velocity), rel=1e-15)
 
@@ -64,8 +92,21 @@ def test_effective_values_pair(capsys):
         (["impact", "nan"], "velocity"),
         (["impact", "abc"], "velocity"),
         (["impact", "1:2"], "range"),
-        (["impact", "10", "--effective-modulus", "-1e9", "--radius", "1e-6", "--density", "1000",
-          "--limiting-pressure", "1e8"], "effective_modulus"),
+        (
+            [
+                "impact",
+                "10",
+                "--effective-modulus",
+                "-1e9",
+                "--radius",
+                "1e-6",
+                "--density",
+                "1000",
+                "--limiting-pressure",
+                "1e8",
+            ],
+            "effective_modulus",
+        ),
         (["impact", "10", "--particle", "nh4fl", "--surface", "kryptonite", "--radius", "1e-6"], "kryptonite"),
         (["impact", "10", "--particle", "nh4fl", "--surface", "silicon"], "radius"),
         (["impact", "10", "--particle", "glass", "--surface", "silicon", "--radius", "1e-6"], "limiting_pressure"),

@@ -192,8 +192,9 @@ def test_slower_than_sticking_velocity_sticks():
     assert 0.5 < Vs < 7.5  # below V_y: e_p = 1, so the threshold is V_s itself
     V = np.array([0.2, 0.99, 1.01, 3.0]) * Vs
     w = np.full((4, 3), 1e5)
-    out = wall_interaction(np.column_stack([V, 0 * V, -V]), [0, 0, 1], d, rho, **SILICON,
-                           work_of_adhesion=G, friction=0.3, spin=w)
+    out = wall_interaction(
+        np.column_stack([V, 0 * V, -V]), [0, 0, 1], d, rho, **SILICON, work_of_adhesion=G, friction=0.3, spin=w
+    )
     assert list(out.stuck) == [True, True, False, False]
     assert np.all(out.velocity[:2] == 0.0) and np.all(out.spin[:2] == 0.0)
     np.testing.assert_allclose(out.restitution[2:], np.sqrt(1 - (Vs / V[2:]) ** 2), rtol=1e-12)
@@ -203,16 +204,28 @@ def test_slower_than_sticking_velocity_sticks():
 def test_g_zero_never_sticks():
     rng = np.random.default_rng(3)
     V = np.concatenate([[0.0, 1e-9], rng.uniform(0.0, 200.0, 1000)])
-    out = wall_interaction(np.column_stack([0 * V, 0 * V, -V]), [0, 0, 1], rng.uniform(1e-7, 1e-4, V.size),
-                           material="nh4fl", wall="silicon", limiting_pressure=156e6)
+    out = wall_interaction(
+        np.column_stack([0 * V, 0 * V, -V]),
+        [0, 0, 1],
+        rng.uniform(1e-7, 1e-4, V.size),
+        material="nh4fl",
+        wall="silicon",
+        limiting_pressure=156e6,
+    )
     assert not out.stuck.any()
 
 
 def test_per_particle_materials_match_pairs():
     mats = np.array(["nh4fl", "copper", "glass", "copper"])
     V = np.array([20.0, 20.0, 20.0, 60.0])
-    out = wall_interaction(np.column_stack([0 * V, 0 * V, -V]), [0, 0, 1], 2e-6, material=mats,
-                           wall="steel", limiting_pressure=[160e6, 160e6, 500e6, 160e6])
+    out = wall_interaction(
+        np.column_stack([0 * V, 0 * V, -V]),
+        [0, 0, 1],
+        2e-6,
+        material=mats,
+        wall="steel",
+        limiting_pressure=[160e6, 160e6, 500e6, 160e6],
+    )
     for i, (m, py) in enumerate(zip(mats, [160e6, 160e6, 500e6, 160e6])):
         pair = mi.ContactPair.from_materials(m, "steel", 1e-6, limiting_pressure=py)
         assert out.restitution[i] == pytest.approx(float(pair.restitution(V[i])), rel=1e-14)
@@ -264,8 +277,9 @@ vec = st.tuples(*[st.floats(-100.0, 100.0)] * 3)
 )
 def test_energy_never_increases(v, n, w, d, mat, wall, py, mu, G):
     v, w = np.array([v]), np.array([w])
-    out = wall_interaction(v, n, d, material=mat, wall=wall, limiting_pressure=py, friction=mu,
-                           work_of_adhesion=G, spin=w)
+    out = wall_interaction(
+        v, n, d, material=mat, wall=wall, limiting_pressure=py, friction=mu, work_of_adhesion=G, spin=w
+    )
     rho = mi.get_material(mat).density
     before = _kinetic_energy(v, w, d, rho)
     after = _kinetic_energy(out.velocity, out.spin, d, rho)
@@ -316,8 +330,12 @@ def c_program(tmp_path_factory):
     assert src.name == "microimpact_wall.c"
     (tmp / "driver.c").write_text(DRIVER)
     exe = tmp / "driver"
-    res = subprocess.run([cc, "-std=c99", "-O2", "-Wall", "-Werror", "-pedantic", "-o", str(exe),
-                          str(tmp / "driver.c"), "-lm"], capture_output=True, text=True, cwd=tmp)
+    res = subprocess.run(
+        [cc, "-std=c99", "-O2", "-Wall", "-Werror", "-pedantic", "-o", str(exe), str(tmp / "driver.c"), "-lm"],
+        capture_output=True,
+        text=True,
+        cwd=tmp,
+    )
     assert res.returncode == 0, res.stderr
     return exe
 
@@ -347,8 +365,9 @@ def test_c_source_agrees_with_python(c_program):
     res = subprocess.run([str(c_program)], input=lines + "\n", capture_output=True, text=True, check=True)
     got = np.array([[float(x) for x in line.split()] for line in res.stdout.splitlines()])
     assert got.shape == (N, 8)
-    py_out = wall_interaction(v, n, d, rho, effective_modulus=E, limiting_pressure=py, work_of_adhesion=G,
-                              friction=mu, spin=w)
+    py_out = wall_interaction(
+        v, n, d, rho, effective_modulus=E, limiting_pressure=py, work_of_adhesion=G, friction=mu, spin=w
+    )
     flag = got[:, 0].astype(int)
     expect_flag = np.where(~py_out.approaching, -1, np.where(py_out.stuck, 1, 0))
     assert np.array_equal(flag, expect_flag)
@@ -395,8 +414,9 @@ def test_write_tables_equal_the_api(tmp_path):
         header, data = _read_csv(tmp_path / f"restitution_d{d * 1e6:g}um.csv")
         assert header == ["normal speed [m/s]", "restitution e [-]", "stuck [0/1]"]
         assert np.array_equal(data[:, 0], V)
-        out = wall_interaction(np.column_stack([0 * V, 0 * V, -V]), [0, 0, 1], d, pair.density, **SILICON,
-                               work_of_adhesion=0.2)
+        out = wall_interaction(
+            np.column_stack([0 * V, 0 * V, -V]), [0, 0, 1], d, pair.density, **SILICON, work_of_adhesion=0.2
+        )
         assert np.array_equal(data[:, 1], out.restitution)
         assert np.array_equal(data[:, 2].astype(bool), out.stuck)
         assert out.stuck.any() and not out.stuck.all()
@@ -404,13 +424,32 @@ def test_write_tables_equal_the_api(tmp_path):
 
 def test_cli_export(tmp_path, capsys):
     out = tmp_path / "exp"
-    rc = main(["export", "--out", str(out), "--surface-energy", "0.05", "--friction", "0.3",
-               "--diameters", "1e-6,5e-6", "--velocities", "0.1:50:11", "--vs-over-vy", "0,0.5"])
+    rc = main(
+        [
+            "export",
+            "--out",
+            str(out),
+            "--surface-energy",
+            "0.05",
+            "--friction",
+            "0.3",
+            "--diameters",
+            "1e-6,5e-6",
+            "--velocities",
+            "0.1:50:11",
+            "--vs-over-vy",
+            "0,0.5",
+        ]
+    )
     assert rc == 0
     text = capsys.readouterr().out
     assert "work of adhesion G = 0.1 J/m^2" in text  # 2 gamma
     assert {p.name for p in out.iterdir()} == {
-        "restitution_vs_v_over_vy.csv", "restitution_d1um.csv", "restitution_d5um.csv", "microimpact_wall.c"}
+        "restitution_vs_v_over_vy.csv",
+        "restitution_d1um.csv",
+        "restitution_d5um.csv",
+        "microimpact_wall.c",
+    }
     pair = mi.ContactPair.paper_case()
     V = np.linspace(0.1, 50, 11)
     _, data = _read_csv(out / "restitution_d5um.csv")
@@ -434,7 +473,8 @@ def test_throughput_shape_million():
     rng = np.random.default_rng(0)
     N = 200_000
     v = rng.normal(size=(N, 3)) * 20
-    out = wall_interaction(v, [0, 0, 1], rng.uniform(1e-7, 1e-5, N), 1350.0, **SILICON,
-                           friction=0.3, work_of_adhesion=0.05)
+    out = wall_interaction(
+        v, [0, 0, 1], rng.uniform(1e-7, 1e-5, N), 1350.0, **SILICON, friction=0.3, work_of_adhesion=0.05
+    )
     assert out.velocity.shape == (N, 3) and out.spin.shape == (N, 3)
     assert math.isclose(out.approaching.mean(), 0.5, abs_tol=0.01)

@@ -11,7 +11,6 @@ import pytest
 from scipy.optimize import brentq
 
 from microimpact.coupling import sticking_velocity
-from microimpact.impact import thornton_ning_restitution
 from microimpact.deposition import (
     CRITICAL_STOKES_NUMBER,
     cunningham_correction,
@@ -22,6 +21,7 @@ from microimpact.deposition import (
     simulate_deposition,
     stokes_number,
 )
+from microimpact.impact import thornton_ning_restitution
 
 PAIR = dict(material="nh4fl", wall="silicon", limiting_pressure=156e6)
 RHO = 1350.0
@@ -73,8 +73,15 @@ def test_critical_stokes_number(stk, hits):
 def test_impaction_cut_on_at_critical_stokes():
     U, H = 10.0, 1e-3
     d_c = brentq(lambda d: stokes_number(d, RHO, U / H) - CRITICAL_STOKES_NUMBER, 1e-7, 1e-4)
-    res = simulate_deposition([0.5 * d_c, 0.99 * d_c, 1.5 * d_c, 3 * d_c], U, height=H, n_particles=20,
-                              work_of_adhesion=5.0, max_impacts=1, **PAIR)
+    res = simulate_deposition(
+        [0.5 * d_c, 0.99 * d_c, 1.5 * d_c, 3 * d_c],
+        U,
+        height=H,
+        n_particles=20,
+        work_of_adhesion=5.0,
+        max_impacts=1,
+        **PAIR,
+    )
     assert list(res.impacted_fraction[0, :2]) == [0.0, 0.0]  # small particles follow the streamlines
     assert np.all(res.impacted_fraction[0, 2:] > 0.5)
     assert np.all(res.stokes_number[0, :2] < 0.25) and np.all(res.stokes_number[0, 2:] > 0.25)

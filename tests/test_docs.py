@@ -176,8 +176,12 @@ def _attribute_docstring(module, name) -> str:
             targets = [node.target.id]
         if name not in targets:
             continue
-        if i + 1 < len(body) and isinstance(body[i + 1], ast.Expr) and isinstance(body[i + 1].value, ast.Constant) \
-                and isinstance(body[i + 1].value.value, str):
+        if (
+            i + 1 < len(body)
+            and isinstance(body[i + 1], ast.Expr)
+            and isinstance(body[i + 1].value, ast.Constant)
+            and isinstance(body[i + 1].value.value, str)
+        ):
             return body[i + 1].value.value.strip()
         comment = []
         j = node.lineno - 2
@@ -259,9 +263,24 @@ def test_docs_build_without_warnings(tmp_path):
     out = tmp_path / "html"
     env = dict(os.environ, MPLBACKEND="Agg")
     proc = subprocess.run(
-        [sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b", "html",
-         "-d", str(tmp_path / "doctrees"), str(src), str(out)],
-        capture_output=True, text=True, env=env, timeout=600,
+        [
+            sys.executable,
+            "-m",
+            "sphinx",
+            "-W",
+            "--keep-going",
+            "-q",
+            "-b",
+            "html",
+            "-d",
+            str(tmp_path / "doctrees"),
+            str(src),
+            str(out),
+        ],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=600,
     )
     assert proc.returncode == 0, f"sphinx-build failed:\n{proc.stderr[-5000:]}"
     # the build-time pages hold computed values, and the gallery its figures

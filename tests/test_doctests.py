@@ -10,7 +10,9 @@ import pytest
 import microimpact
 
 MODULES = sorted(
-    m.name for m in pkgutil.walk_packages(microimpact.__path__, prefix="microimpact.") if ".cli" not in m.name and not m.name.endswith("__main__")
+    m.name
+    for m in pkgutil.walk_packages(microimpact.__path__, prefix="microimpact.")
+    if ".cli" not in m.name and not m.name.endswith("__main__")
 ) + ["microimpact"]
 
 

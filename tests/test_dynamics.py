@@ -58,8 +58,15 @@ def test_closed_form_equals_ode_elastic(pair, v):
     closed = pair.impact(V, warn=False)
     ode = dynamics.integrate_impact(V, *pair._args)
     assert ode["plastic_stage_time"] == 0.0 and ode["plastic_approach"] == 0.0
-    for key in ("elastic_stage_time", "loading_time", "unloading_time", "contact_time", "max_approach",
-                "rebound_velocity", "max_force"):
+    for key in (
+        "elastic_stage_time",
+        "loading_time",
+        "unloading_time",
+        "contact_time",
+        "max_approach",
+        "rebound_velocity",
+        "max_force",
+    ):
         assert rel(ode[key], float(getattr(closed, key))) < 1e-8, key
 
 
@@ -88,8 +95,12 @@ def test_paper_silicon_times(V, key, paper_us):
 
 
 def test_paper_reference_formulas():
-    m, R, E, p_y = SILICON.effective_mass, SILICON.effective_radius, SILICON.effective_modulus, \
-        SILICON.limiting_pressure
+    m, R, E, p_y = (
+        SILICON.effective_mass,
+        SILICON.effective_radius,
+        SILICON.effective_modulus,
+        SILICON.limiting_pressure,
+    )
     # eq. 30 at 7.6 m/s: the seed prints 0.03348 us
     assert dynamics.deresiewicz_contact_time(7.6, E, R, m) * 1e6 == pytest.approx(0.03348, rel=0.01)
     # eq. 31: 0.01307 us
@@ -138,8 +149,9 @@ def test_times_continuous_at_yield(pair):
 
 def test_edge_speeds():
     out = SILICON.impact([0.0, np.inf], warn=False)
-    assert np.all(np.isinf([out.elastic_stage_time[0], out.loading_time[0], out.unloading_time[0],
-                            out.contact_time[0]]))
+    assert np.all(
+        np.isinf([out.elastic_stage_time[0], out.loading_time[0], out.unloading_time[0], out.contact_time[0]])
+    )
     assert out.plastic_stage_time[0] == 0.0
     assert out.elastic_stage_time[1] == 0.0 and out.unloading_time[1] == 0.0
     assert out.plastic_stage_time[1] == pytest.approx(SILICON.ning_loading_time(), rel=1e-15)
@@ -221,12 +233,16 @@ def test_history_force_is_the_force_law(V):
     h = SILICON.history(V, n=301)
     E, R, m, p_y = SILICON._args
     load = h.stage <= 2
-    np.testing.assert_allclose(h.force[load], contact.loading_force(h.approach[load], E, R, p_y),
-                               rtol=1e-11, atol=1e-13 * h.max_force)
+    np.testing.assert_allclose(
+        h.force[load], contact.loading_force(h.approach[load], E, R, p_y), rtol=1e-11, atol=1e-13 * h.max_force
+    )
     un = h.stage == 3
-    np.testing.assert_allclose(h.force[un], contact.contact_force(h.approach[un], E, R, p_y,
-                                                                  max_approach=h.max_approach),
-                               rtol=1e-9, atol=1e-12 * h.max_force)
+    np.testing.assert_allclose(
+        h.force[un],
+        contact.contact_force(h.approach[un], E, R, p_y, max_approach=h.max_approach),
+        rtol=1e-9,
+        atol=1e-12 * h.max_force,
+    )
 
 
 @pytest.mark.parametrize("V", SPEEDS)
@@ -238,8 +254,7 @@ def test_history_continuity_and_end_states(V):
     bounds = [tL] if out.elastic else [t1, tL]
     for b in bounds:
         h = SILICON.history(V, times=[b * (1 - d), b, b * (1 + d)])
-        for arr, scale in ((h.approach, h.max_approach), (h.force, h.max_force),
-                           (h.approach_velocity, V)):
+        for arr, scale in ((h.approach, h.max_approach), (h.force, h.max_force), (h.approach_velocity, V)):
             assert np.ptp(arr) < 1e-9 * scale
     h = SILICON.history(V, times=[0.0, tL, tc])
     # first contact
@@ -285,12 +300,15 @@ def test_history_shape_and_stages():
     for hist in (SILICON.history(5.0, n=201), SILICON.elastic_equivalent().history(70.0, n=201)):
         assert set(np.unique(hist.stage)) == {1, 3}
         assert hist.plastic_stage_time == 0.0
-        mirrored = SILICON.elastic_equivalent().history(hist.velocity, times=hist.contact_time - hist.time) \
-            if math.isinf(hist.limiting_pressure) else SILICON.history(hist.velocity,
-                                                                        times=hist.contact_time - hist.time)
+        mirrored = (
+            SILICON.elastic_equivalent().history(hist.velocity, times=hist.contact_time - hist.time)
+            if math.isinf(hist.limiting_pressure)
+            else SILICON.history(hist.velocity, times=hist.contact_time - hist.time)
+        )
         np.testing.assert_allclose(mirrored.force, hist.force, rtol=0, atol=1e-12 * hist.max_force)
-        np.testing.assert_allclose(mirrored.approach_velocity, -hist.approach_velocity, rtol=0,
-                                   atol=1e-12 * hist.velocity)
+        np.testing.assert_allclose(
+            mirrored.approach_velocity, -hist.approach_velocity, rtol=0, atol=1e-12 * hist.velocity
+        )
 
 
 def test_history_outside_contact():

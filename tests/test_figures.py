@@ -7,7 +7,6 @@ import numpy as np
 import pytest
 
 import microimpact as mi
-from microimpact import contact
 from microimpact.figures import paper as fp
 
 plt = pytest.importorskip("matplotlib.pyplot")
@@ -62,11 +61,13 @@ def test_restitution_data_rejects_mismatched_measurements():
     "parameter, values, change",
     [
         ("limiting_pressure", [50e6, 250e6], lambda v: SILICON.replace(limiting_pressure=v)),
-        ("density", [1350.0, 5350.0],
-         lambda v: mi.ContactPair.sphere_on_flat(2.45e-6, v, 1.31e9, 156e6)),
+        ("density", [1350.0, 5350.0], lambda v: mi.ContactPair.sphere_on_flat(2.45e-6, v, 1.31e9, 156e6)),
         # independent E* of the seed's Fig. 4: E2 = 150 GPa, nu = 0.3 both
-        ("particle_modulus", [1.2e9, 21.2e9],
-         lambda v: SILICON.replace(effective_modulus=1.0 / (0.91 / v + 0.91 / 150e9))),
+        (
+            "particle_modulus",
+            [1.2e9, 21.2e9],
+            lambda v: SILICON.replace(effective_modulus=1.0 / (0.91 / v + 0.91 / 150e9)),
+        ),
     ],
 )
 def test_energy_loss_data_equals_pair_impact(parameter, values, change):
@@ -85,9 +86,11 @@ def test_energy_loss_data_equals_pair_impact(parameter, values, change):
 def test_energy_loss_data_trends_of_the_paper():
     # Figs. 3-5 (Sec. 3.2): more loss for lower p_y, higher E1, higher density, at every plastic speed
     V = np.array([60.0, 120.0])
-    for parameter, values, sign in (("limiting_pressure", [50e6, 150e6, 250e6], -1),
-                                    ("particle_modulus", [1.2e9, 11.2e9, 21.2e9], 1),
-                                    ("density", [1350.0, 3350.0, 5350.0], 1)):
+    for parameter, values, sign in (
+        ("limiting_pressure", [50e6, 150e6, 250e6], -1),
+        ("particle_modulus", [1.2e9, 11.2e9, 21.2e9], 1),
+        ("density", [1350.0, 3350.0, 5350.0], 1),
+    ):
         t = fp.energy_loss_data(parameter, values, velocity=V)
         loss = np.asarray(t["energy_loss"]).reshape(len(values), V.size)
         assert np.all(sign * np.diff(loss, axis=0) > 0), parameter
@@ -152,8 +155,11 @@ def test_force_time_data_equals_history():
     m = _rows(t, "series", "hertz")
     loading = (ep.stage == 1) | (ep.stage == 2)
     np.testing.assert_array_equal(t["time_s"][m], ep.time[loading])
-    np.testing.assert_allclose(t["force_N"][m], 4 / 3 * SILICON.effective_modulus
-                               * math.sqrt(SILICON.effective_radius) * ep.approach[loading] ** 1.5, rtol=1e-13)
+    np.testing.assert_allclose(
+        t["force_N"][m],
+        4 / 3 * SILICON.effective_modulus * math.sqrt(SILICON.effective_radius) * ep.approach[loading] ** 1.5,
+        rtol=1e-13,
+    )
     # the seed's Fig. 7: elastic-plastic lasts longer than the equivalent elastic impact, with a lower peak
     assert ep.time[-1] > el.time[-1] and ep.force.max() < el.force.max()
 
@@ -161,11 +167,18 @@ def test_force_time_data_equals_history():
 def test_dynamics_data_equals_history():
     t = fp.dynamics_data(50.0, n=301)
     h = SILICON.history(50.0, n=301)
-    for col, attr in (("time_s", "time"), ("approach_velocity_m_s", "approach_velocity"),
-                      ("force_N", "force"), ("approach_m", "approach"), ("stage", "stage")):
+    for col, attr in (
+        ("time_s", "time"),
+        ("approach_velocity_m_s", "approach_velocity"),
+        ("force_N", "force"),
+        ("approach_m", "approach"),
+        ("stage", "stage"),
+    ):
         np.testing.assert_array_equal(t[col], getattr(h, attr))
     assert t["approach_velocity_m_s"][0] == 50.0
-    np.testing.assert_allclose(t["approach_velocity_m_s"][-1], -SILICON.impact(50.0, warn=False).rebound_velocity, rtol=1e-9)
+    np.testing.assert_allclose(
+        t["approach_velocity_m_s"][-1], -SILICON.impact(50.0, warn=False).rebound_velocity, rtol=1e-9
+    )
 
 
 def test_large_strain_velocity_is_where_a_over_R_is_0_3():
@@ -174,16 +187,22 @@ def test_large_strain_velocity_is_where_a_over_R_is_0_3():
         V = fp.large_strain_velocity(pair)
         a = pair.impact([V * (1 - 1e-6), V * (1 + 1e-6)], warn=False)
         assert list(a.large_strain) == [False, True]
-        np.testing.assert_allclose(float(pair.impact(V, warn=False).max_contact_radius) / pair.effective_radius,
-                                   0.3, rtol=1e-9)
+        np.testing.assert_allclose(
+            float(pair.impact(V, warn=False).max_contact_radius) / pair.effective_radius, 0.3, rtol=1e-9
+        )
     assert fp.large_strain_velocity(SILICON.elastic_equivalent().replace(effective_modulus=1e30)) == math.inf
 
 
 def test_every_data_column_is_documented():
-    tables = [fp.restitution_data(velocity=[10.0], data={"x": ([1.0], [1.0])}),
-              fp.energy_loss_data("particle_modulus", [1e9], velocity=[10.0]),
-              fp.force_displacement_data((30.0,), n=3), fp.approach_data(velocity=[10.0]),
-              fp.contact_time_data(velocity=[10.0]), fp.force_time_data(70.0, n=11), fp.dynamics_data(50.0, n=11)]
+    tables = [
+        fp.restitution_data(velocity=[10.0], data={"x": ([1.0], [1.0])}),
+        fp.energy_loss_data("particle_modulus", [1e9], velocity=[10.0]),
+        fp.force_displacement_data((30.0,), n=3),
+        fp.approach_data(velocity=[10.0]),
+        fp.contact_time_data(velocity=[10.0]),
+        fp.force_time_data(70.0, n=11),
+        fp.dynamics_data(50.0, n=11),
+    ]
     for t in tables:
         lengths = {len(np.atleast_1d(v)) for v in t.values()}
         assert len(lengths) == 1  # columns of one table
@@ -196,8 +215,12 @@ V_SHORT = np.linspace(1.0, 120.0, 40)
 
 PLOTS = [
     ("restitution", lambda ax: fp.plot_restitution(ax=ax, velocity=V_SHORT), "m/s", "–"),
-    ("energy_loss", lambda ax: fp.plot_energy_loss("limiting_pressure", [100e6, 200e6], ax=ax, velocity=V_SHORT),
-     "m/s", "–"),
+    (
+        "energy_loss",
+        lambda ax: fp.plot_energy_loss("limiting_pressure", [100e6, 200e6], ax=ax, velocity=V_SHORT),
+        "m/s",
+        "–",
+    ),
     ("force_displacement", lambda ax: fp.plot_force_displacement((30.0, 50.0), ax=ax), "nm", "µN"),
     ("force_time", lambda ax: fp.plot_force_time(70.0, ax=ax), "ns", "µN"),
     ("approach", lambda ax: fp.plot_approach(ax=ax, velocity=V_SHORT), "m/s", "nm"),

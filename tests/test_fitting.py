@@ -106,8 +106,11 @@ def test_noisy_data_interval_contains_the_truth(case, noise):
 def test_interval_is_symmetric_in_log_p_y_with_student_t():
     V, e = synthetic(SILICON, 0.03, seed=7)
     fit = fit_restitution(V, e, SILICON)
-    est, (lo, hi), se = fit.params["limiting_pressure"], fit.conf_int["limiting_pressure"], fit.stderr[
-        "limiting_pressure"]
+    est, (lo, hi), se = (
+        fit.params["limiting_pressure"],
+        fit.conf_int["limiting_pressure"],
+        fit.stderr["limiting_pressure"],
+    )
     q = stats.t.ppf(0.975, fit.dof)
     # symmetric in ln p_y, with the Student t quantile of n - 1 degrees of freedom
     assert math.log(hi / est) == pytest.approx(math.log(est / lo), rel=1e-12)
@@ -179,8 +182,9 @@ def test_p_y_and_E_star_are_not_separately_identifiable():
     """Why only one parameter can be free: E* -> lam E*, p_y -> lam^(4/5) p_y leaves e(V) unchanged."""
     V = np.geomspace(1, 200, 50)
     for lam in (0.3, 2.0, 10.0):
-        other = SILICON.replace(effective_modulus=SILICON.effective_modulus * lam,
-                                limiting_pressure=SILICON.limiting_pressure * lam**0.8)
+        other = SILICON.replace(
+            effective_modulus=SILICON.effective_modulus * lam, limiting_pressure=SILICON.limiting_pressure * lam**0.8
+        )
         np.testing.assert_allclose(other.restitution(V), SILICON.restitution(V), rtol=1e-12)
     V = SILICON.yield_velocity * np.geomspace(1.2, 100, 30)  # however wide the range
     e = SILICON.restitution(V)
@@ -222,8 +226,9 @@ def test_density_needs_a_sphere_on_flat():
 def test_k_from_the_pair_materials():
     pair = mi.ContactPair.from_materials("nh4fl", "silicon", radius=2.45e-6, k=2.11)
     V = pair.yield_velocity * np.geomspace(2, 10, 8)
-    fit = fit_restitution(V, pair.restitution(V), mi.ContactPair.from_materials("nh4fl", "silicon",
-                                                                                  radius=2.45e-6), params="k")
+    fit = fit_restitution(
+        V, pair.restitution(V), mi.ContactPair.from_materials("nh4fl", "silicon", radius=2.45e-6), params="k"
+    )
     assert fit.params["k"] == pytest.approx(2.11, rel=1e-6)  # Y = 74 MPa from the nh4fl entry
     assert fit.pair.limiting_pressure == pytest.approx(2.11 * 74e6, rel=1e-6)
 
@@ -257,8 +262,10 @@ def test_robust_loss_limits_an_outlier(loss):
     assert err_robust < err_plain / 5
     lo, hi = robust.conf_int["limiting_pressure"]
     assert lo < SILICON.limiting_pressure < hi
-    assert not plain.conf_int["limiting_pressure"][0] < SILICON.limiting_pressure < \
-        plain.conf_int["limiting_pressure"][1] or err_plain > 0.02
+    assert (
+        not plain.conf_int["limiting_pressure"][0] < SILICON.limiting_pressure < plain.conf_int["limiting_pressure"][1]
+        or err_plain > 0.02
+    )
     assert robust.f_scale == pytest.approx(0.01, rel=0.5)  # 1.4826 MAD: the noise level
 
 
@@ -299,8 +306,10 @@ def test_fit_result_predict_band_and_summary():
 
 def test_free_parameter_table_matches_eq_28_exponents():
     """V_y ~ p_y^(5/2) E*^(-2) rho^(-1/2) (seed eq. 28): the exponents the fit uses."""
-    for name, attr, scale in [("limiting_pressure", "limiting_pressure", 1.3),
-                              ("effective_modulus", "effective_modulus", 1.3)]:
+    for name, attr, scale in [
+        ("limiting_pressure", "limiting_pressure", 1.3),
+        ("effective_modulus", "effective_modulus", 1.3),
+    ]:
         other = SILICON.replace(**{attr: getattr(SILICON, attr) * scale})
         c = math.log(other.yield_velocity / SILICON.yield_velocity) / math.log(scale)
         assert c == pytest.approx(FREE_PARAMETERS[name]["exponent"], rel=1e-12)
@@ -318,8 +327,11 @@ def write(tmp_path, text, name="data.csv"):
 
 
 def test_load_csv_aliases_comments_units(tmp_path):
-    path = write(tmp_path, "# Wall-like data\n\n# units m/s\nV [m/s]; e ; e_err;note\n"
-                           "10;0.95;0.02;a\n20 ; 0.85 ; 0.03;b # trailing comment\n")
+    path = write(
+        tmp_path,
+        "# Wall-like data\n\n# units m/s\nV [m/s]; e ; e_err;note\n"
+        "10;0.95;0.02;a\n20 ; 0.85 ; 0.03;b # trailing comment\n",
+    )
     data = load_restitution_csv(path)
     V, e, sigma = data
     np.testing.assert_array_equal(V, [10.0, 20.0])
@@ -405,8 +417,21 @@ def test_cli_fit_end_to_end(tmp_path, capsys):
     img = __import__("matplotlib.image", fromlist=["imread"]).imread(png)
     assert img.shape[0] > 800 and img.shape[1] > 800  # a real figure at 200 dpi
 
-    rc = main(["fit", str(csv), "--particle", "nh4fl", "--surface", "silicon", "--diameter", "4.9e-6",
-               "--loss", "soft_l1", "--json"])
+    rc = main(
+        [
+            "fit",
+            str(csv),
+            "--particle",
+            "nh4fl",
+            "--surface",
+            "silicon",
+            "--diameter",
+            "4.9e-6",
+            "--loss",
+            "soft_l1",
+            "--json",
+        ]
+    )
     doc = json.loads(capsys.readouterr().out)
     pair = mi.ContactPair.from_materials("nh4fl", "silicon", radius=2.45e-6)
     api = fit_restitution(*load_restitution_csv(csv)[:2], pair, loss="soft_l1")

@@ -28,8 +28,12 @@ def test_csv_on_stdout_is_the_api(capsys):
     data = read_csv(out)
     ref = SILICON.history(50.0, n=201)
     assert data.size == len(ref) == 203
-    for col, name in (("time_s", "time"), ("approach_m", "approach"), ("force_N", "force"),
-                      ("approach_velocity_ms", "approach_velocity")):
+    for col, name in (
+        ("time_s", "time"),
+        ("approach_m", "approach"),
+        ("force_N", "force"),
+        ("approach_velocity_ms", "approach_velocity"),
+    ):
         assert np.array_equal(data[col], getattr(ref, name))
     out_ = SILICON.impact(50.0, warn=False)
     assert data["force_N"].max() == pytest.approx(float(out_.max_force), rel=1e-13)
@@ -40,8 +44,24 @@ def test_csv_on_stdout_is_the_api(capsys):
 
 def test_csv_file_plot_and_ode(tmp_path, capsys):
     csv, png = tmp_path / "h.csv", tmp_path / "h.png"
-    rc, out, err = run(["history", "30", "--case", "mica", "--n", "101", "--out", str(csv), "--plot", str(png),
-                        "--method", "ode", "--hertz"], capsys)
+    rc, out, err = run(
+        [
+            "history",
+            "30",
+            "--case",
+            "mica",
+            "--n",
+            "101",
+            "--out",
+            str(csv),
+            "--plot",
+            str(png),
+            "--method",
+            "ode",
+            "--hertz",
+        ],
+        capsys,
+    )
     assert rc == 0 and str(csv) in out
     data = np.genfromtxt(csv, delimiter=",", names=True)
     mica = mi.ContactPair.paper_case("mica")

@@ -109,8 +109,9 @@ def test_unloading_force_continuous_at_max(silicon):
     P = mi.contact.unloading_force(out.max_approach, out.plastic_approach, out.unloading_radius, E_SI)
     np.testing.assert_allclose(P, out.max_force, rtol=1e-12)
     # and vanishes at the plastic approach
-    assert np.all(mi.contact.unloading_force(out.plastic_approach, out.plastic_approach,
-                                             out.unloading_radius, E_SI) == 0)
+    assert np.all(
+        mi.contact.unloading_force(out.plastic_approach, out.plastic_approach, out.unloading_radius, E_SI) == 0
+    )
 
 
 def test_unloading_work_equals_rebound_energy_by_quadrature(silicon):
@@ -118,8 +119,13 @@ def test_unloading_work_equals_rebound_energy_by_quadrature(silicon):
 
     for V in (8.0, 20.0, 50.0, 110.0):
         out = silicon.impact(V, warn=False)
-        W, _ = quad(lambda a: float(mi.contact.unloading_force(a, out.plastic_approach, out.unloading_radius, E_SI)),
-                    float(out.plastic_approach), float(out.max_approach), epsabs=0, epsrel=1e-12)
+        W, _ = quad(
+            lambda a: float(mi.contact.unloading_force(a, out.plastic_approach, out.unloading_radius, E_SI)),
+            float(out.plastic_approach),
+            float(out.max_approach),
+            epsabs=0,
+            epsrel=1e-12,
+        )
         assert W == pytest.approx(0.5 * M_SI * out.rebound_velocity**2, rel=1e-9)
 
 
@@ -168,7 +174,8 @@ def test_scaling_depends_only_on_v(E, R, rho, p_y, v):
     assert out.restitution == pytest.approx(float(impact.normalized_restitution(v)), rel=1e-11)
     assert out.max_approach / pair.yield_approach == pytest.approx(float(impact.normalized_max_approach(v)), rel=1e-11)
     assert out.plastic_approach / pair.yield_approach == pytest.approx(
-        float(impact.normalized_plastic_approach(v)), rel=1e-9, abs=1e-12)
+        float(impact.normalized_plastic_approach(v)), rel=1e-9, abs=1e-12
+    )
     assert out.max_force / pair.yield_force == pytest.approx(float(impact.normalized_max_force(v)), rel=1e-11)
 
 
@@ -197,8 +204,15 @@ def test_outcome_continuous_at_yield(silicon):
     Vy = silicon.yield_velocity
     below = silicon.impact(Vy * (1 - 1e-9), warn=False)
     above = silicon.impact(Vy * (1 + 1e-9), warn=False)
-    for name in ("restitution", "max_approach", "max_force", "unloading_radius", "contact_time",
-                 "loading_time", "unloading_time"):
+    for name in (
+        "restitution",
+        "max_approach",
+        "max_force",
+        "unloading_radius",
+        "contact_time",
+        "loading_time",
+        "unloading_time",
+    ):
         assert getattr(above, name) == pytest.approx(getattr(below, name), rel=1e-4), name
     assert above.plastic_approach < 1e-6 * above.max_approach
 

@@ -49,7 +49,9 @@ def test_numpy_backend_always_available():
 @pytest.mark.parametrize("backend", BACKENDS)
 def test_restitution_edge_values(backend):
     Vy = 7.5
-    V = np.array([0.0, 1e-300, 1.0, Vy * (1 - 1e-16), Vy, Vy * (1 + 1e-15), 2 * Vy, 50.0, 1e6, 1e9, 1e150, 1e300, np.inf])
+    V = np.array(
+        [0.0, 1e-300, 1.0, Vy * (1 - 1e-16), Vy, Vy * (1 + 1e-15), 2 * Vy, 50.0, 1e6, 1e9, 1e150, 1e300, np.inf]
+    )
     e = restitution_fast(V, Vy, backend=backend)
     ref = ref_e(V, Vy)
     assert_rel(e, ref, 1e-14)
@@ -75,8 +77,7 @@ def test_restitution_paper_value(backend):
 
 @settings(max_examples=60, deadline=None)
 @given(
-    st.lists(st.one_of(st.floats(0.0, 1e12), st.sampled_from([0.0, 1.0, 7.5, math.inf])), min_size=1,
-             max_size=300),
+    st.lists(st.one_of(st.floats(0.0, 1e12), st.sampled_from([0.0, 1.0, 7.5, math.inf])), min_size=1, max_size=300),
     st.floats(1e-3, 1e3),
 )
 def test_restitution_matches_reference(speeds, Vy):

@@ -21,8 +21,18 @@ def test_every_material_is_valid_and_cited(name):
 
 
 def test_required_materials_present():
-    for name in ["nh4fl", "silicon", "mica", "glass", "steel", "aluminium", "copper", "fused_silica",
-                 "quartz", "fly_ash"]:
+    for name in [
+        "nh4fl",
+        "silicon",
+        "mica",
+        "glass",
+        "steel",
+        "aluminium",
+        "copper",
+        "fused_silica",
+        "quartz",
+        "fly_ash",
+    ]:
         assert name in mi.MATERIALS
 
 
@@ -136,11 +146,11 @@ def test_negative_approach_rejected():
 
 # --------------------------------------------------------------------------- ContactPair
 def test_constructors_agree():
-    a = mi.ContactPair.sphere_on_flat(radius=2.45e-6, density=1350.0, effective_modulus=1.31e9,
-                                      limiting_pressure=156e6)
+    a = mi.ContactPair.sphere_on_flat(radius=2.45e-6, density=1350.0, effective_modulus=1.31e9, limiting_pressure=156e6)
     b = mi.ContactPair.paper_case("silicon")
-    c = mi.ContactPair.sphere_on_flat(2.45e-6, mass=a.effective_mass, effective_modulus=1.31e9,
-                                      yield_strength=74e6, k=156 / 74)
+    c = mi.ContactPair.sphere_on_flat(
+        2.45e-6, mass=a.effective_mass, effective_modulus=1.31e9, yield_strength=74e6, k=156 / 74
+    )
     d = mi.ContactPair(1.31e9, 2.45e-6, a.effective_mass, 156e6)
     for p in (b, c, d):
         assert p.yield_velocity == pytest.approx(a.yield_velocity, rel=1e-12)
@@ -180,15 +190,27 @@ def test_pair_force_delegates():
     out = pair.impact(50.0, warn=False)
     assert float(pair.force(out.max_approach)) == pytest.approx(float(out.max_force), rel=1e-12)
     assert float(pair.force(out.plastic_approach, max_approach=out.max_approach)) == pytest.approx(
-        0.0, abs=1e-12 * float(out.max_force))
+        0.0, abs=1e-12 * float(out.max_force)
+    )
 
 
 def test_result_to_dict_round_trip():
     out = mi.ContactPair.paper_case("silicon").impact([10.0, 20.0])
     d = out.to_dict()
-    assert set(d) >= {"restitution", "rebound_velocity", "max_approach", "plastic_approach", "max_force",
-                      "unloading_radius", "energy_loss", "elastic_stage_time", "plastic_stage_time",
-                      "loading_time", "unloading_time", "contact_time"}
+    assert set(d) >= {
+        "restitution",
+        "rebound_velocity",
+        "max_approach",
+        "plastic_approach",
+        "max_force",
+        "unloading_radius",
+        "energy_loss",
+        "elastic_stage_time",
+        "plastic_stage_time",
+        "loading_time",
+        "unloading_time",
+        "contact_time",
+    }
     assert len(out) == 2
 
 
@@ -198,6 +220,6 @@ def test_pair_restitution_fast_path_equals_full_result():
     fast = pair.restitution(V)
     full = pair.impact(V, warn=False).restitution
     np.testing.assert_allclose(fast, full, rtol=1e-14, atol=0)
-    assert float(pair.restitution(50.0)) == pytest.approx(float(full[V == 50.0][0]) if (V == 50.0).any()
-                                                          else float(pair.impact(50.0, warn=False).restitution),
-                                                          rel=1e-14)
+    assert float(pair.restitution(50.0)) == pytest.approx(
+        float(full[V == 50.0][0]) if (V == 50.0).any() else float(pair.impact(50.0, warn=False).restitution), rel=1e-14
+    )

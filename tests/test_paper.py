@@ -66,16 +66,20 @@ def test_fig02_csv_is_restitution_of_the_paper_cases(run):
     for name in ("silicon", "mica"):
         m = t["series"] == name
         V = t["velocity_m_s"][m]
-        np.testing.assert_array_equal(t["restitution"][m], mi.ContactPair.paper_case(name).impact(V, warn=False)
-                                      .restitution)
+        np.testing.assert_array_equal(
+            t["restitution"][m], mi.ContactPair.paper_case(name).impact(V, warn=False).restitution
+        )
     assert set(t["kind"]) == {"model"}
 
 
-@pytest.mark.parametrize("stem, parameter, values, kws", [
-    ("fig03", "limiting_pressure", P.FIG3_PRESSURES, {}),
-    ("fig04", "particle_modulus", P.FIG4_MODULI, P.FIG4_SURFACE),
-    ("fig05", "density", P.FIG5_DENSITIES, {}),
-])
+@pytest.mark.parametrize(
+    "stem, parameter, values, kws",
+    [
+        ("fig03", "limiting_pressure", P.FIG3_PRESSURES, {}),
+        ("fig04", "particle_modulus", P.FIG4_MODULI, P.FIG4_SURFACE),
+        ("fig05", "density", P.FIG5_DENSITIES, {}),
+    ],
+)
 def test_energy_loss_csvs_equal_api(run, stem, parameter, values, kws):
     _, out, _ = run
     t = _csv(out, stem)
@@ -107,8 +111,9 @@ def test_fig06_csv_is_the_force_law(run):
         lo = (t["velocity_m_s"] == V) & (t["branch"] == "loading")
         un = (t["velocity_m_s"] == V) & (t["branch"] == "unloading")
         np.testing.assert_array_equal(t["force_N"][lo], SILICON.force(t["approach_m"][lo]))
-        np.testing.assert_array_equal(t["force_N"][un], SILICON.force(t["approach_m"][un],
-                                                                      max_approach=res.max_approach))
+        np.testing.assert_array_equal(
+            t["force_N"][un], SILICON.force(t["approach_m"][un], max_approach=res.max_approach)
+        )
         assert t["approach_m"][un][-1] == res.plastic_approach
 
 
@@ -122,8 +127,13 @@ def test_fig07_and_fig10_csvs_are_the_histories(run):
     he = SILICON.elastic_equivalent().history(P.FIG7_VELOCITY)
     np.testing.assert_array_equal(t7["force_N"][t7["series"] == "elastic"], he.force)
     h = SILICON.history(P.FIG10_VELOCITY)
-    for col, attr in (("time_s", "time"), ("approach_velocity_m_s", "approach_velocity"), ("force_N", "force"),
-                      ("approach_m", "approach"), ("stage", "stage")):
+    for col, attr in (
+        ("time_s", "time"),
+        ("approach_velocity_m_s", "approach_velocity"),
+        ("force_N", "force"),
+        ("approach_m", "approach"),
+        ("stage", "stage"),
+    ):
         np.testing.assert_array_equal(t10[col], getattr(h, attr))
 
 
@@ -169,12 +179,17 @@ def test_every_paper_number_agrees_within_1_percent_or_is_explained():
     assert round(100 * (1 - 0.73**2), 2) == by["energy_loss_50"]["quoted"]  # the paper's 46.71 % is 1 - 0.73^2
     assert round(158 / 68, 1) == by["k_mica"]["quoted"]
     # computed values that must match independent forms
-    np.testing.assert_allclose(by["energy_loss_50"]["computed"], 100 * (1 - by["restitution_50"]["computed"] ** 2),
-                               rtol=1e-14)
-    np.testing.assert_allclose(by["yield_velocity_silicon"]["computed"],
-                               mi.yield_velocity_sphere_on_flat(156e6, 1.31e9, 1350.0), rtol=1e-12)
-    np.testing.assert_allclose(by["rebound_velocity_50"]["computed"],
-                               50 * float(mi.thornton_ning_restitution(50.0, SILICON.yield_velocity)), rtol=1e-12)
+    np.testing.assert_allclose(
+        by["energy_loss_50"]["computed"], 100 * (1 - by["restitution_50"]["computed"] ** 2), rtol=1e-14
+    )
+    np.testing.assert_allclose(
+        by["yield_velocity_silicon"]["computed"], mi.yield_velocity_sphere_on_flat(156e6, 1.31e9, 1350.0), rtol=1e-12
+    )
+    np.testing.assert_allclose(
+        by["rebound_velocity_50"]["computed"],
+        50 * float(mi.thornton_ning_restitution(50.0, SILICON.yield_velocity)),
+        rtol=1e-12,
+    )
 
 
 def test_comparison_is_computed_at_run_time(monkeypatch):
@@ -185,7 +200,8 @@ def test_comparison_is_computed_at_run_time(monkeypatch):
     pair = mi.ContactPair.sphere_on_flat(2.45e-6, 1350.0, 1.31e9, 170e6)
     assert after["yield_velocity_silicon"]["computed"] == pytest.approx(pair.yield_velocity, rel=1e-14)
     assert after["plastic_approach_50"]["computed"] == pytest.approx(
-        float(pair.impact(50.0, warn=False).plastic_approach) * 1e9, rel=1e-14)
+        float(pair.impact(50.0, warn=False).plastic_approach) * 1e9, rel=1e-14
+    )
     assert after["k_silicon"]["computed"] == pytest.approx(170 / 74)
     assert after["yield_velocity_silicon"]["computed"] != before["yield_velocity_silicon"]
     assert after["yield_velocity_mica"]["computed"] == before["yield_velocity_mica"]
@@ -246,11 +262,14 @@ def test_cli_end_to_end_with_measurements(tmp_path, capsys):
     assert "silicon (2 points)" in (out / "report.md").read_text()
 
 
-@pytest.mark.parametrize("args, message", [
-    (["--data", "silicon"], "NAME=FILE.csv"),
-    (["--formats", "bmp"], "formats"),
-    (["--data", "silicon=does-not-exist.csv"], "does-not-exist"),
-])
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--data", "silicon"], "NAME=FILE.csv"),
+        (["--formats", "bmp"], "formats"),
+        (["--data", "silicon=does-not-exist.csv"], "does-not-exist"),
+    ],
+)
 def test_cli_bad_input_is_one_line_exit_2(tmp_path, capsys, args, message):
     rc = main(["paper", "--out", str(tmp_path / "o"), "--quiet", *args])
     err = capsys.readouterr().err

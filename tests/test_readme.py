@@ -4,7 +4,6 @@ import re
 from pathlib import Path
 
 import numpy as np
-import pytest
 
 import microimpact as mi
 
@@ -27,8 +26,13 @@ def test_readme_silicon_table_matches_model():
     table = _silicon_table()
     assert table.shape == (4, 6)
     out = mi.ContactPair.paper_case("silicon").impact(table[:, 0], warn=False)
-    cols = [out.restitution, out.rebound_velocity, out.plastic_approach * 1e9,
-            out.loading_time * 1e6, out.unloading_time * 1e6]
+    cols = [
+        out.restitution,
+        out.rebound_velocity,
+        out.plastic_approach * 1e9,
+        out.loading_time * 1e6,
+        out.unloading_time * 1e6,
+    ]
     for j, model in enumerate(cols, start=1):
         printed = table[:, j]
         # each printed value is the model's, rounded to the digits shown (at most 5e-4 relative here)

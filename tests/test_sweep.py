@@ -138,13 +138,29 @@ def test_scalar_velocity_gives_no_dimension():
 
 # --------------------------------------------------------------------------- attrs
 def test_units_in_attrs():
-    ds = sweep(V, limiting_pressure=np.array([1e8, 2e8]), density=np.array([1e3, 2e3]),
-               radius=np.array([1e-6, 2e-6]), particle_poisson=np.array([0.2, 0.3]))
+    ds = sweep(
+        V,
+        limiting_pressure=np.array([1e8, 2e8]),
+        density=np.array([1e3, 2e3]),
+        radius=np.array([1e-6, 2e-6]),
+        particle_poisson=np.array([0.2, 0.3]),
+    )
     for name in ds.variables:
         assert "units" in ds[name].attrs and "long_name" in ds[name].attrs, name
-    expect = {"velocity": "m/s", "limiting_pressure": "Pa", "density": "kg/m^3", "radius": "m",
-              "particle_poisson": "1", "restitution": "1", "max_force": "N", "contact_time": "s",
-              "max_approach": "m", "yield_velocity": "m/s", "effective_mass": "kg", "effective_modulus": "Pa"}
+    expect = {
+        "velocity": "m/s",
+        "limiting_pressure": "Pa",
+        "density": "kg/m^3",
+        "radius": "m",
+        "particle_poisson": "1",
+        "restitution": "1",
+        "max_force": "N",
+        "contact_time": "s",
+        "max_approach": "m",
+        "yield_velocity": "m/s",
+        "effective_mass": "kg",
+        "effective_modulus": "Pa",
+    }
     for name, unit in expect.items():
         assert ds[name].attrs["units"] == unit, name
     assert set(ds.data_vars) == set(SWEEP_VARIABLES)
@@ -152,8 +168,12 @@ def test_units_in_attrs():
 
 
 # --------------------------------------------------------------------------- dask
-BIG = dict(limiting_pressure=np.linspace(50e6, 250e6, 4), particle_modulus=np.array([1.2e9, 6.2e9, 21.2e9]),
-           density=np.array([1350.0, 5350.0]), radius=np.array([1e-6, 2.45e-6, 4e-6, 9e-6, 2e-5]))
+BIG = dict(
+    limiting_pressure=np.linspace(50e6, 250e6, 4),
+    particle_modulus=np.array([1.2e9, 6.2e9, 21.2e9]),
+    density=np.array([1350.0, 5350.0]),
+    radius=np.array([1e-6, 2.45e-6, 4e-6, 9e-6, 2e-5]),
+)
 VV = np.concatenate([[0.0], np.linspace(1.0, 120.0, 37)])
 
 
@@ -195,8 +215,9 @@ def test_lazy_until_computed(monkeypatch):
     assert ds.restitution.data.numblocks == (4, 1, 1)
     total = float(ds.restitution.sum())  # a reduction computes block by block
     assert calls.count("impact") == 4  # once per block, not once per variable
-    assert total == pytest.approx(float(sweep(VV, limiting_pressure=BIG["limiting_pressure"],
-                                              radius=BIG["radius"]).restitution.sum()), rel=1e-14)
+    assert total == pytest.approx(
+        float(sweep(VV, limiting_pressure=BIG["limiting_pressure"], radius=BIG["radius"]).restitution.sum()), rel=1e-14
+    )
 
 
 def test_graph_pickles_for_a_cluster():
@@ -208,8 +229,9 @@ def test_graph_pickles_for_a_cluster():
     arr = ds.max_force.data
     graph = pickle.loads(pickle.dumps(dict(arr.__dask_graph__())))
     blocks = get(graph, arr.__dask_keys__())
-    np.testing.assert_array_equal(da.core.concatenate3(blocks), sweep(VV, **{"limiting_pressure":
-                                                                           BIG["limiting_pressure"]}).max_force)
+    np.testing.assert_array_equal(
+        da.core.concatenate3(blocks), sweep(VV, **{"limiting_pressure": BIG["limiting_pressure"]}).max_force
+    )
 
 
 def test_progress_bar(capsys):
@@ -289,14 +311,14 @@ def test_csv_long_format_equals_api(tmp_path):
         assert units["velocity"] == "m/s" and units["max_force"] == "N"
         flat = eager.to_dataframe(dim_order=["velocity", "limiting_pressure", "density"]).reset_index()
         for col in df.columns:
-            np.testing.assert_array_equal(df[col].to_numpy(), flat[col].to_numpy().astype(df[col].dtype),
-                                          err_msg=col)
+            np.testing.assert_array_equal(df[col].to_numpy(), flat[col].to_numpy().astype(df[col].dtype), err_msg=col)
 
 
 def test_cli_netcdf_equals_api(tmp_path, capsys):
     out = tmp_path / "fig3.nc"
-    rc = main(["sweep", "--velocity", "1:120:60", "--limiting-pressure", "50e6:250e6:5", "--out", str(out),
-               "--chunks", "25"])
+    rc = main(
+        ["sweep", "--velocity", "1:120:60", "--limiting-pressure", "50e6:250e6:5", "--out", str(out), "--chunks", "25"]
+    )
     cap = capsys.readouterr()
     assert rc == 0, cap.err
     assert "100% Completed" in cap.err and "300 points" in cap.err
@@ -310,8 +332,20 @@ def test_cli_netcdf_equals_api(tmp_path, capsys):
 
 def test_cli_csv_equals_api(tmp_path, capsys):
     out = tmp_path / "fig4.csv"
-    rc = main(["sweep", "--velocity", "10,50,100", "--particle-modulus", "1.2e9:21.2e9:5", "--density", "2000",
-               "--out", str(out), "--no-progress"])
+    rc = main(
+        [
+            "sweep",
+            "--velocity",
+            "10,50,100",
+            "--particle-modulus",
+            "1.2e9:21.2e9:5",
+            "--density",
+            "2000",
+            "--out",
+            str(out),
+            "--no-progress",
+        ]
+    )
     assert rc == 0
     df, units = read_csv_sweep(out)
     ref = sweep(np.array([10.0, 50.0, 100.0]), particle_modulus=np.linspace(1.2e9, 21.2e9, 5), density=2000.0)
@@ -324,8 +358,22 @@ def test_cli_csv_equals_api(tmp_path, capsys):
 
 def test_cli_materials_base(tmp_path, capsys):
     out = tmp_path / "steel.csv"
-    rc = main(["sweep", "--velocity", "5:50:4", "--particle", "steel", "--surface", "copper",
-               "--radius", "1e-6,5e-6", "--out", str(out), "--no-progress"])
+    rc = main(
+        [
+            "sweep",
+            "--velocity",
+            "5:50:4",
+            "--particle",
+            "steel",
+            "--surface",
+            "copper",
+            "--radius",
+            "1e-6,5e-6",
+            "--out",
+            str(out),
+            "--no-progress",
+        ]
+    )
     assert rc == 0, capsys.readouterr().err
     df, _ = read_csv_sweep(out)
     pair = mi.ContactPair.from_materials("steel", "copper", radius=5e-6)  # p_y = 2.2 * 70 MPa (copper)

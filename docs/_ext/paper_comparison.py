@@ -17,9 +17,6 @@ A failure to compute the comparison is a Sphinx warning, hence an error under
 
 from __future__ import annotations
 
-import contextlib
-import importlib
-import io
 import math
 from pathlib import Path
 
@@ -57,23 +54,34 @@ def comparison_rst() -> str:
     rows = []
     for r in paper.compare_with_paper():
         rel = r.get("relative_difference")
-        rows.append([
-            _cell(r["quantity"]), _cell(r.get("where")), _cell(r["quoted"]), _cell(r["computed"]),
-            _cell(r.get("unit")), "" if rel is None else f"{100 * float(rel):+.2f} %",
-            "yes" if r.get("agrees") else ("no: see note" if r.get("note") else "**no**"),
-            _cell(r.get("note")),
-        ])
+        rows.append(
+            [
+                _cell(r["quantity"]),
+                _cell(r.get("where")),
+                _cell(r["quoted"]),
+                _cell(r["computed"]),
+                _cell(r.get("unit")),
+                "" if rel is None else f"{100 * float(rel):+.2f} %",
+                "yes" if r.get("agrees") else ("no: see note" if r.get("note") else "**no**"),
+                _cell(r.get("note")),
+            ]
+        )
     out = _list_table(
         f"Numbers quoted in the paper's Section 3 against the model (computed when these pages were "
         f"built; 'within' means a relative difference of at most {100 * paper.TOLERANCE:g} %)",
         ["Quantity", "Where", "Paper", "Computed", "Unit", "Relative difference", "Within", "Note"],
-        rows, [18, 9, 8, 8, 5, 9, 6, 37],
+        rows,
+        [18, 9, 8, 8, 5, 9, 6, 37],
     )
-    statements = [[_cell(r.get("where")), _cell(r.get("statement")), _cell(r.get("holds")), _cell(r.get("detail"))]
-                  for r in paper.check_statements()]
+    statements = [
+        [_cell(r.get("where")), _cell(r.get("statement")), _cell(r.get("holds")), _cell(r.get("detail"))]
+        for r in paper.check_statements()
+    ]
     out += "\n.. _comparison-statements:\n\n" + _list_table(
         "Qualitative statements of the paper, checked against the model",
-        ["Where", "Statement", "Holds", "Computed detail"], statements, [12, 35, 6, 47],
+        ["Where", "Statement", "Holds", "Computed detail"],
+        statements,
+        [12, 35, 6, 47],
     )
     return out
 
@@ -83,8 +91,7 @@ def columns_rst() -> str:
     from microimpact.figures import paper as figs
 
     rows = [[f"``{name}``", _cell(unit), _cell(desc)] for name, (unit, desc) in figs.COLUMNS.items()]
-    return _list_table("Columns of the figure CSV files (figN.csv)", ["Column", "Unit", "Meaning"],
-                       rows, [25, 10, 65])
+    return _list_table("Columns of the figure CSV files (figN.csv)", ["Column", "Unit", "Meaning"], rows, [25, 10, 65])
 
 
 def figures_rst() -> str:
@@ -92,8 +99,7 @@ def figures_rst() -> str:
     from microimpact import paper
 
     rows = [[f"``{key}.png``, ``{key}.csv``", _cell(title), _cell(caption)] for key, title, caption in paper.FIGURES]
-    return _list_table("Figures written by microimpact paper", ["Files", "Figure", "What it shows"],
-                       rows, [20, 25, 55])
+    return _list_table("Figures written by microimpact paper", ["Files", "Figure", "What it shows"], rows, [20, 25, 55])
 
 
 def cli_helps() -> dict[str, str]:
@@ -148,8 +154,7 @@ def generate(app) -> None:
             names.append(name)
     index = ["", ".. literalinclude:: _generated/cli_main.txt", "   :language: none", ""]
     for name in names:
-        index += [name, "-" * len(name), "",
-                  f".. literalinclude:: _generated/cli_{name}.txt", "   :language: none", ""]
+        index += [name, "-" * len(name), "", f".. literalinclude:: _generated/cli_{name}.txt", "   :language: none", ""]
     _write(gen / "cli_commands.rst", "\n".join(index))
     try:
         _write(gen / "microimpact_wall.c", c_source())

@@ -16,13 +16,6 @@ time histories.
 
 from . import contact, coupling, deposition, dynamics, fitting, impact, materials, sweep
 from .coupling import WallInteraction, adhesive_restitution, sticking_velocity, wall_interaction, work_of_adhesion
-from .impact import (
-    impact_outcome,
-    restitution_coefficient,
-    thornton_ning_restitution,
-    yield_velocity,
-    yield_velocity_sphere_on_flat,
-)
 from .dynamics import (
     ImpactHistory,
     contact_times,
@@ -32,6 +25,13 @@ from .dynamics import (
     ning_loading_time,
 )
 from .fitting import FitResult, fit_restitution, load_restitution_csv
+from .impact import (
+    impact_outcome,
+    restitution_coefficient,
+    thornton_ning_restitution,
+    yield_velocity,
+    yield_velocity_sphere_on_flat,
+)
 from .materials import MATERIALS, Material, effective_mass, effective_modulus, effective_radius, get_material
 from .pair import ContactPair, ImpactResult, LargeStrainWarning
 

@@ -52,7 +52,8 @@ import numpy as np
 
 from ._validation import check_nonnegative, check_positive
 from .impact import _restitution, yield_velocity
-from .materials import DEFAULT_K, Material, effective_modulus as _effective_modulus, get_material
+from .materials import DEFAULT_K, Material, get_material
+from .materials import effective_modulus as _effective_modulus
 
 __all__ = [
     "STICKING_CONSTANT",
@@ -925,8 +926,13 @@ def generate_c_source(
     label = f"{pair.label}; " if pair is not None and pair.label else ""
     desc = f"{label}E* = {E:.6g} Pa, p_y = {p_y:.6g} Pa, G = {G:.6g} J/m^2, mu = {mu:.6g}"
     return _C_TEMPLATE.format(
-        version=__version__, description=desc, E=_c_double(E), p_y=_c_double(p_y), G=_c_double(G),
-        mu=_c_double(mu), stick=repr(STICKING_CONSTANT),
+        version=__version__,
+        description=desc,
+        E=_c_double(E),
+        p_y=_c_double(p_y),
+        G=_c_double(G),
+        mu=_c_double(mu),
+        stick=repr(STICKING_CONSTANT),
     )
 
 

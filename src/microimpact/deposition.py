@@ -281,8 +281,15 @@ def flight_to_wall_ode(x0, z0, u0, w0, strain_rate, tau, *, t_max=None, rtol=1e-
     wall.terminal, wall.direction = True, -1
     scale = max(abs(x0), abs(z0), abs(w0) * tau, 1e-12)
     t_max = t_max if t_max is not None else 40.0 * (tau + 1.0 / a)
-    sol = solve_ivp(rhs, (0.0, t_max), [x0, z0, u0, w0], method="DOP853", events=wall, rtol=rtol,
-                    atol=atol if atol is not None else 1e-14 * scale)
+    sol = solve_ivp(
+        rhs,
+        (0.0, t_max),
+        [x0, z0, u0, w0],
+        method="DOP853",
+        events=wall,
+        rtol=rtol,
+        atol=atol if atol is not None else 1e-14 * scale,
+    )
     if sol.t_events[0].size == 0:
         return {"time": np.inf, "x": np.nan, "u": np.nan, "w": np.nan}
     x, _, u, w = sol.y_events[0][0]
@@ -334,14 +341,17 @@ class DepositionResult:
         rows = []
         for i, U in enumerate(self.jet_speeds):
             for j, d in enumerate(self.diameters):
-                rows.append({
-                    "jet_speed [m/s]": float(U), "diameter [m]": float(d),
-                    "stokes_number [-]": float(self.stokes_number[i, j]),
-                    "deposited_fraction [-]": float(self.deposited_fraction[i, j]),
-                    "impacted_fraction [-]": float(self.impacted_fraction[i, j]),
-                    "first_impact_speed [m/s]": float(self.first_impact_speed[i, j]),
-                    "mean_impacts [-]": float(self.mean_impacts[i, j]),
-                })
+                rows.append(
+                    {
+                        "jet_speed [m/s]": float(U),
+                        "diameter [m]": float(d),
+                        "stokes_number [-]": float(self.stokes_number[i, j]),
+                        "deposited_fraction [-]": float(self.deposited_fraction[i, j]),
+                        "impacted_fraction [-]": float(self.impacted_fraction[i, j]),
+                        "first_impact_speed [m/s]": float(self.first_impact_speed[i, j]),
+                        "mean_impacts [-]": float(self.mean_impacts[i, j]),
+                    }
+                )
         return rows
 
 
@@ -440,8 +450,14 @@ def simulate_deposition(
     impacted = np.zeros(x.size, bool)
     n_imp = np.zeros(x.size, int)
     first_speed = np.full(x.size, np.nan)
-    wall_kw = dict(material=material, wall=wall, limiting_pressure=limiting_pressure,
-                   effective_modulus=effective_modulus, work_of_adhesion=work_of_adhesion, friction=friction)
+    wall_kw = dict(
+        material=material,
+        wall=wall,
+        limiting_pressure=limiting_pressure,
+        effective_modulus=effective_modulus,
+        work_of_adhesion=work_of_adhesion,
+        friction=friction,
+    )
     for k in range(int(max_impacts)):
         idx = np.flatnonzero(alive)
         if idx.size == 0:
@@ -482,19 +498,32 @@ def simulate_deposition(
     with np.errstate(invalid="ignore", divide="ignore"):
         fs = np.where(count > 0, np.where(seen, first_speed.reshape(shape), 0.0).sum(axis=2) / count, np.nan)
     return DepositionResult(
-        diameters=d, jet_speeds=U, strain_rate=a_s,
+        diameters=d,
+        jet_speeds=U,
+        strain_rate=a_s,
         stokes_number=a_s[:, None] * tau_d[None, :],
-        deposited_fraction=frac(deposited), impacted_fraction=frac(impacted),
-        first_impact_speed=fs, mean_impacts=n_imp.reshape(shape).mean(axis=2),
-        yield_velocity=np.asarray(probe.yield_velocity), sticking_velocity=np.asarray(probe.sticking_velocity),
-        parameters=dict(height=H, jet_radius=R_jet, plate_radius=R_plate, n_particles=P, density=rho,
-                        max_impacts=int(max_impacts), viscosity=viscosity, mean_free_path=mean_free_path,
-                        method=method, **{k_: v_ for k_, v_ in wall_kw.items()}),
+        deposited_fraction=frac(deposited),
+        impacted_fraction=frac(impacted),
+        first_impact_speed=fs,
+        mean_impacts=n_imp.reshape(shape).mean(axis=2),
+        yield_velocity=np.asarray(probe.yield_velocity),
+        sticking_velocity=np.asarray(probe.sticking_velocity),
+        parameters=dict(
+            height=H,
+            jet_radius=R_jet,
+            plate_radius=R_plate,
+            n_particles=P,
+            density=rho,
+            max_impacts=int(max_impacts),
+            viscosity=viscosity,
+            mean_free_path=mean_free_path,
+            method=method,
+            **{k_: v_ for k_, v_ in wall_kw.items()},
+        ),
     )
 
 
-def plot_deposition(result: DepositionResult, ax=None, *, x="diameter", show_impacted=True, legend=True,
-                    **line_kws):
+def plot_deposition(result: DepositionResult, ax=None, *, x="diameter", show_impacted=True, legend=True, **line_kws):
     """Deposited fraction against particle diameter (or Stokes number), one line per jet speed.
 
     Parameters
@@ -532,14 +561,12 @@ def plot_deposition(result: DepositionResult, ax=None, *, x="diameter", show_imp
     handles = []
     for i, U in enumerate(result.jet_speeds):
         xs = result.diameters * 1e6 if x == "diameter" else result.stokes_number[i]
-        kws = dict(marker=markers[i % len(markers)], markersize=4, markevery=every, linewidth=1.5,
-                   label=f"{U:g} m/s")
+        kws = dict(marker=markers[i % len(markers)], markersize=4, markevery=every, linewidth=1.5, label=f"{U:g} m/s")
         kws.update(line_kws)
         (line,) = ax.plot(xs, result.deposited_fraction[i], **kws)
         handles.append(line)
         if show_impacted:
-            ax.plot(xs, result.impacted_fraction[i], color=line.get_color(), linestyle="--", linewidth=0.9,
-                    alpha=0.8)
+            ax.plot(xs, result.impacted_fraction[i], color=line.get_color(), linestyle="--", linewidth=0.9, alpha=0.8)
     ax.set_xscale("log")
     ax.xaxis.set_major_locator(LogLocator(base=10.0, subs=(1.0, 3.0)))
     ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
@@ -547,8 +574,16 @@ def plot_deposition(result: DepositionResult, ax=None, *, x="diameter", show_imp
         ax.set_xlabel(r"particle diameter $d$ [$\mu$m]")
     else:
         ax.axvline(CRITICAL_STOKES_NUMBER, color="0.4", linestyle=":", linewidth=1.2)
-        ax.annotate(r"Stk$_c$ = 1/4", xy=(CRITICAL_STOKES_NUMBER, 1.0), xytext=(-4, -2),
-                    textcoords="offset points", ha="right", va="top", fontsize=8, color="0.3")
+        ax.annotate(
+            r"Stk$_c$ = 1/4",
+            xy=(CRITICAL_STOKES_NUMBER, 1.0),
+            xytext=(-4, -2),
+            textcoords="offset points",
+            ha="right",
+            va="top",
+            fontsize=8,
+            color="0.3",
+        )
         ax.set_xlabel(r"Stokes number Stk $= a\tau$ [-]")
     ax.set_ylabel("fraction of particles [-]" if show_impacted else "fraction deposited [-]")
     ax.set_ylim(-0.03, 1.05)
@@ -556,9 +591,19 @@ def plot_deposition(result: DepositionResult, ax=None, *, x="diameter", show_imp
     if legend:
         extra = []
         if show_impacted:
-            extra = [Line2D([], [], color="0.3", linewidth=1.5, label="deposited (stuck)"),
-                     Line2D([], [], color="0.3", linestyle="--", linewidth=0.9, label="reached the plate")]
-        ax.legend(handles=handles + extra, frameon=True, framealpha=0.9, edgecolor="none", fontsize=7.5,
-                  title="jet speed U", title_fontsize=7.5, loc="center left",
-                  bbox_to_anchor=(1.01, 0.5))
+            extra = [
+                Line2D([], [], color="0.3", linewidth=1.5, label="deposited (stuck)"),
+                Line2D([], [], color="0.3", linestyle="--", linewidth=0.9, label="reached the plate"),
+            ]
+        ax.legend(
+            handles=handles + extra,
+            frameon=True,
+            framealpha=0.9,
+            edgecolor="none",
+            fontsize=7.5,
+            title="jet speed U",
+            title_fontsize=7.5,
+            loc="center left",
+            bbox_to_anchor=(1.01, 0.5),
+        )
     return ax

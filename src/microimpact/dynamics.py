@@ -490,8 +490,7 @@ def _scalar_pair(velocity, effective_modulus, effective_radius, effective_mass, 
     """Check the inputs of one impact; return them as floats."""
     out = []
     names = ("velocity", "effective_modulus", "effective_radius", "effective_mass", "limiting_pressure")
-    for name, value in zip(names, (velocity, effective_modulus, effective_radius, effective_mass,
-                                   limiting_pressure)):
+    for name, value in zip(names, (velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)):
         if np.ndim(value) != 0:
             raise ValueError(f"{name} must be a single number for a history, got shape {np.shape(value)}")
         out.append(value)
@@ -548,8 +547,9 @@ def _free_flight(t, V, t_c, a_p, V_r):
     return approach, velocity
 
 
-def impact_history(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure,
-                   n=1001, times=None):
+def impact_history(
+    velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure, n=1001, times=None
+):
     """Time history of one impact in closed form: approach, velocity, force and stage (seed eqs. 17-26).
 
     Stages 1 (Hertz loading) and 3 (elastic unloading) follow by inverting the
@@ -593,16 +593,16 @@ def impact_history(velocity, effective_modulus, effective_radius, effective_mass
     >>> round(float(h["approach_velocity"][-1]), 2)  # -V_r; seed: 36.31
     -36.24
     """
-    V, E, R, m, p_y = _scalar_pair(velocity, effective_modulus, effective_radius, effective_mass,
-                                   limiting_pressure)
+    V, E, R, m, p_y = _scalar_pair(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)
     outcome = impact_outcome(V, E, R, m, p_y)
     out = {k: float(np.asarray(v)) for k, v in outcome.items()}
     tm = contact_times(V, E, R, m, p_y, outcome=outcome)
-    t1, t2, t_L, t_U, t_c = (float(tm[k]) for k in ("elastic_stage_time", "plastic_stage_time",
-                                                     "loading_time", "unloading_time", "contact_time"))
+    t1, t2, t_L, t_U, t_c = (
+        float(tm[k])
+        for k in ("elastic_stage_time", "plastic_stage_time", "loading_time", "unloading_time", "contact_time")
+    )
     elastic = bool(out["elastic"])
-    a_star, a_p, P_star, V_r = out["max_approach"], out["plastic_approach"], out["max_force"], \
-        out["rebound_velocity"]
+    a_star, a_p, P_star, V_r = out["max_approach"], out["plastic_approach"], out["max_force"], out["rebound_velocity"]
     alpha_m = float(elastic_max_approach(V, E, R, m))
     T_m = 0.4 * BETA_25_12 * alpha_m / V  # time of a purely elastic impact to reach alpha_m
 
@@ -758,7 +758,7 @@ class ImpactHistory:
             object.__setattr__(self, name, float(getattr(self, name)))
 
     @classmethod
-    def from_dict(cls, data: dict, method: str = "closed") -> "ImpactHistory":
+    def from_dict(cls, data: dict, method: str = "closed") -> ImpactHistory:
         """Build from the dict of :func:`impact_history` or :func:`integrate_impact` (extra keys ignored)."""
         keys = [f.name for f in fields(cls) if f.name != "method"]
         return cls(**{k: data[k] for k in keys}, method=data.get("method", method))
@@ -814,8 +814,7 @@ def _integrate_phase(rhs, t0, y0, span, events, method, rtol, atol):
 
     pieces = []
     for _ in range(60):
-        sol = solve_ivp(rhs, (t0, t0 + span), y0, method=method, rtol=rtol, atol=atol, events=events,
-                        dense_output=True)
+        sol = solve_ivp(rhs, (t0, t0 + span), y0, method=method, rtol=rtol, atol=atol, events=events, dense_output=True)
         if not sol.success:  # pragma: no cover - solver failure
             raise RuntimeError(f"integration failed: {sol.message}")
         pieces.append((sol.t[0], sol.t[-1], sol.sol))
@@ -827,8 +826,19 @@ def _integrate_phase(rhs, t0, y0, span, events, method, rtol, atol):
     raise RuntimeError("integration did not reach the end of the stage")  # pragma: no cover
 
 
-def integrate_impact(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure, *,
-                     rtol=1e-12, atol=1e-14, method="DOP853", n=None, times=None):
+def integrate_impact(
+    velocity,
+    effective_modulus,
+    effective_radius,
+    effective_mass,
+    limiting_pressure,
+    *,
+    rtol=1e-12,
+    atol=1e-14,
+    method="DOP853",
+    n=None,
+    times=None,
+):
     """One impact by integrating Newton's equation ``m* d2alpha/dt2 = -P`` numerically (seed eqs. 16-26).
 
     The independent check of the closed forms (:func:`contact_times`,
@@ -865,8 +875,7 @@ def integrate_impact(velocity, effective_modulus, effective_radius, effective_ma
         ``method`` = ``"ode"``, and with ``n`` or ``times`` the arrays ``time``,
         ``approach``, ``approach_velocity``, ``force``, ``stage``.
     """
-    V, E, R, m, p_y = _scalar_pair(velocity, effective_modulus, effective_radius, effective_mass,
-                                   limiting_pressure)
+    V, E, R, m, p_y = _scalar_pair(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)
     if n is not None or times is not None:  # check the grid before integrating
         _time_grid(1001 if n is None else n, times, (), 1.0)
     Vy = float(yield_velocity(p_y, E, R, m))
@@ -893,8 +902,9 @@ def integrate_impact(velocity, effective_modulus, effective_radius, effective_ma
     if plastic:
         x_y = float(contact.yield_approach(p_y, E, R)) / L
         events.append(_event(lambda t, y: y[0] - x_y, 1))
-    pc, which, t_ev, y_ev, nf = _integrate_phase(make_rhs(hertz), 0.0, [0.0, 1.0], 1.2 * tm_elastic, events,
-                                                 method, rtol, atol)
+    pc, which, t_ev, y_ev, nf = _integrate_phase(
+        make_rhs(hertz), 0.0, [0.0, 1.0], 1.2 * tm_elastic, events, method, rtol, atol
+    )
     pieces += [(a, b, s, 1) for a, b, s in pc]
     nfev += nf
     t1 = t_ev
@@ -903,8 +913,9 @@ def integrate_impact(velocity, effective_modulus, effective_radius, effective_ma
         # Stage 2: plastic loading until rest.
         y_ev[0] = x_y  # the event's own state, exactly on the boundary
         omega = float(plastic_frequency(p_y, R, m)) * T
-        pc, _, t_ev, y_ev, nf = _integrate_phase(make_rhs(plastic_force), t1, y_ev, 0.6 * np.pi / omega,
-                                                 events[:1], method, rtol, atol)
+        pc, _, t_ev, y_ev, nf = _integrate_phase(
+            make_rhs(plastic_force), t1, y_ev, 0.6 * np.pi / omega, events[:1], method, rtol, atol
+        )
         pieces += [(a, b, s, 2) for a, b, s in pc]
         nfev += nf
         loading_force = plastic_force
@@ -919,8 +930,16 @@ def integrate_impact(velocity, effective_modulus, effective_radius, effective_ma
         return float(contact.unloading_force(a, a_p, R_p, E))
 
     x_p = a_p / L
-    pc, _, t_ev, y_ev, nf = _integrate_phase(make_rhs(unloading), t_L, [a_star / L, 0.0], 1.2 * tm_elastic,
-                                             [_event(lambda t, y: y[0] - x_p, -1)], method, rtol, atol)
+    pc, _, t_ev, y_ev, nf = _integrate_phase(
+        make_rhs(unloading),
+        t_L,
+        [a_star / L, 0.0],
+        1.2 * tm_elastic,
+        [_event(lambda t, y: y[0] - x_p, -1)],
+        method,
+        rtol,
+        atol,
+    )
     pieces += [(a, b, s, 3) for a, b, s in pc]
     nfev += nf
     t_c = t_ev

@@ -221,8 +221,7 @@ def load_restitution_csv(path) -> RestitutionData:
         hits = [i for i, (k, _) in enumerate(keys) if k in names]
         if len(hits) > 1:
             raise ValueError(
-                f"{where} line {hline}: more than one {what} column: "
-                + ", ".join(repr(cells[i]) for i in hits)
+                f"{where} line {hline}: more than one {what} column: " + ", ".join(repr(cells[i]) for i in hits)
             )
         if not hits:
             if required:
@@ -246,9 +245,7 @@ def load_restitution_csv(path) -> RestitutionData:
     for lineno, text in rows:
         row = _split(text, delimiter)
         if len(row) != len(cells):
-            raise ValueError(
-                f"{where} line {lineno}: expected {len(cells)} cells like the header, found {len(row)}"
-            )
+            raise ValueError(f"{where} line {lineno}: expected {len(cells)} cells like the header, found {len(row)}")
 
         def number(i, what):
             cell = row[i]
@@ -279,8 +276,9 @@ def load_restitution_csv(path) -> RestitutionData:
         e.append(r)
         lines.append(lineno)
     sigma = np.asarray(s, dtype=float) if isg is not None else None
-    return RestitutionData(np.asarray(V, dtype=float), np.asarray(e, dtype=float), sigma,
-                           np.asarray(lines, dtype=int), source=where)
+    return RestitutionData(
+        np.asarray(V, dtype=float), np.asarray(e, dtype=float), sigma, np.asarray(lines, dtype=int), source=where
+    )
 
 
 # --------------------------------------------------------------------------- model
@@ -350,14 +348,11 @@ class _Model:
         self.yield_strength = None
         finite_py = math.isfinite(pair.limiting_pressure)
         if not finite_py and name in ("effective_modulus", "density"):
-            raise ValueError(
-                f"pair has limiting_pressure = inf (never yields): give it a finite p_y to fit {name}"
-            )
+            raise ValueError(f"pair has limiting_pressure = inf (never yields): give it a finite p_y to fit {name}")
         if name == "k":
             Y = yield_strength
             if Y is None:
-                known = [m.yield_strength for m in (pair.particle, pair.surface)
-                         if m is not None and m.yield_strength]
+                known = [m.yield_strength for m in (pair.particle, pair.surface) if m is not None and m.yield_strength]
                 Y = min(known) if known else None
             if Y is None:
                 raise ValueError(
@@ -591,8 +586,12 @@ class FitResult:
 
         def fmt_row(label, value, err, lo, hi, unit, scale):
             u = f" {unit}" if unit else ""
-            return (label, f"{value * scale:.6g}{u}", f"{err * scale:.3g}{u}",
-                    f"[{lo * scale:.6g}, {hi * scale:.6g}]{u}")
+            return (
+                label,
+                f"{value * scale:.6g}{u}",
+                f"{err * scale:.3g}{u}",
+                f"[{lo * scale:.6g}, {hi * scale:.6g}]{u}",
+            )
 
         for name, value in self.params.items():
             info = FREE_PARAMETERS[name]
@@ -600,8 +599,9 @@ class FitResult:
             rows.append(fmt_row(name, value, self.stderr[name], lo, hi, info["unit"], info["scale"]))
         if "yield_velocity" not in self.params:
             lo, hi = self.yield_velocity_conf_int
-            rows.append(fmt_row("yield_velocity (derived)", self.yield_velocity,
-                                self.yield_velocity_stderr, lo, hi, "m/s", 1.0))
+            rows.append(
+                fmt_row("yield_velocity (derived)", self.yield_velocity, self.yield_velocity_stderr, lo, hi, "m/s", 1.0)
+            )
         widths = [max(len(r[j]) for r in rows) for j in range(4)]
         table = ["  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in rows]
         table.insert(1, "  ".join("-" * w for w in widths))
@@ -766,8 +766,9 @@ def fit_restitution(
     kw = {} if max_nfev is None else {"max_nfev": int(max_nfev)}
     from scipy import optimize  # imported here: keeps `import microimpact` fast
 
-    sol = optimize.least_squares(resid, u0, jac="3-point", loss=loss, f_scale=f_scale,
-                                 x_scale=1.0, xtol=1e-12, ftol=1e-12, gtol=1e-12, **kw)
+    sol = optimize.least_squares(
+        resid, u0, jac="3-point", loss=loss, f_scale=f_scale, x_scale=1.0, xtol=1e-12, ftol=1e-12, gtol=1e-12, **kw
+    )
     u = np.asarray(sol.x, dtype=float)
     fitted = model.pair_at(u[0])
     fitted = fitted.replace(label=(pair.label + " (fitted)").strip() if pair.label else "fitted")
@@ -793,9 +794,7 @@ def fit_restitution(
         psi, dpsi = _psi(loss, r_w, f_scale)
         mean_dpsi = float(np.mean(dpsi))
         if mean_dpsi <= 0:  # redescending loss with most points beyond f_scale
-            raise ValueError(
-                f"loss {loss!r} with f_scale = {f_scale:g} rejects most points; increase f_scale"
-            )
+            raise ValueError(f"loss {loss!r} with f_scale = {f_scale:g} rejects most points; increase f_scale")
         s2 = float(np.sum(psi**2) / dof) / mean_dpsi**2
     cov_u = s2 * JTJ_inv
     known_scale = absolute_sigma and loss == "linear"
@@ -805,8 +804,7 @@ def fit_restitution(
     se_u = np.sqrt(np.diag(cov_u))
     params_ = {nm: float(t) for nm, t in zip(names, theta)}
     stderr = {nm: float(t * s) for nm, t, s in zip(names, theta, se_u)}
-    conf = {nm: (float(t * math.exp(-q * s)), float(t * math.exp(q * s)))
-            for nm, t, s in zip(names, theta, se_u)}
+    conf = {nm: (float(t * math.exp(-q * s)), float(t * math.exp(q * s))) for nm, t, s in zip(names, theta, se_u)}
     cov = cov_u * np.outer(theta, theta)
     c = model.exponent
     se_vy = abs(c) * float(se_u[0])
@@ -851,8 +849,20 @@ def _fit_curve_grid(fit, V):
     return grid
 
 
-def plot_fit(fit_result, data_velocity, data_restitution, ax=None, *, sigma=None, residual_ax=None,
-             residuals=True, show_yield=True, data_kws=None, fit_kws=None, band_kws=None):
+def plot_fit(
+    fit_result,
+    data_velocity,
+    data_restitution,
+    ax=None,
+    *,
+    sigma=None,
+    residual_ax=None,
+    residuals=True,
+    show_yield=True,
+    data_kws=None,
+    fit_kws=None,
+    band_kws=None,
+):
     """Measured restitution, the fitted ``e(V)`` with its confidence band, and residuals.
 
     Parameters
@@ -888,8 +898,12 @@ def plot_fit(fit_result, data_velocity, data_restitution, ax=None, *, sigma=None
     if ax is None:
         if residuals:
             fig, (ax, residual_ax) = plt.subplots(
-                2, 1, sharex=True, figsize=(6.4, 5.6),
-                gridspec_kw={"height_ratios": [3, 1.2], "hspace": 0.08}, layout="constrained",
+                2,
+                1,
+                sharex=True,
+                figsize=(6.4, 5.6),
+                gridspec_kw={"height_ratios": [3, 1.2], "hspace": 0.08},
+                layout="constrained",
             )
         else:
             fig, ax = plt.subplots(figsize=(6.4, 4.4), layout="constrained")
@@ -906,13 +920,25 @@ def plot_fit(fit_result, data_velocity, data_restitution, ax=None, *, sigma=None
     line = {"color": "tab:blue", "linewidth": 1.8, "label": lab}
     line.update(fit_kws or {})
     ax.plot(grid, fit_result.predict(grid), **line)
-    dk = {"fmt": "o", "color": "0.15", "markersize": 4.5, "capsize": 2, "elinewidth": 0.8,
-          "markerfacecolor": "white", "label": "measured"}
+    dk = {
+        "fmt": "o",
+        "color": "0.15",
+        "markersize": 4.5,
+        "capsize": 2,
+        "elinewidth": 0.8,
+        "markerfacecolor": "white",
+        "label": "measured",
+    }
     dk.update(data_kws or {})
     ax.errorbar(V, e, yerr=sigma, **dk)
     if show_yield:
-        ax.axvline(fit_result.yield_velocity, color="0.4", linestyle=":", linewidth=1.0,
-                   label=f"$V_y$ = {fit_result.yield_velocity:.3g} m/s")
+        ax.axvline(
+            fit_result.yield_velocity,
+            color="0.4",
+            linestyle=":",
+            linewidth=1.0,
+            label=f"$V_y$ = {fit_result.yield_velocity:.3g} m/s",
+        )
     ax.set_xlim(0.0, grid[-1])
     ax.set_ylim(0.0, 1.05)
     ax.set_ylabel("coefficient of restitution $e$")
@@ -958,8 +984,7 @@ def plot_residuals(fit_result, data_velocity, data_restitution, ax=None, *, sigm
         _, ax = plt.subplots(figsize=(6.4, 2.4), layout="constrained")
     r = e - fit_result.predict(V)
     ax.axhline(0.0, color="tab:blue", linewidth=1.2)
-    dk = {"fmt": "o", "color": "0.15", "markersize": 4, "capsize": 2, "elinewidth": 0.8,
-          "markerfacecolor": "white"}
+    dk = {"fmt": "o", "color": "0.15", "markersize": 4, "capsize": 2, "elinewidth": 0.8, "markerfacecolor": "white"}
     dk.update(data_kws or {})
     ax.errorbar(V, r, yerr=sigma, **dk)
     span = float(np.max(np.abs(r) + (0 if sigma is None else np.asarray(sigma)))) if r.size else 0.0

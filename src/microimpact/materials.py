@@ -85,10 +85,7 @@ class Material:
         return (1.0 - self.poisson_ratio**2) / self.youngs_modulus
 
 
-_W90 = (
-    "Wall, John, Wang & Goren (1990), Aerosol Sci. Technol. 12:926-946, as used in "
-    "the seed paper, Section 3.1"
-)
+_W90 = "Wall, John, Wang & Goren (1990), Aerosol Sci. Technol. 12:926-946, as used in the seed paper, Section 3.1"
 
 #: Named materials (key -> :class:`Material`), each with the source of its values.
 #: ``"aluminum"`` is an alias of ``"aluminium"``. See :func:`list_materials`.
@@ -96,7 +93,11 @@ MATERIALS: dict[str, Material] = {
     m.name: m
     for m in [
         Material(
-            "nh4fl", 1.2e9, 0.3, 1350.0, 74e6,
+            "nh4fl",
+            1.2e9,
+            0.3,
+            1350.0,
+            74e6,
             source=(
                 "ammonium fluorescein particles of " + _W90 + "; density 1350 kg/m^3 from the seed; "
                 "E = 1.2 GPa, nu = 0.3 as in the literature that uses this case; Y = 74 MPa is the "
@@ -105,7 +106,11 @@ MATERIALS: dict[str, Material] = {
             description="ammonium fluorescein (NH4Fl), the seed paper's particle",
         ),
         Material(
-            "silicon", 163e9, 0.22, 2329.0, None,
+            "silicon",
+            163e9,
+            0.22,
+            2329.0,
+            None,
             source=(
                 "Hopcroft, Nix & Kenny (2010), J. Microelectromech. Syst. 19:229, 'What is the "
                 "Young's modulus of silicon?' (polycrystalline/isotropic average); density from "
@@ -114,7 +119,11 @@ MATERIALS: dict[str, Material] = {
             description="single-crystal silicon wafer (isotropic average)",
         ),
         Material(
-            "mica", 61e9, 0.25, 2830.0, None,
+            "mica",
+            61e9,
+            0.25,
+            2830.0,
+            None,
             source=(
                 "muscovite: stiffness normal to the cleavage plane C33 = 61 GPa, McNeil & "
                 "Grimsditch (1993), J. Phys.: Condens. Matter 5:1681; nu = 0.25 assumed; density "
@@ -123,45 +132,77 @@ MATERIALS: dict[str, Material] = {
             description="muscovite mica, loaded normal to the cleavage plane",
         ),
         Material(
-            "glass", 70e9, 0.22, 2500.0, None,
+            "glass",
+            70e9,
+            0.22,
+            2500.0,
+            None,
             source="soda-lime glass, Ashby & Jones, Engineering Materials 1 (4th ed., 2012), Table 3.1",
             description="soda-lime glass (brittle: no yield strength)",
         ),
         Material(
-            "fused_silica", 72.7e9, 0.16, 2200.0, None,
+            "fused_silica",
+            72.7e9,
+            0.16,
+            2200.0,
+            None,
             source="Corning 7980 fused silica product data; also CRC Handbook",
             description="amorphous SiO2",
         ),
         Material(
-            "quartz", 95.6e9, 0.08, 2650.0, None,
+            "quartz",
+            95.6e9,
+            0.08,
+            2650.0,
+            None,
             source="alpha-quartz, Voigt-Reuss-Hill average of single-crystal constants, "
             "Heyliger, Ledbetter & Kim (2003), J. Acoust. Soc. Am. 114:644",
             description="crystalline alpha-quartz (isotropic average)",
         ),
         Material(
-            "steel", 210e9, 0.29, 7850.0, 250e6,
+            "steel",
+            210e9,
+            0.29,
+            7850.0,
+            250e6,
             source="structural carbon steel (S250/ASTM A36 class): Ashby & Jones (2012) Table 3.1, "
             "Y = 250 MPa minimum yield of A36",
             description="mild/structural carbon steel",
         ),
         Material(
-            "stainless_steel", 193e9, 0.29, 8000.0, 215e6,
+            "stainless_steel",
+            193e9,
+            0.29,
+            8000.0,
+            215e6,
             source="AISI 304, annealed: ASM Handbook Vol. 1 (1990) property tables",
             description="AISI 304 stainless steel, annealed",
         ),
         Material(
-            "aluminium", 70e9, 0.33, 2700.0, 276e6,
+            "aluminium",
+            70e9,
+            0.33,
+            2700.0,
+            276e6,
             source="6061-T6 aluminium alloy: ASM Handbook Vol. 2 (1990); E, nu from Ashby & Jones (2012)",
             description="6061-T6 aluminium alloy",
         ),
         Material(
-            "copper", 117e9, 0.34, 8960.0, 70e6,
+            "copper",
+            117e9,
+            0.34,
+            8960.0,
+            70e6,
             source="annealed OFHC copper: ASM Handbook Vol. 2 (1990); used by Rogers & Reed (1984) "
             "for copper micro-particles",
             description="annealed copper",
         ),
         Material(
-            "fly_ash", 70e9, 0.2, 2300.0, None,
+            "fly_ash",
+            70e9,
+            0.2,
+            2300.0,
+            None,
             source="glassy aluminosilicate fly ash: density 2000-2600 kg/m^3 (ASTM C618 class F "
             "ashes); stiffness taken as that of aluminosilicate glass (Ashby & Jones 2012). "
             "Representative only: measure or fit for your ash",
@@ -220,9 +261,7 @@ def get_material(name) -> Material:
     try:
         return MATERIALS[key]
     except KeyError:
-        raise ValueError(
-            f"material must be one of {', '.join(list_materials())}, got {name!r}"
-        ) from None
+        raise ValueError(f"material must be one of {', '.join(list_materials())}, got {name!r}") from None
 
 
 def effective_modulus(E1, nu1, E2, nu2):

@@ -16,8 +16,8 @@ import numpy as np
 
 from . import _kernels, contact, dynamics, impact
 from ._validation import check_positive
-from .materials import DEFAULT_K, PAPER_CASES, Material, effective_modulus, get_material, sphere_mass
 from .dynamics import ImpactHistory
+from .materials import DEFAULT_K, PAPER_CASES, Material, effective_modulus, get_material, sphere_mass
 
 __all__ = ["ContactPair", "ImpactResult", "LargeStrainWarning"]
 
@@ -121,7 +121,7 @@ class ImpactResult:
     contact_time: np.ndarray
 
     @classmethod
-    def _trusted(cls, values: dict) -> "ImpactResult":
+    def _trusted(cls, values: dict) -> ImpactResult:
         """Build from a complete dict of already-checked values, skipping the dataclass ``__init__`` (hot path)."""
         obj = object.__new__(cls)
         obj.__dict__.update(values)
@@ -201,9 +201,7 @@ class ContactPair:
     def _limiting_pressure(limiting_pressure, k, yield_strength, particle=None, surface=None):
         if limiting_pressure is not None:
             if yield_strength is not None or k is not None:
-                raise ValueError(
-                    "limiting_pressure was given together with k/yield_strength; give one or the other"
-                )
+                raise ValueError("limiting_pressure was given together with k/yield_strength; give one or the other")
             return limiting_pressure
         k = DEFAULT_K if k is None else float(check_positive("k", k))
         if yield_strength is None:
@@ -228,7 +226,7 @@ class ContactPair:
         yield_strength=None,
         k=None,
         label="",
-    ) -> "ContactPair":
+    ) -> ContactPair:
         """A sphere of ``radius`` [m] hitting a flat, fixed surface, from effective values.
 
         Parameters
@@ -286,7 +284,7 @@ class ContactPair:
         k=None,
         yield_strength=None,
         label=None,
-    ) -> "ContactPair":
+    ) -> ContactPair:
         """A sphere of a named material hitting a flat of another.
 
         ``E*`` follows from the two materials (seed, after eq. 2), ``m*`` is the
@@ -332,8 +330,7 @@ class ContactPair:
         radius = float(check_positive("radius", radius))
         m = float(sphere_mass(radius, p.density))
         p_y = cls._limiting_pressure(limiting_pressure, k, yield_strength, p, s)
-        return cls(E, radius, m, p_y, density=p.density, label=label or f"{p.name} on {s.name}",
-                   particle=p, surface=s)
+        return cls(E, radius, m, p_y, density=p.density, label=label or f"{p.name} on {s.name}", particle=p, surface=s)
 
     @classmethod
     def two_spheres(
@@ -347,7 +344,7 @@ class ContactPair:
         k=None,
         yield_strength=None,
         label=None,
-    ) -> "ContactPair":
+    ) -> ContactPair:
         """Two free spheres colliding head on; ``V`` is then their relative normal speed.
 
         ``R* = 1/(1/R1 + 1/R2)``, ``m* = 1/(1/m1 + 1/m2)``; the rebound velocity is
@@ -386,11 +383,18 @@ class ContactPair:
         r2 = float(check_positive("radius2", radius2))
         m1, m2 = float(sphere_mass(r1, p.density)), float(sphere_mass(r2, s.density))
         p_y = cls._limiting_pressure(limiting_pressure, k, yield_strength, p, s)
-        return cls(E, 1.0 / (1.0 / r1 + 1.0 / r2), 1.0 / (1.0 / m1 + 1.0 / m2), p_y,
-                   label=label or f"{p.name} sphere on {s.name} sphere", particle=p, surface=s)
+        return cls(
+            E,
+            1.0 / (1.0 / r1 + 1.0 / r2),
+            1.0 / (1.0 / m1 + 1.0 / m2),
+            p_y,
+            label=label or f"{p.name} sphere on {s.name} sphere",
+            particle=p,
+            surface=s,
+        )
 
     @classmethod
-    def paper_case(cls, name: str = "silicon") -> "ContactPair":
+    def paper_case(cls, name: str = "silicon") -> ContactPair:
         """The seed paper's NH4Fl particle (d = 4.9 um) on ``"silicon"`` or ``"mica"`` (Sec. 3.1).
 
         Parameters
@@ -417,10 +421,11 @@ class ContactPair:
         if key not in PAPER_CASES:
             raise ValueError(f"case must be one of {', '.join(PAPER_CASES)}, got {name!r}")
         c = PAPER_CASES[key]
-        return cls.sphere_on_flat(c["radius"], c["density"], c["effective_modulus"],
-                                  c["limiting_pressure"], label=c["label"])
+        return cls.sphere_on_flat(
+            c["radius"], c["density"], c["effective_modulus"], c["limiting_pressure"], label=c["label"]
+        )
 
-    def replace(self, **changes) -> "ContactPair":
+    def replace(self, **changes) -> ContactPair:
         """A copy with some effective values changed (e.g. ``limiting_pressure``).
 
         Parameters
@@ -436,7 +441,7 @@ class ContactPair:
         """
         return replace(self, **changes)
 
-    def resized(self, radius=None, density=None) -> "ContactPair":
+    def resized(self, radius=None, density=None) -> ContactPair:
         """The same sphere-on-flat pair with another particle radius and/or density.
 
         ``R* = R`` and ``m* = 4/3 pi R^3 rho`` are recomputed; ``E*`` and ``p_y`` are kept.
@@ -471,7 +476,7 @@ class ContactPair:
         rho = self.density if density is None else float(check_positive("density", density))
         return replace(self, effective_radius=r, effective_mass=float(sphere_mass(r, rho)), density=rho)
 
-    def elastic_equivalent(self) -> "ContactPair":
+    def elastic_equivalent(self) -> ContactPair:
         """The same pair with no yielding (``p_y = inf``): the seed's "equivalent elastic impact" (Fig. 7).
 
         Returns
@@ -485,8 +490,11 @@ class ContactPair:
     @property
     def yield_velocity(self) -> float:
         """``V_y`` [m/s], the speed below which impacts are elastic (eq. 28, general energy form)."""
-        return float(impact.yield_velocity(self.limiting_pressure, self.effective_modulus,
-                                           self.effective_radius, self.effective_mass))
+        return float(
+            impact.yield_velocity(
+                self.limiting_pressure, self.effective_modulus, self.effective_radius, self.effective_mass
+            )
+        )
 
     @property
     def yield_approach(self) -> float:
@@ -501,8 +509,9 @@ class ContactPair:
     @property
     def yield_contact_radius(self) -> float:
         """``a_y`` [m] (eq. 4)."""
-        return float(contact.yield_contact_radius(self.limiting_pressure, self.effective_modulus,
-                                                  self.effective_radius))
+        return float(
+            contact.yield_contact_radius(self.limiting_pressure, self.effective_modulus, self.effective_radius)
+        )
 
     @property
     def _args(self):
@@ -524,8 +533,9 @@ class ContactPair:
         ndarray
             Contact force ``P`` [N], as :func:`microimpact.contact.contact_force`.
         """
-        return contact.contact_force(alpha, self.effective_modulus, self.effective_radius,
-                                     self.limiting_pressure, max_approach=max_approach)
+        return contact.contact_force(
+            alpha, self.effective_modulus, self.effective_radius, self.limiting_pressure, max_approach=max_approach
+        )
 
     # ----------------------------------------------------------------- impact
     def impact(self, velocity, *, warn: bool = True) -> ImpactResult:
@@ -648,8 +658,11 @@ class ContactPair:
         numpy scalar or ndarray
             ``t_c = 2.87 (m*^2/(R* E*^2 V))^(1/5)`` [s], shaped like ``velocity``.
         """
-        return _scalar_or_array(dynamics.deresiewicz_contact_time(velocity, self.effective_modulus,
-                                                                  self.effective_radius, self.effective_mass))
+        return _scalar_or_array(
+            dynamics.deresiewicz_contact_time(
+                velocity, self.effective_modulus, self.effective_radius, self.effective_mass
+            )
+        )
 
     def describe(self) -> str:
         """A few lines naming the pair's effective values and yield point.

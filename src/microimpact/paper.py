@@ -53,8 +53,10 @@ DEFAULT_OUT_DIR = "microimpact-paper"
 #: Relative difference up to which a computed value "agrees" with the paper's.
 TOLERANCE = 0.01
 
-_SEED = ("Dynamic impact model of plastic deformation between micro-particles and flat surfaces "
-         "without adhesion, Aerosol Science and Technology 50(4):321-330 (2016)")
+_SEED = (
+    "Dynamic impact model of plastic deformation between micro-particles and flat surfaces "
+    "without adhesion, Aerosol Science and Technology 50(4):321-330 (2016)"
+)
 
 # Parameters of the paper's figures (the paper's Section 3).
 FIG3_PRESSURES = (50e6, 100e6, 150e6, 200e6, 250e6)  # p_y [Pa]
@@ -86,44 +88,55 @@ def _yield_note(name, quoted):
         # V_y ~ p_y^(5/2) E*^(-2): what a single input would have to be to give the quoted value
         p_need = c["limiting_pressure"] * (quoted / computed) ** 0.4
         E_need = c["effective_modulus"] * (computed / quoted) ** 0.5
-        return (f"eq. 28 with the paper's stated inputs gives {computed:.3f} m/s; the quoted {quoted} m/s "
-                f"would need p_y = {p_need / 1e6:.1f} MPa (stated {c['limiting_pressure'] / 1e6:g}) or "
-                f"E* = {E_need / 1e9:.3f} GPa (stated {c['effective_modulus'] / 1e9:g}): the paper's inputs "
-                "are rounded.")
+        return (
+            f"eq. 28 with the paper's stated inputs gives {computed:.3f} m/s; the quoted {quoted} m/s "
+            f"would need p_y = {p_need / 1e6:.1f} MPa (stated {c['limiting_pressure'] / 1e6:g}) or "
+            f"E* = {E_need / 1e9:.3f} GPa (stated {c['effective_modulus'] / 1e9:g}): the paper's inputs "
+            "are rounded."
+        )
+
     return note
 
 
 def _k_note(name, printed):
     def note(computed):
         c = PAPER_CASES[name]
-        return (f"k = p_y/Y = {c['limiting_pressure'] / 1e6:g}/{c['yield_strength'] / 1e6:g} = {computed:.3f}; "
-                f"the paper states the range 2.1-2.3 to one decimal ({computed:.3f} rounds to {printed}).")
+        return (
+            f"k = p_y/Y = {c['limiting_pressure'] / 1e6:g}/{c['yield_strength'] / 1e6:g} = {computed:.3f}; "
+            f"the paper states the range 2.1-2.3 to one decimal ({computed:.3f} rounds to {printed})."
+        )
+
     return note
 
 
 def _energy_note(computed):
     e_rounded = 0.73
     e_own = 36.31 / 50.0
-    return (f"the paper's 46.71 % is 1 - 0.73^2 = {100 * (1 - e_rounded**2):.2f} %, computed from its rounded "
-            f"e = 0.73; its own rebound speed gives 1 - (36.31/50)^2 = {100 * (1 - e_own**2):.2f} %. "
-            f"The model's unrounded e gives {computed:.2f} %.")
+    return (
+        f"the paper's 46.71 % is 1 - 0.73^2 = {100 * (1 - e_rounded**2):.2f} %, computed from its rounded "
+        f"e = 0.73; its own rebound speed gives 1 - (36.31/50)^2 = {100 * (1 - e_own**2):.2f} %. "
+        f"The model's unrounded e gives {computed:.2f} %."
+    )
 
 
 def _restitution_note(computed):
-    return (f"the paper prints two digits; its own 36.31/50 = {36.31 / 50:.4f}. "
-            f"Computed e = {computed:.4f}.")
+    return f"the paper prints two digits; its own 36.31/50 = {36.31 / 50:.4f}. Computed e = {computed:.4f}."
 
 
 def _time_76_note(computed):
     pair = _silicon()
-    return (f"V = 7.6 m/s is V/V_y = {7.6 / pair.yield_velocity:.4f} here (the paper calls it the yield velocity); "
-            "closed-form times (the paper integrated numerically).")
+    return (
+        f"V = 7.6 m/s is V/V_y = {7.6 / pair.yield_velocity:.4f} here (the paper calls it the yield velocity); "
+        "closed-form times (the paper integrated numerically)."
+    )
 
 
 def _limit_note(computed):
     pair = _silicon()
-    return (f"t_L is still decreasing at {FIG9_MAX_VELOCITY:g} m/s (the top of Fig. 9's range, taken here); "
-            f"its limit V -> inf is eq. 31, {pair.ning_loading_time() * 1e6:.5f} us.")
+    return (
+        f"t_L is still decreasing at {FIG9_MAX_VELOCITY:g} m/s (the top of Fig. 9's range, taken here); "
+        f"its limit V -> inf is eq. 31, {pair.ning_loading_time() * 1e6:.5f} us."
+    )
 
 
 def _high_speed_constant():
@@ -135,63 +148,179 @@ _Q = []
 
 
 def _quote(name, quantity, quoted, unit, where, how, compute, note=None):
-    _Q.append(({"name": name, "quantity": quantity, "quoted": quoted, "unit": unit, "where": where,
-                "how": how}, compute, note))
+    _Q.append(
+        (
+            {"name": name, "quantity": quantity, "quoted": quoted, "unit": unit, "where": where, "how": how},
+            compute,
+            note,
+        )
+    )
 
 
-_quote("yield_velocity_silicon", "yield velocity, silicon", 7.59, "m/s", "Sec. 3.1",
-       "eq. 28: ContactPair.paper_case('silicon').yield_velocity",
-       lambda: _silicon().yield_velocity, _yield_note("silicon", 7.59))
-_quote("yield_velocity_mica", "yield velocity, mica", 7.92, "m/s", "Sec. 3.1",
-       "eq. 28: ContactPair.paper_case('mica').yield_velocity",
-       lambda: _mica().yield_velocity, _yield_note("mica", 7.92))
-_quote("k_silicon", "k = p_y / Y, silicon (lower end of 2.1-2.3)", 2.1, "-", "Sec. 3.1",
-       "p_y / Y = 156 MPa / 74 MPa from the paper's inputs",
-       lambda: _case("silicon", "limiting_pressure") / _case("silicon", "yield_strength"), _k_note("silicon", 2.1))
-_quote("k_mica", "k = p_y / Y, mica (upper end of 2.1-2.3)", 2.3, "-", "Sec. 3.1",
-       "p_y / Y = 158 MPa / 68 MPa from the paper's inputs",
-       lambda: _case("mica", "limiting_pressure") / _case("mica", "yield_strength"), _k_note("mica", 2.3))
+_quote(
+    "yield_velocity_silicon",
+    "yield velocity, silicon",
+    7.59,
+    "m/s",
+    "Sec. 3.1",
+    "eq. 28: ContactPair.paper_case('silicon').yield_velocity",
+    lambda: _silicon().yield_velocity,
+    _yield_note("silicon", 7.59),
+)
+_quote(
+    "yield_velocity_mica",
+    "yield velocity, mica",
+    7.92,
+    "m/s",
+    "Sec. 3.1",
+    "eq. 28: ContactPair.paper_case('mica').yield_velocity",
+    lambda: _mica().yield_velocity,
+    _yield_note("mica", 7.92),
+)
+_quote(
+    "k_silicon",
+    "k = p_y / Y, silicon (lower end of 2.1-2.3)",
+    2.1,
+    "-",
+    "Sec. 3.1",
+    "p_y / Y = 156 MPa / 74 MPa from the paper's inputs",
+    lambda: _case("silicon", "limiting_pressure") / _case("silicon", "yield_strength"),
+    _k_note("silicon", 2.1),
+)
+_quote(
+    "k_mica",
+    "k = p_y / Y, mica (upper end of 2.1-2.3)",
+    2.3,
+    "-",
+    "Sec. 3.1",
+    "p_y / Y = 158 MPa / 68 MPa from the paper's inputs",
+    lambda: _case("mica", "limiting_pressure") / _case("mica", "yield_strength"),
+    _k_note("mica", 2.3),
+)
 for _V, _q in zip(FIG6_VELOCITIES, (69.159, 169.36, 282.48)):
-    _quote(f"plastic_approach_{_V:g}", f"plastic displacement at {_V:g} m/s", _q, "nm", "Sec. 3.3.1, Fig. 6",
-           f"pair.impact({_V:g}).plastic_approach (eq. 11)",
-           (lambda V=_V: float(_silicon().impact(V, warn=False).plastic_approach) * 1e9))
-_quote("rebound_velocity_50", "rebound velocity at 50 m/s", 36.31, "m/s", "Sec. 3.3.3, Fig. 10",
-       "pair.impact(50).rebound_velocity (eqs. 25, 27)",
-       lambda: float(_silicon().impact(50.0, warn=False).rebound_velocity))
-_quote("restitution_50", "restitution coefficient at 50 m/s", 0.73, "-", "Sec. 3.3.3",
-       "pair.impact(50).restitution (eq. 27)",
-       lambda: float(_silicon().impact(50.0, warn=False).restitution), _restitution_note)
-_quote("energy_loss_50", "energy lost at 50 m/s", 46.71, "%", "Sec. 3.3.3",
-       "100 * pair.impact(50).energy_loss (eq. 29)",
-       lambda: 100.0 * float(_silicon().impact(50.0, warn=False).energy_loss), _energy_note)
-_quote("loading_time_50", "loading period at 50 m/s", 0.01365, "us", "Sec. 3.3.3, Fig. 10",
-       "pair.impact(50).loading_time (eq. 32)",
-       lambda: float(_silicon().impact(50.0, warn=False).loading_time) * 1e6)
-_quote("unloading_time_50", "unloading period at 50 m/s", 0.01115, "us", "Sec. 3.3.3, Fig. 10",
-       "pair.impact(50).unloading_time (eq. 26)",
-       lambda: float(_silicon().impact(50.0, warn=False).unloading_time) * 1e6)
-_quote("loading_time_7.6", "loading time t_L at 7.6 m/s", 0.01671, "us", "Sec. 3.3.2, Fig. 9",
-       "pair.impact(7.6).loading_time (eq. 32)",
-       lambda: float(_silicon().impact(7.6, warn=False).loading_time) * 1e6, _time_76_note)
-_quote("unloading_time_7.6", "unloading time t_U at 7.6 m/s", 0.01675, "us", "Sec. 3.3.2, Fig. 9",
-       "pair.impact(7.6).unloading_time (eq. 26)",
-       lambda: float(_silicon().impact(7.6, warn=False).unloading_time) * 1e6, _time_76_note)
-_quote("contact_time_7.6", "contact time t_c at 7.6 m/s", 0.03346, "us", "Sec. 3.3.2, Fig. 9",
-       "pair.impact(7.6).contact_time (eq. 33)",
-       lambda: float(_silicon().impact(7.6, warn=False).contact_time) * 1e6, _time_76_note)
-_quote("deresiewicz_time_7.6", "Deresiewicz's contact time (eq. 30) at 7.6 m/s", 0.03348, "us",
-       "Sec. 3.3.2", "pair.deresiewicz_contact_time(7.6), constant 2.87 as printed",
-       lambda: float(_silicon().deresiewicz_contact_time(7.6)) * 1e6)
-_quote("loading_time_limit", f"loading time t_L at high speed (taken at {FIG9_MAX_VELOCITY:g} m/s)", 0.01333, "us",
-       "Sec. 3.3.2, Fig. 9", f"pair.impact({FIG9_MAX_VELOCITY:g}).loading_time, the largest speed of Fig. 9",
-       lambda: float(_silicon().impact(FIG9_MAX_VELOCITY, warn=False).loading_time) * 1e6, _limit_note)
-_quote("ning_loading_time", "Ning's loading time (eq. 31)", 0.01307, "us", "Sec. 3.3.2",
-       "pair.ning_loading_time() = (pi/2) (m*/(pi p_y R*))^(1/2)",
-       lambda: _silicon().ning_loading_time() * 1e6)
-_quote("high_speed_restitution_constant", "C in e -> C (V_y/V)^(1/4) at high speed", 1.185, "-",
-       "Sec. 3.1, after eq. 28 (equation body restored in the docs' theory page)",
-       "restitution_coefficient(v V_y, V_y) v^(1/4) at v = V/V_y = 1e12 (eq. 27)",
-       _high_speed_constant)
+    _quote(
+        f"plastic_approach_{_V:g}",
+        f"plastic displacement at {_V:g} m/s",
+        _q,
+        "nm",
+        "Sec. 3.3.1, Fig. 6",
+        f"pair.impact({_V:g}).plastic_approach (eq. 11)",
+        (lambda V=_V: float(_silicon().impact(V, warn=False).plastic_approach) * 1e9),
+    )
+_quote(
+    "rebound_velocity_50",
+    "rebound velocity at 50 m/s",
+    36.31,
+    "m/s",
+    "Sec. 3.3.3, Fig. 10",
+    "pair.impact(50).rebound_velocity (eqs. 25, 27)",
+    lambda: float(_silicon().impact(50.0, warn=False).rebound_velocity),
+)
+_quote(
+    "restitution_50",
+    "restitution coefficient at 50 m/s",
+    0.73,
+    "-",
+    "Sec. 3.3.3",
+    "pair.impact(50).restitution (eq. 27)",
+    lambda: float(_silicon().impact(50.0, warn=False).restitution),
+    _restitution_note,
+)
+_quote(
+    "energy_loss_50",
+    "energy lost at 50 m/s",
+    46.71,
+    "%",
+    "Sec. 3.3.3",
+    "100 * pair.impact(50).energy_loss (eq. 29)",
+    lambda: 100.0 * float(_silicon().impact(50.0, warn=False).energy_loss),
+    _energy_note,
+)
+_quote(
+    "loading_time_50",
+    "loading period at 50 m/s",
+    0.01365,
+    "us",
+    "Sec. 3.3.3, Fig. 10",
+    "pair.impact(50).loading_time (eq. 32)",
+    lambda: float(_silicon().impact(50.0, warn=False).loading_time) * 1e6,
+)
+_quote(
+    "unloading_time_50",
+    "unloading period at 50 m/s",
+    0.01115,
+    "us",
+    "Sec. 3.3.3, Fig. 10",
+    "pair.impact(50).unloading_time (eq. 26)",
+    lambda: float(_silicon().impact(50.0, warn=False).unloading_time) * 1e6,
+)
+_quote(
+    "loading_time_7.6",
+    "loading time t_L at 7.6 m/s",
+    0.01671,
+    "us",
+    "Sec. 3.3.2, Fig. 9",
+    "pair.impact(7.6).loading_time (eq. 32)",
+    lambda: float(_silicon().impact(7.6, warn=False).loading_time) * 1e6,
+    _time_76_note,
+)
+_quote(
+    "unloading_time_7.6",
+    "unloading time t_U at 7.6 m/s",
+    0.01675,
+    "us",
+    "Sec. 3.3.2, Fig. 9",
+    "pair.impact(7.6).unloading_time (eq. 26)",
+    lambda: float(_silicon().impact(7.6, warn=False).unloading_time) * 1e6,
+    _time_76_note,
+)
+_quote(
+    "contact_time_7.6",
+    "contact time t_c at 7.6 m/s",
+    0.03346,
+    "us",
+    "Sec. 3.3.2, Fig. 9",
+    "pair.impact(7.6).contact_time (eq. 33)",
+    lambda: float(_silicon().impact(7.6, warn=False).contact_time) * 1e6,
+    _time_76_note,
+)
+_quote(
+    "deresiewicz_time_7.6",
+    "Deresiewicz's contact time (eq. 30) at 7.6 m/s",
+    0.03348,
+    "us",
+    "Sec. 3.3.2",
+    "pair.deresiewicz_contact_time(7.6), constant 2.87 as printed",
+    lambda: float(_silicon().deresiewicz_contact_time(7.6)) * 1e6,
+)
+_quote(
+    "loading_time_limit",
+    f"loading time t_L at high speed (taken at {FIG9_MAX_VELOCITY:g} m/s)",
+    0.01333,
+    "us",
+    "Sec. 3.3.2, Fig. 9",
+    f"pair.impact({FIG9_MAX_VELOCITY:g}).loading_time, the largest speed of Fig. 9",
+    lambda: float(_silicon().impact(FIG9_MAX_VELOCITY, warn=False).loading_time) * 1e6,
+    _limit_note,
+)
+_quote(
+    "ning_loading_time",
+    "Ning's loading time (eq. 31)",
+    0.01307,
+    "us",
+    "Sec. 3.3.2",
+    "pair.ning_loading_time() = (pi/2) (m*/(pi p_y R*))^(1/2)",
+    lambda: _silicon().ning_loading_time() * 1e6,
+)
+_quote(
+    "high_speed_restitution_constant",
+    "C in e -> C (V_y/V)^(1/4) at high speed",
+    1.185,
+    "-",
+    "Sec. 3.1, after eq. 28 (equation body restored in the docs' theory page)",
+    "restitution_coefficient(v V_y, V_y) v^(1/4) at v = V/V_y = 1e12 (eq. 27)",
+    _high_speed_constant,
+)
 
 #: The numbers the paper quotes in Section 3 (constants: the paper's values as printed).
 #: Each: ``name``, ``quantity``, ``quoted`` value, ``unit``, ``where`` in the paper, ``how`` it is computed.
@@ -231,8 +360,15 @@ def compare_with_paper(tolerance: float = TOLERANCE) -> list[dict]:
         compute, note = _COMPUTE[q["name"]]
         value = float(compute())
         rel = (value - q["quoted"]) / q["quoted"]
-        rows.append({**q, "computed": value, "relative_difference": rel,
-                     "agrees": bool(abs(rel) <= tolerance), "note": note(value) if note else ""})
+        rows.append(
+            {
+                **q,
+                "computed": value,
+                "relative_difference": rel,
+                "agrees": bool(abs(rel) <= tolerance),
+                "note": note(value) if note else "",
+            }
+        )
     return rows
 
 
@@ -246,8 +382,10 @@ def _st_pressure():
     V = np.linspace(30.0, 120.0, 10)
     E = np.array([_silicon().replace(limiting_pressure=p).impact(V, warn=False).energy_loss for p in FIG3_PRESSURES])
     ok = _monotone(E, 0, -1)
-    return ok, (f"from 30 to 120 m/s the energy loss falls as p_y = 50 ... 250 MPa rises; at 120 m/s: "
-                f"{', '.join(f'{x:.3f}' for x in E[:, -1])}")
+    return ok, (
+        f"from 30 to 120 m/s the energy loss falls as p_y = 50 ... 250 MPa rises; at 120 m/s: "
+        f"{', '.join(f'{x:.3f}' for x in E[:, -1])}"
+    )
 
 
 def _st_modulus():
@@ -256,8 +394,10 @@ def _st_modulus():
     Vy = np.asarray(t["yield_velocity_m_s"]).reshape(n, -1)[:, 0]
     E = np.asarray(t["energy_loss"]).reshape(n, -1)
     ok = _monotone(Vy, 0, -1) and _monotone(E, 0, 1)
-    return ok, ("V_y = " + ", ".join(f"{x:.3g}" for x in Vy) + " m/s for E1 = 1.2 ... 21.2 GPa; "
-                "energy loss at 60 m/s " + ", ".join(f"{x:.3f}" for x in E[:, 1]))
+    return ok, (
+        "V_y = " + ", ".join(f"{x:.3g}" for x in Vy) + " m/s for E1 = 1.2 ... 21.2 GPa; "
+        "energy loss at 60 m/s " + ", ".join(f"{x:.3f}" for x in E[:, 1])
+    )
 
 
 def _st_density():
@@ -266,8 +406,10 @@ def _st_density():
     Vy = np.asarray(t["yield_velocity_m_s"]).reshape(n, -1)[:, 0]
     E = np.asarray(t["energy_loss"]).reshape(n, -1)
     ok = _monotone(Vy, 0, -1) and _monotone(E, 0, 1)
-    return ok, ("V_y = " + ", ".join(f"{x:.2f}" for x in Vy) + " m/s for rho = 1350 ... 5350 kg/m^3; "
-                "energy loss at 60 m/s " + ", ".join(f"{x:.3f}" for x in E[:, 1]))
+    return ok, (
+        "V_y = " + ", ".join(f"{x:.2f}" for x in Vy) + " m/s for rho = 1350 ... 5350 kg/m^3; "
+        "energy loss at 60 m/s " + ", ".join(f"{x:.3f}" for x in E[:, 1])
+    )
 
 
 def _st_unloading_slope():
@@ -282,11 +424,16 @@ def _st_asymmetric():
     pair = _silicon()
     ep = pair.impact(FIG7_VELOCITY, warn=False)
     el = pair.elastic_equivalent().impact(FIG7_VELOCITY, warn=False)
-    ok = bool(ep.loading_time > ep.unloading_time and ep.contact_time > el.contact_time
-              and np.isclose(el.loading_time, el.unloading_time, rtol=1e-12))
-    return ok, (f"at {FIG7_VELOCITY:g} m/s: t_L = {ep.loading_time * 1e9:.2f} ns > t_U = {ep.unloading_time * 1e9:.2f} ns; "
-                f"t_c = {ep.contact_time * 1e9:.2f} ns > elastic {el.contact_time * 1e9:.2f} ns "
-                f"(elastic t_L = t_U = {el.loading_time * 1e9:.2f} ns)")
+    ok = bool(
+        ep.loading_time > ep.unloading_time
+        and ep.contact_time > el.contact_time
+        and np.isclose(el.loading_time, el.unloading_time, rtol=1e-12)
+    )
+    return ok, (
+        f"at {FIG7_VELOCITY:g} m/s: t_L = {ep.loading_time * 1e9:.2f} ns > t_U = {ep.unloading_time * 1e9:.2f} ns; "
+        f"t_c = {ep.contact_time * 1e9:.2f} ns > elastic {el.contact_time * 1e9:.2f} ns "
+        f"(elastic t_L = t_U = {el.loading_time * 1e9:.2f} ns)"
+    )
 
 
 def _st_linear_approach():
@@ -299,8 +446,10 @@ def _st_linear_approach():
     ratio = np.asarray(out.plastic_approach) / a
     slope = np.gradient(ratio, V)
     ok = bool(r2 > 0.999 and _monotone(ratio, 0, 1) and _monotone(slope, 0, -1))
-    return ok, (f"alpha* against V (30-{FIG9_MAX_VELOCITY:g} m/s): R^2 of a straight line {r2:.5f}; "
-                f"alpha_p/alpha* rises from {ratio[0]:.3f} to {ratio[-1]:.3f} with a falling slope")
+    return ok, (
+        f"alpha* against V (30-{FIG9_MAX_VELOCITY:g} m/s): R^2 of a straight line {r2:.5f}; "
+        f"alpha_p/alpha* rises from {ratio[0]:.3f} to {ratio[-1]:.3f} with a falling slope"
+    )
 
 
 def _st_times_decrease():
@@ -323,28 +472,67 @@ def _st_t1t2_flat():
 def _st_fig10():
     out = _silicon().impact(FIG10_VELOCITY, warn=False)
     ok = bool(out.loading_time > out.unloading_time)
-    return ok, (f"at {FIG10_VELOCITY:g} m/s loading {out.loading_time * 1e6:.5f} us > "
-                f"unloading {out.unloading_time * 1e6:.5f} us")
+    return ok, (
+        f"at {FIG10_VELOCITY:g} m/s loading {out.loading_time * 1e6:.5f} us > "
+        f"unloading {out.unloading_time * 1e6:.5f} us"
+    )
 
 
 _S = [
-    ("pressure", "Sec. 3.2.1, Fig. 3", "the fraction of energy loss increases with a decrease in the limiting "
-     "contact pressure", _st_pressure),
-    ("modulus", "Sec. 3.2.2, Fig. 4", "the yield velocity increases with decreasing Young's modulus; the fraction "
-     "of energy loss increases with increasing Young's modulus", _st_modulus),
-    ("density", "Sec. 3.2.3, Fig. 5", "the yield velocity increases with decreasing density and the fraction of "
-     "energy loss increases with an increase in density", _st_density),
-    ("unloading_slope", "Sec. 3.3.1, Fig. 6", "the slope of the unloading curve at maximum displacement becomes "
-     "stiffer as the severity of plastic deformation increases", _st_unloading_slope),
-    ("asymmetric", "Sec. 3.3.1, Fig. 7", "the approaching time is longer than the rebounding time for "
-     "elastic-plastic impact, and its total contact time is larger than that of the equivalent elastic impact "
-     "(which is symmetric)", _st_asymmetric),
-    ("approach", "Sec. 3.3.1, Fig. 8", "the maximum displacement increases linearly with impact velocity, the "
-     "proportion of plastic displacement increases nonlinearly with a slope that decreases", _st_linear_approach),
-    ("times", "Sec. 3.3.2, Fig. 9", "both loading and unloading time decrease with an increase in impact "
-     "velocity; so does the total contact time", _st_times_decrease),
-    ("t1t2", "Sec. 3.3.2, Fig. 9", "t1 and t2 are not significantly dependent on impact velocity above about "
-     "75 m/s", _st_t1t2_flat),
+    (
+        "pressure",
+        "Sec. 3.2.1, Fig. 3",
+        "the fraction of energy loss increases with a decrease in the limiting contact pressure",
+        _st_pressure,
+    ),
+    (
+        "modulus",
+        "Sec. 3.2.2, Fig. 4",
+        "the yield velocity increases with decreasing Young's modulus; the fraction "
+        "of energy loss increases with increasing Young's modulus",
+        _st_modulus,
+    ),
+    (
+        "density",
+        "Sec. 3.2.3, Fig. 5",
+        "the yield velocity increases with decreasing density and the fraction of "
+        "energy loss increases with an increase in density",
+        _st_density,
+    ),
+    (
+        "unloading_slope",
+        "Sec. 3.3.1, Fig. 6",
+        "the slope of the unloading curve at maximum displacement becomes "
+        "stiffer as the severity of plastic deformation increases",
+        _st_unloading_slope,
+    ),
+    (
+        "asymmetric",
+        "Sec. 3.3.1, Fig. 7",
+        "the approaching time is longer than the rebounding time for "
+        "elastic-plastic impact, and its total contact time is larger than that of the equivalent elastic impact "
+        "(which is symmetric)",
+        _st_asymmetric,
+    ),
+    (
+        "approach",
+        "Sec. 3.3.1, Fig. 8",
+        "the maximum displacement increases linearly with impact velocity, the "
+        "proportion of plastic displacement increases nonlinearly with a slope that decreases",
+        _st_linear_approach,
+    ),
+    (
+        "times",
+        "Sec. 3.3.2, Fig. 9",
+        "both loading and unloading time decrease with an increase in impact velocity; so does the total contact time",
+        _st_times_decrease,
+    ),
+    (
+        "t1t2",
+        "Sec. 3.3.2, Fig. 9",
+        "t1 and t2 are not significantly dependent on impact velocity above about 75 m/s",
+        _st_t1t2_flat,
+    ),
     ("fig10", "Sec. 3.3.3, Fig. 10", "the loading period is longer than the unloading period", _st_fig10),
 ]
 
@@ -362,7 +550,7 @@ def check_statements() -> list[dict]:
         ``statement``, ``holds`` (bool) and ``detail`` (the numbers behind the verdict).
     """
     rows = []
-    for (name, where, statement, fn) in _S:
+    for name, where, statement, fn in _S:
         ok, detail = fn()
         rows.append({"name": name, "where": where, "statement": statement, "holds": bool(ok), "detail": detail})
     return rows
@@ -498,18 +686,24 @@ def _fig2(data):
 
 
 def _fig3(data):
-    return (figs.energy_loss_data("limiting_pressure", FIG3_PRESSURES),
-            lambda t: figs.plot_energy_loss("limiting_pressure", FIG3_PRESSURES, table=t))
+    return (
+        figs.energy_loss_data("limiting_pressure", FIG3_PRESSURES),
+        lambda t: figs.plot_energy_loss("limiting_pressure", FIG3_PRESSURES, table=t),
+    )
 
 
 def _fig4(data):
-    return (figs.energy_loss_data("particle_modulus", FIG4_MODULI, **FIG4_SURFACE),
-            lambda t: figs.plot_energy_loss("particle_modulus", FIG4_MODULI, table=t))
+    return (
+        figs.energy_loss_data("particle_modulus", FIG4_MODULI, **FIG4_SURFACE),
+        lambda t: figs.plot_energy_loss("particle_modulus", FIG4_MODULI, table=t),
+    )
 
 
 def _fig5(data):
-    return (figs.energy_loss_data("density", FIG5_DENSITIES),
-            lambda t: figs.plot_energy_loss("density", FIG5_DENSITIES, table=t))
+    return (
+        figs.energy_loss_data("density", FIG5_DENSITIES),
+        lambda t: figs.plot_energy_loss("density", FIG5_DENSITIES, table=t),
+    )
 
 
 def _fig6(data):
@@ -534,28 +728,55 @@ def _fig10(data):
 
 #: The figures :func:`reproduce` makes: ``(stem, title, caption)``; stems are the file names.
 FIGURES: list[tuple[str, str, str]] = [
-    ("fig02", "restitution vs impact velocity",
-     "Coefficient of restitution against impact speed (eq. 27) for NH4Fl particles (d = 4.9 um) on silicon "
-     "and mica."),
-    ("fig03", "energy loss vs limiting contact pressure",
-     "Fraction of kinetic energy lost (eq. 29) for p_y = 50-250 MPa, silicon case otherwise."),
-    ("fig04", "energy loss vs particle modulus",
-     "Fraction of energy lost for particle moduli E1 = 1.2-21.2 GPa on a surface of E2 = 150 GPa (nu = 0.3 both)."),
-    ("fig05", "energy loss vs particle density",
-     "Fraction of energy lost for particle densities 1350-5350 kg/m^3, silicon case otherwise."),
-    ("fig06", "force vs approach at 30, 50, 70 m/s",
-     "Contact force against approach: loading (Hertz then plastic, eqs. 2, 8) and elastic unloading (eq. 10); "
-     "triangles mark the plastic approaches (eq. 11)."),
-    ("fig07", "force vs time at 70 m/s, elastic-plastic vs elastic",
-     "Contact force against time at 70 m/s: the elastic-plastic impact, the equivalent elastic impact "
-     "(p_y = inf) and the Hertz force at the elastic-plastic approach during loading."),
-    ("fig08", "maximum approach and plastic share vs impact velocity",
-     "Maximum approach alpha* (eq. 22) and the plastic share alpha_p/alpha* against impact speed."),
-    ("fig09", "contact times vs impact velocity",
-     "Stage times t1, t2, loading t_L, unloading t_U and contact time t_c (closed form), with Deresiewicz's "
-     "elastic contact time (eq. 30) and Ning's loading time (eq. 31)."),
-    ("fig10", "velocity, force and approach vs time at 50 m/s",
-     "Approach velocity, contact force and approach against time for one impact at 50 m/s (closed-form history)."),
+    (
+        "fig02",
+        "restitution vs impact velocity",
+        "Coefficient of restitution against impact speed (eq. 27) for NH4Fl particles (d = 4.9 um) on silicon "
+        "and mica.",
+    ),
+    (
+        "fig03",
+        "energy loss vs limiting contact pressure",
+        "Fraction of kinetic energy lost (eq. 29) for p_y = 50-250 MPa, silicon case otherwise.",
+    ),
+    (
+        "fig04",
+        "energy loss vs particle modulus",
+        "Fraction of energy lost for particle moduli E1 = 1.2-21.2 GPa on a surface of E2 = 150 GPa (nu = 0.3 both).",
+    ),
+    (
+        "fig05",
+        "energy loss vs particle density",
+        "Fraction of energy lost for particle densities 1350-5350 kg/m^3, silicon case otherwise.",
+    ),
+    (
+        "fig06",
+        "force vs approach at 30, 50, 70 m/s",
+        "Contact force against approach: loading (Hertz then plastic, eqs. 2, 8) and elastic unloading (eq. 10); "
+        "triangles mark the plastic approaches (eq. 11).",
+    ),
+    (
+        "fig07",
+        "force vs time at 70 m/s, elastic-plastic vs elastic",
+        "Contact force against time at 70 m/s: the elastic-plastic impact, the equivalent elastic impact "
+        "(p_y = inf) and the Hertz force at the elastic-plastic approach during loading.",
+    ),
+    (
+        "fig08",
+        "maximum approach and plastic share vs impact velocity",
+        "Maximum approach alpha* (eq. 22) and the plastic share alpha_p/alpha* against impact speed.",
+    ),
+    (
+        "fig09",
+        "contact times vs impact velocity",
+        "Stage times t1, t2, loading t_L, unloading t_U and contact time t_c (closed form), with Deresiewicz's "
+        "elastic contact time (eq. 30) and Ning's loading time (eq. 31).",
+    ),
+    (
+        "fig10",
+        "velocity, force and approach vs time at 50 m/s",
+        "Approach velocity, contact force and approach against time for one impact at 50 m/s (closed-form history).",
+    ),
 ]
 _MAKERS = dict(zip([f[0] for f in FIGURES], [_fig2, _fig3, _fig4, _fig5, _fig6, _fig7, _fig8, _fig9, _fig10]))
 
@@ -604,19 +825,23 @@ class PaperReport:
         n_ok = sum(r["agrees"] for r in self.comparison)
         n_expl = sum((not r["agrees"]) and bool(r["note"]) for r in self.comparison)
         n_st = sum(r["holds"] for r in self.statements)
-        return (f"wrote {len(self.figures)} figures, {len(self.tables)} tables and the report to {self.out_dir}\n"
-                f"  paper numbers: {n_ok} of {len(self.comparison)} within {TOLERANCE:.0%}, "
-                f"{n_expl} explained in the report\n"
-                f"  paper statements: {n_st} of {len(self.statements)} hold\n"
-                f"  report: {self.html}\n"
-                f"  time: {self.elapsed:.1f} s")
+        return (
+            f"wrote {len(self.figures)} figures, {len(self.tables)} tables and the report to {self.out_dir}\n"
+            f"  paper numbers: {n_ok} of {len(self.comparison)} within {TOLERANCE:.0%}, "
+            f"{n_expl} explained in the report\n"
+            f"  paper statements: {n_st} of {len(self.statements)} hold\n"
+            f"  report: {self.html}\n"
+            f"  time: {self.elapsed:.1f} s"
+        )
 
 
 def _progress_fn(progress):
     if progress is True:
+
         def emit(msg, end="\n"):
             sys.stderr.write(msg + end)
             sys.stderr.flush()
+
         return emit, True
     if callable(progress):
         return (lambda msg, end="\n": progress(msg) if end == "\n" else None), False
@@ -677,8 +902,7 @@ def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progre
         if inline:
             emit(head, end="")
         table, draw = _MAKERS[stem](data)
-        report.tables[stem] = write_table(out / f"{stem}.csv", table,
-                                          title=f"Fig. {int(stem[3:])}: {title}")
+        report.tables[stem] = write_table(out / f"{stem}.csv", table, title=f"Fig. {int(stem[3:])}: {title}")
         with _style.style():
             ax = draw(table)
             fig = (np.ravel(ax)[0]).figure
@@ -706,16 +930,32 @@ def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progre
     report.statements = check_statements()
     report.comparison_csv = write_table(
         out / "comparison.csv",
-        {k: np.array([r[k] for r in report.comparison], dtype=object)
-         for k in ("name", "quantity", "where", "unit", "quoted", "computed", "relative_difference", "agrees",
-                   "note")},
+        {
+            k: np.array([r[k] for r in report.comparison], dtype=object)
+            for k in (
+                "name",
+                "quantity",
+                "where",
+                "unit",
+                "quoted",
+                "computed",
+                "relative_difference",
+                "agrees",
+                "note",
+            )
+        },
         title="The seed's quoted numbers (Section 3) against the model now",
-        columns={"name": ("-", "identifier"), "quantity": ("-", "what is compared"),
-                 "where": ("-", "place in the paper"), "unit": ("-", "unit of quoted and computed"),
-                 "quoted": ("unit", "value printed in the paper"), "computed": ("unit", "value computed now"),
-                 "relative_difference": ("1", "(computed - quoted) / quoted"),
-                 "agrees": ("1", f"1 if |relative_difference| <= {TOLERANCE}"),
-                 "note": ("-", "explanation")},
+        columns={
+            "name": ("-", "identifier"),
+            "quantity": ("-", "what is compared"),
+            "where": ("-", "place in the paper"),
+            "unit": ("-", "unit of quoted and computed"),
+            "quoted": ("unit", "value printed in the paper"),
+            "computed": ("unit", "value computed now"),
+            "relative_difference": ("1", "(computed - quoted) / quoted"),
+            "agrees": ("1", f"1 if |relative_difference| <= {TOLERANCE}"),
+            "note": ("-", "explanation"),
+        },
     )
     report.elapsed = time.perf_counter() - t0
     blocks = _report_blocks(report, data, formats)
@@ -741,61 +981,135 @@ def _report_blocks(report, data, formats):
     si, mi_ = _silicon(), _mica()
     b = []
     b.append(("h", 1, "microimpact: reproduction of the seed paper's Section 3"))
-    b.append(("p", f"Seed: {_SEED}. Generated by microimpact {__version__} with `microimpact paper` "
-                   f"in {report.elapsed:.1f} s. Every computed value below comes from the model at run time; "
-                   "only the paper's quoted numbers are constants."))
+    b.append(
+        (
+            "p",
+            f"Seed: {_SEED}. Generated by microimpact {__version__} with `microimpact paper` "
+            f"in {report.elapsed:.1f} s. Every computed value below comes from the model at run time; "
+            "only the paper's quoted numbers are constants.",
+        )
+    )
     b.append(("h", 2, "Inputs used"))
     rows = []
     for name, pair in (("silicon", si), ("mica", mi_)):
         c = PAPER_CASES[name]
-        rows.append([f"NH4Fl on {name}", f"{2 * c['radius'] * 1e6:g}", f"{c['density']:g}",
-                     f"{c['effective_modulus'] / 1e9:g}", f"{c['limiting_pressure'] / 1e6:g}",
-                     f"{c['yield_strength'] / 1e6:g}", f"{pair.yield_velocity:.4f}",
-                     f"{pair.yield_approach * 1e9:.3f}", f"{pair.yield_force * 1e6:.3f}"])
-    b.append(("table", ["case", "d [um]", "rho [kg/m^3]", "E* [GPa]", "p_y [MPa]", "Y [MPa]",
-                        "V_y [m/s] (eq. 28)", "alpha_y [nm]", "P_y [uN]"], rows))
-    b.append(("p", "Parameter studies use the silicon case with one input changed: "
-                   f"Fig. 3 p_y = {', '.join(f'{p / 1e6:g}' for p in FIG3_PRESSURES)} MPa; "
-                   f"Fig. 4 particle E1 = {', '.join(f'{e / 1e9:g}' for e in FIG4_MODULI)} GPa with "
-                   f"E2 = {FIG4_SURFACE['surface_modulus'] / 1e9:g} GPa, nu1 = {FIG4_SURFACE['particle_poisson']}, "
-                   f"nu2 = {FIG4_SURFACE['surface_poisson']} (E* = 1/((1-nu1^2)/E1 + (1-nu2^2)/E2)); "
-                   f"Fig. 5 rho = {', '.join(f'{r:g}' for r in FIG5_DENSITIES)} kg/m^3. Speeds up to "
-                   f"{FIG9_MAX_VELOCITY:g} m/s. Fig. 6 at {', '.join(f'{v:g}' for v in FIG6_VELOCITIES)} m/s; "
-                   f"Fig. 7 at {FIG7_VELOCITY:g} m/s; Fig. 10 at {FIG10_VELOCITY:g} m/s. The equivalent elastic impact of Fig. 7 has "
-                   "p_y = inf. Contact times and histories are closed forms (the paper integrated numerically)."))
+        rows.append(
+            [
+                f"NH4Fl on {name}",
+                f"{2 * c['radius'] * 1e6:g}",
+                f"{c['density']:g}",
+                f"{c['effective_modulus'] / 1e9:g}",
+                f"{c['limiting_pressure'] / 1e6:g}",
+                f"{c['yield_strength'] / 1e6:g}",
+                f"{pair.yield_velocity:.4f}",
+                f"{pair.yield_approach * 1e9:.3f}",
+                f"{pair.yield_force * 1e6:.3f}",
+            ]
+        )
+    b.append(
+        (
+            "table",
+            [
+                "case",
+                "d [um]",
+                "rho [kg/m^3]",
+                "E* [GPa]",
+                "p_y [MPa]",
+                "Y [MPa]",
+                "V_y [m/s] (eq. 28)",
+                "alpha_y [nm]",
+                "P_y [uN]",
+            ],
+            rows,
+        )
+    )
+    b.append(
+        (
+            "p",
+            "Parameter studies use the silicon case with one input changed: "
+            f"Fig. 3 p_y = {', '.join(f'{p / 1e6:g}' for p in FIG3_PRESSURES)} MPa; "
+            f"Fig. 4 particle E1 = {', '.join(f'{e / 1e9:g}' for e in FIG4_MODULI)} GPa with "
+            f"E2 = {FIG4_SURFACE['surface_modulus'] / 1e9:g} GPa, nu1 = {FIG4_SURFACE['particle_poisson']}, "
+            f"nu2 = {FIG4_SURFACE['surface_poisson']} (E* = 1/((1-nu1^2)/E1 + (1-nu2^2)/E2)); "
+            f"Fig. 5 rho = {', '.join(f'{r:g}' for r in FIG5_DENSITIES)} kg/m^3. Speeds up to "
+            f"{FIG9_MAX_VELOCITY:g} m/s. Fig. 6 at {', '.join(f'{v:g}' for v in FIG6_VELOCITIES)} m/s; "
+            f"Fig. 7 at {FIG7_VELOCITY:g} m/s; Fig. 10 at {FIG10_VELOCITY:g} m/s. The equivalent elastic impact of Fig. 7 has "
+            "p_y = inf. Contact times and histories are closed forms (the paper integrated numerically).",
+        )
+    )
     b.append(("h", 2, "The paper's numbers against the model"))
     rows = []
     for r in report.comparison:
         status = "yes" if r["agrees"] else ("explained" if r["note"] else "NO")
-        rows.append([r["quantity"], r["where"], f"{r['quoted']:g}", f"{r['computed']:.6g}", r["unit"],
-                     f"{100 * r['relative_difference']:+.2f} %", status, r["note"]])
-    b.append(("table", ["quantity", "where", "paper", "computed now", "unit", "rel. diff.",
-                        f"within {TOLERANCE:.0%}", "note"], rows))
+        rows.append(
+            [
+                r["quantity"],
+                r["where"],
+                f"{r['quoted']:g}",
+                f"{r['computed']:.6g}",
+                r["unit"],
+                f"{100 * r['relative_difference']:+.2f} %",
+                status,
+                r["note"],
+            ]
+        )
+    b.append(
+        (
+            "table",
+            ["quantity", "where", "paper", "computed now", "unit", "rel. diff.", f"within {TOLERANCE:.0%}", "note"],
+            rows,
+        )
+    )
     n_ok = sum(r["agrees"] for r in report.comparison)
-    b.append(("p", f"{n_ok} of {len(report.comparison)} quoted numbers agree within {TOLERANCE:.0%}; "
-                   "each of the others carries its explanation in the note column "
-                   "(relative difference = (computed - paper) / paper). How each value is computed:"))
+    b.append(
+        (
+            "p",
+            f"{n_ok} of {len(report.comparison)} quoted numbers agree within {TOLERANCE:.0%}; "
+            "each of the others carries its explanation in the note column "
+            "(relative difference = (computed - paper) / paper). How each value is computed:",
+        )
+    )
     b.append(("table", ["quantity", "computed as"], [[r["quantity"], f"`{r['how']}`"] for r in report.comparison]))
     b.append(("h", 2, "The paper's statements against the model"))
-    b.append(("table", ["where", "statement", "holds", "computed now"],
-              [[s["where"], s["statement"], "yes" if s["holds"] else "NO", s["detail"]] for s in report.statements]))
+    b.append(
+        (
+            "table",
+            ["where", "statement", "holds", "computed now"],
+            [[s["where"], s["statement"], "yes" if s["holds"] else "NO", s["detail"]] for s in report.statements],
+        )
+    )
     b.append(("h", 2, "Validity: small strain"))
     vs, vm = figs.large_strain_velocity(si), figs.large_strain_velocity(mi_)
-    b.append(("p", f"The model assumes small strain. The contact radius exceeds 0.3 R* above V = {vs:.2f} m/s on "
-                   f"silicon ({vm:.2f} m/s on mica); at {FIG9_MAX_VELOCITY:g} m/s a*/R* = "
-                   f"{float(si.impact(FIG9_MAX_VELOCITY, warn=False).max_contact_radius) / si.effective_radius:.2f}. "
-                   "Results beyond a*/R* = 0.3 are outside the small-strain assumption: the figures hatch that range "
-                   "(or mark with a circle where each curve enters it) and the CSV files flag it in the "
-                   "large_strain column."))
+    b.append(
+        (
+            "p",
+            f"The model assumes small strain. The contact radius exceeds 0.3 R* above V = {vs:.2f} m/s on "
+            f"silicon ({vm:.2f} m/s on mica); at {FIG9_MAX_VELOCITY:g} m/s a*/R* = "
+            f"{float(si.impact(FIG9_MAX_VELOCITY, warn=False).max_contact_radius) / si.effective_radius:.2f}. "
+            "Results beyond a*/R* = 0.3 are outside the small-strain assumption: the figures hatch that range "
+            "(or mark with a circle where each curve enters it) and the CSV files flag it in the "
+            "large_strain column.",
+        )
+    )
     b.append(("h", 2, "Measured data"))
     if data:
-        b.append(("p", "Fig. 2 overlays the user's measurements: "
-                       + "; ".join(f"{k} ({len(v[0])} points)" for k, v in data.items())
-                       + ". The paper's Wall et al. (1990) measurements are not in this repository."))
+        b.append(
+            (
+                "p",
+                "Fig. 2 overlays the user's measurements: "
+                + "; ".join(f"{k} ({len(v[0])} points)" for k, v in data.items())
+                + ". The paper's Wall et al. (1990) measurements are not in this repository.",
+            )
+        )
     else:
-        b.append(("p", "The paper's Fig. 2 compares the model with Wall et al.'s (1990) measurements. Those points "
-                       "are not in this repository, so Fig. 2 shows the model curves only. Overlay your own with "
-                       "`microimpact paper --data silicon=FILE.csv` (columns velocity [m/s], restitution)."))
+        b.append(
+            (
+                "p",
+                "The paper's Fig. 2 compares the model with Wall et al.'s (1990) measurements. Those points "
+                "are not in this repository, so Fig. 2 shows the model curves only. Overlay your own with "
+                "`microimpact paper --data silicon=FILE.csv` (columns velocity [m/s], restitution).",
+            )
+        )
     b.append(("h", 2, "Figures"))
     for stem, title, caption in FIGURES:
         files = ", ".join(p.name for p in report.figures.get(stem, []))
@@ -851,8 +1165,16 @@ def _inline_html(text):
 
 
 def _to_html(blocks, pngs):
-    out = ["<!DOCTYPE html>", '<html lang="en">', "<head>", '<meta charset="utf-8">',
-           "<title>microimpact: reproduction of the seed paper</title>", f"<style>{_CSS}</style>", "</head>", "<body>"]
+    out = [
+        "<!DOCTYPE html>",
+        '<html lang="en">',
+        "<head>",
+        '<meta charset="utf-8">',
+        "<title>microimpact: reproduction of the seed paper</title>",
+        f"<style>{_CSS}</style>",
+        "</head>",
+        "<body>",
+    ]
     for blk in blocks:
         if blk[0] == "h":
             out.append(f"<h{blk[1]}>{_inline_html(blk[2])}</h{blk[1]}>")
@@ -874,7 +1196,9 @@ def _to_html(blocks, pngs):
         elif blk[0] == "fig":
             stem, caption, files = blk[1], blk[2], blk[3]
             b64 = base64.b64encode(pngs[stem]).decode("ascii")
-            out.append(f'<figure id="{stem}"><img alt="{stem}" src="data:image/png;base64,{b64}">'
-                       f"<figcaption>{_inline_html(caption)} {_inline_html(files)}</figcaption></figure>")
+            out.append(
+                f'<figure id="{stem}"><img alt="{stem}" src="data:image/png;base64,{b64}">'
+                f"<figcaption>{_inline_html(caption)} {_inline_html(files)}</figcaption></figure>"
+            )
     out += ["</body>", "</html>", ""]
     return "\n".join(out)

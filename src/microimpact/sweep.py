@@ -110,8 +110,9 @@ _AUTO_BLOCK_POINTS = 1 << 17
 def _modulus(p, spec):
     """``E*`` [Pa] from the inputs ``p`` (arrays that broadcast, or floats)."""
     if spec["modulus_from_materials"]:
-        return _effective_modulus(p["particle_modulus"], p["particle_poisson"],
-                                  p["surface_modulus"], p["surface_poisson"])
+        return _effective_modulus(
+            p["particle_modulus"], p["particle_poisson"], p["surface_modulus"], p["surface_poisson"]
+        )
     return np.asarray(p["effective_modulus"], dtype=float)
 
 
@@ -206,8 +207,12 @@ def _material_defaults(pair):
     if pair.particle is not None and pair.surface is not None:
         p, s = pair.particle, pair.surface
         return (
-            {"particle_modulus": p.youngs_modulus, "particle_poisson": p.poisson_ratio,
-             "surface_modulus": s.youngs_modulus, "surface_poisson": s.poisson_ratio},
+            {
+                "particle_modulus": p.youngs_modulus,
+                "particle_poisson": p.poisson_ratio,
+                "surface_modulus": s.youngs_modulus,
+                "surface_poisson": s.poisson_ratio,
+            },
             f"from the base pair's materials ({p.name}, {s.name})",
         )
     nu, E2 = DEFAULT_POISSON, DEFAULT_SURFACE_MODULUS

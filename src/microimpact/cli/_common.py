@@ -84,15 +84,23 @@ def pair_from_args(args) -> ContactPair:
         if radius is None:
             raise ValueError("--radius or --diameter is needed with --particle/--surface")
         return ContactPair.from_materials(
-            args.particle, args.surface, radius,
-            limiting_pressure=args.limiting_pressure, k=args.k, yield_strength=args.yield_strength,
+            args.particle,
+            args.surface,
+            radius,
+            limiting_pressure=args.limiting_pressure,
+            k=args.k,
+            yield_strength=args.yield_strength,
         )
     if args.effective_modulus is not None:
         if radius is None or args.density is None:
             raise ValueError("--effective-modulus needs --radius (or --diameter) and --density")
         return ContactPair.sphere_on_flat(
-            radius, args.density, args.effective_modulus, args.limiting_pressure,
-            yield_strength=args.yield_strength, k=args.k,
+            radius,
+            args.density,
+            args.effective_modulus,
+            args.limiting_pressure,
+            yield_strength=args.yield_strength,
+            k=args.k,
         )
     pair = ContactPair.paper_case(args.case or "silicon")
     # Single overrides on top of a paper case.

@@ -164,8 +164,17 @@ def _unavailable(key, title, what):
 # ----------------------------------------------------------------------------- 1. outcome vs ODE
 
 
-_ODE_KEYS = ("elastic_stage_time", "plastic_stage_time", "loading_time", "unloading_time", "contact_time",
-             "max_approach", "plastic_approach", "max_force", "rebound_velocity")
+_ODE_KEYS = (
+    "elastic_stage_time",
+    "plastic_stage_time",
+    "loading_time",
+    "unloading_time",
+    "contact_time",
+    "max_approach",
+    "plastic_approach",
+    "max_force",
+    "rebound_velocity",
+)
 
 
 def bench_outcome_vs_ode(n=10**6, n_ode=50, seed=0) -> dict:
@@ -178,10 +187,15 @@ def bench_outcome_vs_ode(n=10**6, n_ode=50, seed=0) -> dict:
     t_closed = _best(lambda: pair.impact(speeds, warn=False), repeat=3) / n
     integrate = _module_has("microimpact.dynamics", "integrate_impact")
     if integrate is None:
-        return _result(key, title, TARGETS[key], status="not available yet",
-                       metrics={"closed_time_per_impact_s": t_closed},
-                       rows=[("closed form, per impact", f"{t_closed * 1e9:.3g} ns")],
-                       note="dynamics.integrate_impact has not landed")
+        return _result(
+            key,
+            title,
+            TARGETS[key],
+            status="not available yet",
+            metrics={"closed_time_per_impact_s": t_closed},
+            rows=[("closed form, per impact", f"{t_closed * 1e9:.3g} ns")],
+            note="dynamics.integrate_impact has not landed",
+        )
     # The ODE's sample: from just above V_y to 50 V_y (log-uniform), where all three stages occur.
     sample = Vy * np.exp(rng.uniform(np.log(1.01), np.log(50.0), n_ode))
     closed = pair.impact(sample, warn=False)
@@ -212,8 +226,15 @@ def bench_outcome_vs_ode(n=10**6, n_ode=50, seed=0) -> dict:
         ("speed ratio", f"{ratio:.3g}"),
         (f"max rel. difference ({metrics['worst_quantity']})", f"{worst:.2g}"),
     ]
-    return _result(key, title, TARGETS[key], met=bool(ratio >= 1e4 and worst < 1e-8), metrics=metrics, rows=rows,
-                   headline=f"{ratio:.2g}x faster, max rel. diff. {worst:.1g}")
+    return _result(
+        key,
+        title,
+        TARGETS[key],
+        met=bool(ratio >= 1e4 and worst < 1e-8),
+        metrics=metrics,
+        rows=rows,
+        headline=f"{ratio:.2g}x faster, max rel. diff. {worst:.1g}",
+    )
 
 
 # ----------------------------------------------------------------------------- 2. restitution vs copy
@@ -249,23 +270,43 @@ def bench_restitution(n=10**7, seed=1) -> dict:
             fn()
             best[name] = min(best[name], time.perf_counter() - t0)
     t_copy = best["copy"]
-    metrics = {"n": n, "copy_s": t_copy, "chained_numpy_s": t_chain, "chained_numpy_ratio": t_chain / t_copy,
-               "default_backend": _kernels.BACKEND, "backends": {}}
-    rows = [("copy (np.copyto into a preallocated array)", f"{t_copy * 1e3:.3g} ms"),
-            ("restitution_coefficient (chained numpy)", f"{t_chain * 1e3:.3g} ms = {t_chain / t_copy:.3g}x copy")]
+    metrics = {
+        "n": n,
+        "copy_s": t_copy,
+        "chained_numpy_s": t_chain,
+        "chained_numpy_ratio": t_chain / t_copy,
+        "default_backend": _kernels.BACKEND,
+        "backends": {},
+    }
+    rows = [
+        ("copy (np.copyto into a preallocated array)", f"{t_copy * 1e3:.3g} ms"),
+        ("restitution_coefficient (chained numpy)", f"{t_chain * 1e3:.3g} ms = {t_chain / t_copy:.3g}x copy"),
+    ]
     for backend in backends:
         t = best[backend]
         _kernels.restitution_fast(speeds, Vy, out=buf, backend=backend)
         diff = _rel_diff(buf, ref)
-        metrics["backends"][backend] = {"time_s": t, "ratio": t / t_copy, "max_rel_diff": diff,
-                                        "first_call_s": first[backend]}
-        rows.append((f"restitution_fast, {backend}", f"{t * 1e3:.3g} ms = {t / t_copy:.3g}x copy "
-                                                     f"(rel. diff {diff:.1g})"))
+        metrics["backends"][backend] = {
+            "time_s": t,
+            "ratio": t / t_copy,
+            "max_rel_diff": diff,
+            "first_call_s": first[backend],
+        }
+        rows.append(
+            (f"restitution_fast, {backend}", f"{t * 1e3:.3g} ms = {t / t_copy:.3g}x copy (rel. diff {diff:.1g})")
+        )
     best = metrics["backends"][_kernels.BACKEND]
     metrics["ratio"] = best["ratio"]
-    return _result(key, title, TARGETS[key], met=bool(best["ratio"] <= 5.0), metrics=metrics, rows=rows,
-                   headline=f"{best['ratio']:.2g}x copy ({_kernels.BACKEND})",
-                   note=f"default backend: {_kernels.BACKEND}")
+    return _result(
+        key,
+        title,
+        TARGETS[key],
+        met=bool(best["ratio"] <= 5.0),
+        metrics=metrics,
+        rows=rows,
+        headline=f"{best['ratio']:.2g}x copy ({_kernels.BACKEND})",
+        note=f"default backend: {_kernels.BACKEND}",
+    )
 
 
 # ----------------------------------------------------------------------------- 3. latency
@@ -280,8 +321,9 @@ def impact_via_scalar(pair, velocity, *, warn=True):
     from ..impact import LARGE_STRAIN_RATIO
     from ..pair import ImpactResult, LargeStrainWarning
 
-    d = impact_scalar(velocity, pair.effective_modulus, pair.effective_radius, pair.effective_mass,
-                      pair.limiting_pressure)
+    d = impact_scalar(
+        velocity, pair.effective_modulus, pair.effective_radius, pair.effective_mass, pair.limiting_pressure
+    )
     res = ImpactResult(**{k: (np.bool_(x) if type(x) is bool else np.float64(x)) for k, x in d.items()})
     if warn and d["large_strain"]:
         warnings.warn(
@@ -308,16 +350,30 @@ def bench_latency(loops=2000) -> dict:
         t_scalar = _best(lambda: impact_scalar(50.0, *args), repeat=25, number=max(loops // 10, 5))
         a, b = pair.impact(50.0), impact_via_scalar(pair, 50.0)
     diff = max(_rel_diff(getattr(b, k), getattr(a, k)) for k in a.to_dict())
-    metrics = {"pair_impact_s": t_api, "scalar_path_s": t_wired, "impact_scalar_s": t_scalar,
-               "scalar_vs_array_max_rel_diff": diff}
-    rows = [("pair.impact(50.0) as it is", f"{t_api * 1e6:.3g} us"),
-            ("same through impact_scalar -> ImpactResult", f"{t_wired * 1e6:.3g} us"),
-            ("impact_scalar alone (dict of floats)", f"{t_scalar * 1e6:.3g} us"),
-            ("scalar vs array path, max rel. difference", f"{diff:.1g}")]
-    return _result(key, title, TARGETS[key], met=bool(t_api < 20e-6), metrics=metrics, rows=rows,
-                   headline=f"{t_api * 1e6:.3g} us",
-                   note="" if t_api < 20e-6 else
-                   f"met once ContactPair.impact uses impact_scalar for a float ({t_wired * 1e6:.3g} us)")
+    metrics = {
+        "pair_impact_s": t_api,
+        "scalar_path_s": t_wired,
+        "impact_scalar_s": t_scalar,
+        "scalar_vs_array_max_rel_diff": diff,
+    }
+    rows = [
+        ("pair.impact(50.0) as it is", f"{t_api * 1e6:.3g} us"),
+        ("same through impact_scalar -> ImpactResult", f"{t_wired * 1e6:.3g} us"),
+        ("impact_scalar alone (dict of floats)", f"{t_scalar * 1e6:.3g} us"),
+        ("scalar vs array path, max rel. difference", f"{diff:.1g}"),
+    ]
+    return _result(
+        key,
+        title,
+        TARGETS[key],
+        met=bool(t_api < 20e-6),
+        metrics=metrics,
+        rows=rows,
+        headline=f"{t_api * 1e6:.3g} us",
+        note=""
+        if t_api < 20e-6
+        else f"met once ContactPair.impact uses impact_scalar for a float ({t_wired * 1e6:.3g} us)",
+    )
 
 
 # ----------------------------------------------------------------------------- 4. wall interaction
@@ -342,18 +398,23 @@ def bench_wall(n=10**6, seed=2) -> dict:
             np.copyto(b, x)
 
     def call():
-        return wall(vel, normal, diameter, density, effective_modulus=1.31e9, limiting_pressure=156e6,
-                    friction=0.3)
+        return wall(vel, normal, diameter, density, effective_modulus=1.31e9, limiting_pressure=156e6, friction=0.3)
 
     t_copy = _best(copy, repeat=7)
     t_wall = _best(call, repeat=3)
     ratio = t_wall / t_copy
-    metrics = {"n": n, "copy_s": t_copy, "wall_interaction_s": t_wall, "ratio": ratio,
-               "time_per_particle_s": t_wall / n}
-    rows = [("copy of the inputs (v, n, d, rho)", f"{t_copy * 1e3:.3g} ms"),
-            ("wall_interaction (friction 0.3, no adhesion)", f"{t_wall * 1e3:.3g} ms "
-                                                             f"({t_wall / n * 1e9:.3g} ns/particle)"),
-            ("ratio", f"{ratio:.3g}")]
+    metrics = {
+        "n": n,
+        "copy_s": t_copy,
+        "wall_interaction_s": t_wall,
+        "ratio": ratio,
+        "time_per_particle_s": t_wall / n,
+    }
+    rows = [
+        ("copy of the inputs (v, n, d, rho)", f"{t_copy * 1e3:.3g} ms"),
+        ("wall_interaction (friction 0.3, no adhesion)", f"{t_wall * 1e3:.3g} ms ({t_wall / n * 1e9:.3g} ns/particle)"),
+        ("ratio", f"{ratio:.3g}"),
+    ]
     return _result(key, title, TARGETS[key], met=None, metrics=metrics, rows=rows, headline=f"{ratio:.3g}x copy")
 
 
@@ -387,8 +448,12 @@ print(json.dumps(out))
 
 
 def _sweep_child(nv, npy, chunks, timeout):
-    proc = subprocess.run([sys.executable, "-c", _SWEEP_CHILD, str(nv), str(npy), str(chunks)],
-                          capture_output=True, text=True, timeout=timeout)
+    proc = subprocess.run(
+        [sys.executable, "-c", _SWEEP_CHILD, str(nv), str(npy), str(chunks)],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+    )
     if proc.returncode != 0:
         raise RuntimeError(proc.stderr.strip().splitlines()[-1] if proc.stderr.strip() else "child failed")
     return json.loads(proc.stdout.strip().splitlines()[-1])
@@ -400,9 +465,14 @@ def bench_sweep(n=10**7, timeout=900) -> dict:
     if _module_has("microimpact.sweep", "sweep") is None:
         return _unavailable(key, title, "sweep.sweep")
     if importlib.util.find_spec("dask") is None or importlib.util.find_spec("xarray") is None:
-        return _result(key, title, TARGETS[key], status="not available",
-                       note="needs the sweep extra: pip install 'microimpact[sweep]'")
-    npy = max(int(round(n ** 0.5 / 3)), 2)
+        return _result(
+            key,
+            title,
+            TARGETS[key],
+            status="not available",
+            note="needs the sweep extra: pip install 'microimpact[sweep]'",
+        )
+    npy = max(int(round(n**0.5 / 3)), 2)
     nv = n // npy
     base = _sweep_child(nv, npy, "imports", timeout)
     eager = _sweep_child(nv, npy, "none", timeout)
@@ -410,20 +480,38 @@ def bench_sweep(n=10**7, timeout=900) -> dict:
     small = _sweep_child(max(nv // 10, 1), npy, "auto", timeout)  # bounded: same peak at a tenth of the size
     diff = max(_rel_diff(lazy["checksum"][k], eager["checksum"][k]) for k in eager["checksum"])
     mb = 1024.0**2
-    metrics = {"points": nv * npy, "shape": [nv, npy], "imports_peak_rss_bytes": base["peak_rss_bytes"],
-               "eager_time_s": eager["time_s"], "eager_peak_rss_bytes": eager["peak_rss_bytes"],
-               "chunked_time_s": lazy["time_s"], "chunked_peak_rss_bytes": lazy["peak_rss_bytes"],
-               "chunks": "auto", "mean_rel_diff": diff, "chunked_small_points": max(nv // 10, 1) * npy,
-               "chunked_small_peak_rss_bytes": small["peak_rss_bytes"]}
-    rows = [("python + imports only, peak RSS", f"{base['peak_rss_bytes'] / mb:.0f} MB"),
-            ("eager: sweep(...).mean()", f"{eager['time_s']:.3g} s, peak {eager['peak_rss_bytes'] / mb:.0f} MB"),
-            ("chunked: sweep(..., chunks='auto').mean().compute()",
-             f"{lazy['time_s']:.3g} s, peak {lazy['peak_rss_bytes'] / mb:.0f} MB"),
-            ("same, chunked, 10x fewer points", f"{small['time_s']:.3g} s, peak {small['peak_rss_bytes'] / mb:.0f} MB"),
-            ("eager vs chunked means, rel. difference", f"{diff:.1g}")]
-    return _result(key, title, TARGETS[key], met=bool(lazy["peak_rss_bytes"] < 500 * mb), metrics=metrics,
-                   rows=rows, headline=f"chunked peak {lazy['peak_rss_bytes'] / mb:.0f} MB "
-                   f"(eager {eager['peak_rss_bytes'] / mb:.0f} MB)")
+    metrics = {
+        "points": nv * npy,
+        "shape": [nv, npy],
+        "imports_peak_rss_bytes": base["peak_rss_bytes"],
+        "eager_time_s": eager["time_s"],
+        "eager_peak_rss_bytes": eager["peak_rss_bytes"],
+        "chunked_time_s": lazy["time_s"],
+        "chunked_peak_rss_bytes": lazy["peak_rss_bytes"],
+        "chunks": "auto",
+        "mean_rel_diff": diff,
+        "chunked_small_points": max(nv // 10, 1) * npy,
+        "chunked_small_peak_rss_bytes": small["peak_rss_bytes"],
+    }
+    rows = [
+        ("python + imports only, peak RSS", f"{base['peak_rss_bytes'] / mb:.0f} MB"),
+        ("eager: sweep(...).mean()", f"{eager['time_s']:.3g} s, peak {eager['peak_rss_bytes'] / mb:.0f} MB"),
+        (
+            "chunked: sweep(..., chunks='auto').mean().compute()",
+            f"{lazy['time_s']:.3g} s, peak {lazy['peak_rss_bytes'] / mb:.0f} MB",
+        ),
+        ("same, chunked, 10x fewer points", f"{small['time_s']:.3g} s, peak {small['peak_rss_bytes'] / mb:.0f} MB"),
+        ("eager vs chunked means, rel. difference", f"{diff:.1g}"),
+    ]
+    return _result(
+        key,
+        title,
+        TARGETS[key],
+        met=bool(lazy["peak_rss_bytes"] < 500 * mb),
+        metrics=metrics,
+        rows=rows,
+        headline=f"chunked peak {lazy['peak_rss_bytes'] / mb:.0f} MB (eager {eager['peak_rss_bytes'] / mb:.0f} MB)",
+    )
 
 
 # ----------------------------------------------------------------------------- 6. paper
@@ -435,15 +523,26 @@ def bench_paper(timeout=600) -> dict:
         return _unavailable(key, title, "the paper command")
     with tempfile.TemporaryDirectory() as tmp:
         t0 = time.perf_counter()
-        proc = subprocess.run([sys.executable, "-m", "microimpact", "paper", "--out", tmp],
-                              capture_output=True, text=True, timeout=timeout)
+        proc = subprocess.run(
+            [sys.executable, "-m", "microimpact", "paper", "--out", tmp],
+            capture_output=True,
+            text=True,
+            timeout=timeout,
+        )
         t = time.perf_counter() - t0
         nfiles = sum(len(files) for _, _, files in os.walk(tmp))
     if proc.returncode != 0:
         msg = proc.stderr.strip().splitlines()[-1] if proc.stderr.strip() else f"exit {proc.returncode}"
         return _result(key, title, TARGETS[key], status=f"failed: {msg}", met=False)
-    return _result(key, title, TARGETS[key], met=bool(t < 20.0), metrics={"time_s": t, "files": nfiles},
-                   rows=[("wall-clock time", f"{t:.3g} s ({nfiles} files written)")], headline=f"{t:.3g} s")
+    return _result(
+        key,
+        title,
+        TARGETS[key],
+        met=bool(t < 20.0),
+        metrics={"time_s": t, "files": nfiles},
+        rows=[("wall-clock time", f"{t:.3g} s ({nfiles} files written)")],
+        headline=f"{t:.3g} s",
+    )
 
 
 # ----------------------------------------------------------------------------- suite
@@ -477,9 +576,17 @@ def run_suite(mode="full", only=None, log=None) -> dict:
         3: lambda: bench_latency(size["latency_loops"]),
         4: lambda: bench_wall(size["wall"]),
         5: lambda: bench_sweep(size["sweep"]),
-        6: (lambda: bench_paper()) if size["paper"] else
-           (lambda: _result("paper", "microimpact paper, end to end", TARGETS["paper"],
-                            status="skipped", note=f"not run in {mode} mode")),
+        6: (lambda: bench_paper())
+        if size["paper"]
+        else (
+            lambda: _result(
+                "paper",
+                "microimpact paper, end to end",
+                TARGETS["paper"],
+                status="skipped",
+                note=f"not run in {mode} mode",
+            )
+        ),
     }
     results = []
     t_start = time.perf_counter()
@@ -489,12 +596,22 @@ def run_suite(mode="full", only=None, log=None) -> dict:
         try:
             r = calls[i]()
         except Exception as exc:  # a benchmark that breaks is reported, the others still run
-            r = _result(BENCHMARKS[i - 1], BENCHMARKS[i - 1], TARGETS[BENCHMARKS[i - 1]],
-                        status=f"error: {type(exc).__name__}: {exc}", met=False)
+            r = _result(
+                BENCHMARKS[i - 1],
+                BENCHMARKS[i - 1],
+                TARGETS[BENCHMARKS[i - 1]],
+                status=f"error: {type(exc).__name__}: {exc}",
+                met=False,
+            )
         r["number"] = i
         results.append(r)
-    return {"mode": mode, "machine": machine_info(), "elapsed_s": time.perf_counter() - t_start,
-            "date": time.strftime("%Y-%m-%d"), "results": results}
+    return {
+        "mode": mode,
+        "machine": machine_info(),
+        "elapsed_s": time.perf_counter() - t_start,
+        "date": time.strftime("%Y-%m-%d"),
+        "results": results,
+    }
 
 
 def format_table(report: dict) -> str:
@@ -512,8 +629,10 @@ def format_table(report: dict) -> str:
     ]
     for r in report["results"]:
         met = {True: "yes", False: "NO", None: "-"}[r["met"]]
-        lines.append(f"| {r['number']} | **{r['title']}** | {r['headline'] if r['status'] == 'ok' else r['status']} "
-                     f"| {r['target']} | {met} |")
+        lines.append(
+            f"| {r['number']} | **{r['title']}** | {r['headline'] if r['status'] == 'ok' else r['status']} "
+            f"| {r['target']} | {met} |"
+        )
         for label, value in r["rows"]:
             lines.append(f"|  | {label} | {value} |  |  |")
         if r["note"] and r["status"] == "ok":
@@ -536,10 +655,15 @@ def add_bench_arguments(p, default_json="microimpact-bench.json") -> None:
     size = p.add_mutually_exclusive_group()
     size.add_argument("--quick", action="store_true", help="sizes 100x smaller (about a minute)")
     size.add_argument("--tiny", action="store_true", help="smallest sizes, no paper run (a smoke test)")
-    p.add_argument("--only", default=None, metavar="N,N",
-                   help="comma-separated benchmark numbers to run (1-6); default all")
-    p.add_argument("--json", default=default_json, metavar="FILE",
-                   help=f"where to write the JSON report (default {default_json}; '-' for none)")
+    p.add_argument(
+        "--only", default=None, metavar="N,N", help="comma-separated benchmark numbers to run (1-6); default all"
+    )
+    p.add_argument(
+        "--json",
+        default=default_json,
+        metavar="FILE",
+        help=f"where to write the JSON report (default {default_json}; '-' for none)",
+    )
 
 
 def run(args) -> int:

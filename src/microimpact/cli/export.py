@@ -15,20 +15,29 @@ def register(sub) -> None:
         "function giving the outgoing velocity, spin and stick flag of one particle at a wall "
         "(seed model + Thornton-Ning adhesion + Coulomb friction).",
     )
-    p.add_argument("--out", default="microimpact_export", metavar="DIR",
-                   help="output directory (default: %(default)s)")
+    p.add_argument("--out", default="microimpact_export", metavar="DIR", help="output directory (default: %(default)s)")
     add_pair_arguments(p)
     g = p.add_mutually_exclusive_group()
-    g.add_argument("--work-of-adhesion", metavar="G", default="0",
-                   help="work of adhesion G [J/m^2] (= 2 gamma for identical surfaces; default 0: no adhesion)")
-    g.add_argument("--surface-energy", metavar="GAMMA",
-                   help="surface energy per surface gamma [J/m^2] of particle and wall (one value, or "
-                   "gamma1,gamma2); G = 2 (gamma1 gamma2)^(1/2)")
+    g.add_argument(
+        "--work-of-adhesion",
+        metavar="G",
+        default="0",
+        help="work of adhesion G [J/m^2] (= 2 gamma for identical surfaces; default 0: no adhesion)",
+    )
+    g.add_argument(
+        "--surface-energy",
+        metavar="GAMMA",
+        help="surface energy per surface gamma [J/m^2] of particle and wall (one value, or "
+        "gamma1,gamma2); G = 2 (gamma1 gamma2)^(1/2)",
+    )
     p.add_argument("--friction", metavar="MU", default="0", help="Coulomb friction coefficient (default 0)")
     p.add_argument("--diameters", metavar="D", help="particle diameters [m], e.g. 1e-6,5e-6 (default: the pair's)")
     p.add_argument("--velocities", metavar="V", help="normal speeds [m/s] of the per-size tables, e.g. 0.01:200:400")
-    p.add_argument("--vs-over-vy", metavar="S", help="V_s/V_y columns of the dimensionless table "
-                   f"(default {','.join(str(x) for x in DEFAULT_VS_OVER_VY)})")
+    p.add_argument(
+        "--vs-over-vy",
+        metavar="S",
+        help=f"V_s/V_y columns of the dimensionless table (default {','.join(str(x) for x in DEFAULT_VS_OVER_VY)})",
+    )
     p.add_argument("--no-c", action="store_true", help="do not write the C file")
     p.set_defaults(func=run)
 

@@ -23,26 +23,46 @@ def register(sub) -> None:
     )
     p.add_argument("data", metavar="DATA.csv", help="measured impact speeds and restitution coefficients")
     add_pair_arguments(p)
-    p.add_argument("--free", default="limiting_pressure", metavar="NAME",
-                   help=f"free parameter: one of {', '.join(FREE_PARAMETERS)} (default limiting_pressure)")
-    p.add_argument("--loss", default="linear", choices=LOSSES,
-                   help="least-squares loss; soft_l1, huber, cauchy, arctan limit outliers (default linear)")
-    p.add_argument("--f-scale", metavar="X",
-                   help="residual size where a robust loss starts to down-weight (units of e, or of sigma)")
+    p.add_argument(
+        "--free",
+        default="limiting_pressure",
+        metavar="NAME",
+        help=f"free parameter: one of {', '.join(FREE_PARAMETERS)} (default limiting_pressure)",
+    )
+    p.add_argument(
+        "--loss",
+        default="linear",
+        choices=LOSSES,
+        help="least-squares loss; soft_l1, huber, cauchy, arctan limit outliers (default linear)",
+    )
+    p.add_argument(
+        "--f-scale",
+        metavar="X",
+        help="residual size where a robust loss starts to down-weight (units of e, or of sigma)",
+    )
     p.add_argument("--confidence", default="0.95", metavar="P", help="confidence level (default 0.95)")
-    p.add_argument("--relative-sigma", action="store_true",
-                   help="treat the sigma column as relative weights (scale by the reduced chi-square)")
+    p.add_argument(
+        "--relative-sigma",
+        action="store_true",
+        help="treat the sigma column as relative weights (scale by the reduced chi-square)",
+    )
     p.add_argument("--plot", metavar="FIT.png", help="write a plot of data, fit, confidence band and residuals")
-    p.add_argument("--fig2", metavar="FILE.png",
-                   help="also draw the fitted curve with the data in the layout of the seed's Fig. 2")
+    p.add_argument(
+        "--fig2", metavar="FILE.png", help="also draw the fitted curve with the data in the layout of the seed's Fig. 2"
+    )
     p.add_argument("--json", action="store_true", help="print JSON (SI units) instead of text")
     p.set_defaults(func=run)
 
 
 def _fit_pair(args, free):
     """The pair from the options; a provisional p_y when none is known (the fit starts from the data)."""
-    if (args.particle and args.surface and args.limiting_pressure is None
-            and args.yield_strength is None and free in ("limiting_pressure", "yield_velocity")):
+    if (
+        args.particle
+        and args.surface
+        and args.limiting_pressure is None
+        and args.yield_strength is None
+        and free in ("limiting_pressure", "yield_velocity")
+    ):
         known = [get_material(m).yield_strength for m in (args.particle, args.surface)]
         if not any(known):
             args.limiting_pressure = 1e8  # only a reference value: the fitted p_y does not depend on it
@@ -79,9 +99,17 @@ def run(args) -> int:
     f_scale = None if args.f_scale is None else parse_float(args.f_scale, "--f-scale")
     confidence = parse_float(args.confidence, "--confidence")
     fit = fit_restitution(
-        velocity, restitution, pair, sigma=sigma, params=free, loss=args.loss, f_scale=f_scale,
-        confidence=confidence, yield_strength=_yield_strength(args) if "k" in free else None,
-        absolute_sigma=False if args.relative_sigma else None, line_numbers=data.lines,
+        velocity,
+        restitution,
+        pair,
+        sigma=sigma,
+        params=free,
+        loss=args.loss,
+        f_scale=f_scale,
+        confidence=confidence,
+        yield_strength=_yield_strength(args) if "k" in free else None,
+        absolute_sigma=False if args.relative_sigma else None,
+        line_numbers=data.lines,
     )
     if args.plot:
         plt = require("matplotlib.pyplot", "--plot")
@@ -100,8 +128,7 @@ def run(args) -> int:
         json.dump(doc, sys.stdout, indent=2, allow_nan=True)
         sys.stdout.write("\n")
     else:
-        print(f"data: {args.data} ({fit.n_points} points"
-              f"{', with sigma' if sigma is not None else ''})")
+        print(f"data: {args.data} ({fit.n_points} points{', with sigma' if sigma is not None else ''})")
         print(fit.pair.describe())
         print()
         print(fit.summary())

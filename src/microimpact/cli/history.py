@@ -20,15 +20,26 @@ def register(sub) -> None:
     )
     p.add_argument("velocity", metavar="V", help="impact speed [m/s]")
     add_pair_arguments(p)
-    p.add_argument("--n", default="1001", metavar="N",
-                   help="number of points spaced uniformly from contact to separation (default 1001; "
-                   "the stage boundaries are added)")
+    p.add_argument(
+        "--n",
+        default="1001",
+        metavar="N",
+        help="number of points spaced uniformly from contact to separation (default 1001; "
+        "the stage boundaries are added)",
+    )
     p.add_argument("--out", "-o", default="-", metavar="FILE.csv", help="CSV file to write (default: stdout)")
     p.add_argument("--plot", metavar="FILE.png", help="also draw the history to this image (png, pdf, svg)")
-    p.add_argument("--hertz", action="store_true",
-                   help="in the plot, also draw the Hertz force of the same approach during loading (Fig. 7)")
-    p.add_argument("--method", choices=["closed", "ode"], default="closed",
-                   help="closed form (default) or numerical integration of Newton's equation (cross-check)")
+    p.add_argument(
+        "--hertz",
+        action="store_true",
+        help="in the plot, also draw the Hertz force of the same approach during loading (Fig. 7)",
+    )
+    p.add_argument(
+        "--method",
+        choices=["closed", "ode"],
+        default="closed",
+        help="closed form (default) or numerical integration of Newton's equation (cross-check)",
+    )
     p.set_defaults(func=run)
 
 
@@ -66,6 +77,5 @@ def run(args) -> int:
             + (f"; plot in {args.plot}" if args.plot else "")
         )
     if bool(np.any(pair.impact(V, warn=False).large_strain)):
-        print("warning: the contact radius exceeds 0.3 R*: outside the model's small-strain range",
-              file=sys.stderr)
+        print("warning: the contact radius exceeds 0.3 R*: outside the model's small-strain range", file=sys.stderr)
     return 0

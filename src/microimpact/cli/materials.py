@@ -15,14 +15,18 @@ def run(args) -> int:
     if args.name:
         m = get_material(args.name)
         print(f"{m.name}: {m.description}")
-        print(f"  E = {m.youngs_modulus:.4g} Pa, nu = {m.poisson_ratio}, rho = {m.density:g} kg/m^3, "
-              f"Y = {m.yield_strength if m.yield_strength is not None else 'n/a'} Pa")
+        print(
+            f"  E = {m.youngs_modulus:.4g} Pa, nu = {m.poisson_ratio}, rho = {m.density:g} kg/m^3, "
+            f"Y = {m.yield_strength if m.yield_strength is not None else 'n/a'} Pa"
+        )
         print(f"  source: {m.source}")
         return 0
     print(f"{'name':16s} {'E [GPa]':>8s} {'nu':>5s} {'rho [kg/m3]':>11s} {'Y [MPa]':>8s}  description")
     for name in list_materials():
         m = get_material(name)
         y = f"{m.yield_strength / 1e6:.0f}" if m.yield_strength else "-"
-        print(f"{m.name:16s} {m.youngs_modulus / 1e9:8.1f} {m.poisson_ratio:5.2f} {m.density:11.0f} {y:>8s}  "
-              f"{m.description}")
+        print(
+            f"{m.name:16s} {m.youngs_modulus / 1e9:8.1f} {m.poisson_ratio:5.2f} {m.density:11.0f} {y:>8s}  "
+            f"{m.description}"
+        )
     return 0

@@ -13,13 +13,21 @@ def register(sub) -> None:
         "and a report (report.md, self-contained report.html) setting every number the paper quotes in "
         "Section 3 beside the value computed now.",
     )
-    p.add_argument("--out", default=None, metavar="DIR",
-                   help="output directory (default: ./microimpact-paper)")
-    p.add_argument("--data", action="append", default=[], metavar="NAME=FILE.csv",
-                   help="measured restitution to overlay on Fig. 2 (CSV columns velocity [m/s], restitution); "
-                   "repeatable, e.g. --data silicon=wall_si.csv")
-    p.add_argument("--formats", default="png,pdf", metavar="LIST",
-                   help="image formats, comma separated, among png, pdf, svg, eps (default: png,pdf)")
+    p.add_argument("--out", default=None, metavar="DIR", help="output directory (default: ./microimpact-paper)")
+    p.add_argument(
+        "--data",
+        action="append",
+        default=[],
+        metavar="NAME=FILE.csv",
+        help="measured restitution to overlay on Fig. 2 (CSV columns velocity [m/s], restitution); "
+        "repeatable, e.g. --data silicon=wall_si.csv",
+    )
+    p.add_argument(
+        "--formats",
+        default="png,pdf",
+        metavar="LIST",
+        help="image formats, comma separated, among png, pdf, svg, eps (default: png,pdf)",
+    )
     p.add_argument("--quiet", action="store_true", help="no progress lines")
     p.set_defaults(func=run)
 

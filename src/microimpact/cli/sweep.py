@@ -60,13 +60,15 @@ def register(sub) -> None:
     b.add_argument("--case", choices=sorted(PAPER_CASES), help="one of the seed paper's cases")
     b.add_argument("--particle", metavar="MATERIAL", help=f"particle material ({', '.join(list_materials())})")
     b.add_argument("--surface", metavar="MATERIAL", help="surface material (flat); needs --radius")
-    b.add_argument("--yield-strength", metavar="PA",
-                   help="yield strength Y [Pa]: p_y = k Y when --limiting-pressure is not given")
+    b.add_argument(
+        "--yield-strength", metavar="PA", help="yield strength Y [Pa]: p_y = k Y when --limiting-pressure is not given"
+    )
     b.add_argument("--k", metavar="K", help="p_y / Y (default 2.2)")
     o = p.add_argument_group("output")
     o.add_argument("--out", required=True, metavar="FILE", help="FILE.nc (NetCDF) or FILE.csv")
-    o.add_argument("--chunks", metavar="N",
-                   help="block size along each swept dimension (default: about 130 000 points per block)")
+    o.add_argument(
+        "--chunks", metavar="N", help="block size along each swept dimension (default: about 130 000 points per block)"
+    )
     o.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     p.set_defaults(func=run)
 
@@ -83,9 +85,12 @@ def _base_pair(args, values):
             raise ValueError("--radius is needed with --particle/--surface")
         p_y = values.get("limiting_pressure")
         return ContactPair.from_materials(
-            args.particle, args.surface, float(np.atleast_1d(values["radius"])[0]),
+            args.particle,
+            args.surface,
+            float(np.atleast_1d(values["radius"])[0]),
             limiting_pressure=None if p_y is None else float(np.atleast_1d(p_y)[0]),
-            k=k, yield_strength=Y,
+            k=k,
+            yield_strength=Y,
         )
     pair = ContactPair.paper_case(args.case or "silicon")
     if Y is not None and "limiting_pressure" not in values:

@@ -12,8 +12,18 @@ import os
 
 from .._optional import require
 
-__all__ = ["FIGSIZE", "DPI", "COLORS", "LINESTYLES", "MARKERS", "series_style", "style", "new_axes",
-           "pyplot", "shade_large_strain"]
+__all__ = [
+    "FIGSIZE",
+    "DPI",
+    "COLORS",
+    "LINESTYLES",
+    "MARKERS",
+    "series_style",
+    "style",
+    "new_axes",
+    "pyplot",
+    "shade_large_strain",
+]
 
 #: Single-column journal figure [in] and raster resolution [dpi].
 FIGSIZE = (3.5, 2.8)
@@ -90,10 +100,10 @@ def shade_large_strain(ax, start, stop=None, *, label=True, text_xy=(0.985, 0.97
     stop = hi if stop is None else stop
     if not start < stop:
         return None
-    patch = ax.axvspan(start, stop, facecolor="none", edgecolor="0.82", hatch="//////", linewidth=0,
-                       zorder=0)
+    patch = ax.axvspan(start, stop, facecolor="none", edgecolor="0.82", hatch="//////", linewidth=0, zorder=0)
     if label:
-        ax.text(*text_xy, r"$a^*/R^* > 0.3$", transform=ax.transAxes, ha=ha, va="top",
-                fontsize=6, color="0.4", zorder=5)
+        ax.text(
+            *text_xy, r"$a^*/R^* > 0.3$", transform=ax.transAxes, ha=ha, va="top", fontsize=6, color="0.4", zorder=5
+        )
     ax.set_xlim(lo, hi)
     return patch

@@ -21,8 +21,17 @@ __all__ = ["plot_history", "STAGE_COLORS"]
 STAGE_COLORS = {1: "#56B4E9", 2: "#E69F00", 3: "#009E73"}
 _STAGE_LABELS = {1: "1: Hertz loading", 2: "2: plastic loading", 3: "3: elastic unloading"}
 
-_PREFIXES = [(1e-15, "f"), (1e-12, "p"), (1e-9, "n"), (1e-6, "µ"), (1e-3, "m"), (1.0, ""), (1e3, "k"),
-             (1e6, "M"), (1e9, "G")]
+_PREFIXES = [
+    (1e-15, "f"),
+    (1e-12, "p"),
+    (1e-9, "n"),
+    (1e-6, "µ"),
+    (1e-3, "m"),
+    (1.0, ""),
+    (1e3, "k"),
+    (1e6, "M"),
+    (1e9, "G"),
+]
 
 _RC = {
     "font.size": 8,
@@ -136,13 +145,31 @@ def plot_history(history, ax=None, *, show_stages=True, show_hertz=False, title=
 
         a_f.plot(t * ts, force * fs, label="contact force", **kws)
         if show_hertz:
-            hz = hertz_force_along({"approach": alpha, "stage": np.asarray(_get(history, "stage"))[order],
-                                    "effective_modulus": _get(history, "effective_modulus"),
-                                    "effective_radius": _get(history, "effective_radius")})
-            a_f.plot(t * ts, hz * fs, color="#D55E00", linestyle="--", linewidth=1.1,
-                     label=r"Hertz force at the same $\alpha$")
-            a_f.legend(loc="upper right", fontsize=6.5, handlelength=2.2, frameon=True, framealpha=0.85,
-                       edgecolor="none", borderaxespad=0.3)
+            hz = hertz_force_along(
+                {
+                    "approach": alpha,
+                    "stage": np.asarray(_get(history, "stage"))[order],
+                    "effective_modulus": _get(history, "effective_modulus"),
+                    "effective_radius": _get(history, "effective_radius"),
+                }
+            )
+            a_f.plot(
+                t * ts,
+                hz * fs,
+                color="#D55E00",
+                linestyle="--",
+                linewidth=1.1,
+                label=r"Hertz force at the same $\alpha$",
+            )
+            a_f.legend(
+                loc="upper right",
+                fontsize=6.5,
+                handlelength=2.2,
+                frameon=True,
+                framealpha=0.85,
+                edgecolor="none",
+                borderaxespad=0.3,
+            )
             top = 1.3 * max(float(np.nanmax(force)), float(np.nanmax(hz, initial=0.0))) * fs
         else:
             top = 1.1 * float(np.nanmax(force)) * fs
@@ -153,11 +180,17 @@ def plot_history(history, ax=None, *, show_stages=True, show_hertz=False, title=
         a_a.set_ylabel(rf"Approach, $\alpha$ ({aunit})")
         if plastic and a_p > 0:
             a_a.axhline(a_p * as_, color="0.45", linewidth=0.7, linestyle=":")
-            a_a.annotate(rf"$\alpha_p$ = {a_p * as_:.4g} {aunit}", xy=(min(t[-1], tc) * ts, a_p * as_),
-                         xytext=(-3, -3), textcoords="offset points", ha="right", va="top", fontsize=6.5,
-                         color="0.3")
-        a_a.set_ylim(bottom=min(0.0, float(np.nanmin(alpha * as_))),
-                     top=1.1 * float(np.nanmax(alpha * as_)))
+            a_a.annotate(
+                rf"$\alpha_p$ = {a_p * as_:.4g} {aunit}",
+                xy=(min(t[-1], tc) * ts, a_p * as_),
+                xytext=(-3, -3),
+                textcoords="offset points",
+                ha="right",
+                va="top",
+                fontsize=6.5,
+                color="0.3",
+            )
+        a_a.set_ylim(bottom=min(0.0, float(np.nanmin(alpha * as_))), top=1.1 * float(np.nanmax(alpha * as_)))
         a_a.set_xlabel(f"Time, $t$ ({tunit})")
         a_a.set_xlim(float(t[0] * ts), float(t[-1] * ts))
 
@@ -166,20 +199,42 @@ def plot_history(history, ax=None, *, show_stages=True, show_hertz=False, title=
             for a_ in axes:
                 for s, lo, hi in spans:
                     a_.axvspan(lo * ts, hi * ts, color=STAGE_COLORS[s], alpha=0.16, linewidth=0, zorder=0)
-                for b in ([t1, tL] if plastic else [tL]):
+                for b in [t1, tL] if plastic else [tL]:
                     a_.axvline(b * ts, color="0.45", linewidth=0.6, linestyle="--", zorder=1)
             names = [(t1, r"$t_1$"), (tL, r"$t_L$")] if plastic else [(tL, r"$t_L$")]
             for b, name in names:
-                a_v.annotate(name, xy=(b * ts, 1.0), xycoords=("data", "axes fraction"), xytext=(0, 2),
-                             textcoords="offset points", ha="center", va="bottom", fontsize=7)
-            handles = [Patch(facecolor=STAGE_COLORS[s], alpha=0.35, linewidth=0, label=_STAGE_LABELS[s])
-                       for s, _, _ in spans]
-            a_v.legend(handles=handles, loc="lower left", fontsize=6.5, handlelength=1.2, title="stage",
-                       title_fontsize=6.5, alignment="left", frameon=True, framealpha=0.85, edgecolor="none")
+                a_v.annotate(
+                    name,
+                    xy=(b * ts, 1.0),
+                    xycoords=("data", "axes fraction"),
+                    xytext=(0, 2),
+                    textcoords="offset points",
+                    ha="center",
+                    va="bottom",
+                    fontsize=7,
+                )
+            handles = [
+                Patch(facecolor=STAGE_COLORS[s], alpha=0.35, linewidth=0, label=_STAGE_LABELS[s]) for s, _, _ in spans
+            ]
+            a_v.legend(
+                handles=handles,
+                loc="lower left",
+                fontsize=6.5,
+                handlelength=1.2,
+                title="stage",
+                title_fontsize=6.5,
+                alignment="left",
+                frameon=True,
+                framealpha=0.85,
+                edgecolor="none",
+            )
 
         if title:
-            text = title if isinstance(title, str) else (
-                f"$V$ = {V:.4g} m/s, $V_r$ = {Vr:.4g} m/s, $t_c$ = {tc * ts:.4g} {tunit}")
+            text = (
+                title
+                if isinstance(title, str)
+                else (f"$V$ = {V:.4g} m/s, $V_r$ = {Vr:.4g} m/s, $t_c$ = {tc * ts:.4g} {tunit}")
+            )
             a_v.set_title(text, fontsize=7.5, pad=12 if show_stages else 4)
         for a_ in axes:
             a_.minorticks_on()

@@ -206,28 +206,32 @@ def restitution_data(pairs=None, data=None, velocity=None) -> dict:
             V = np.atleast_1d(np.asarray(velocity, dtype=float))
         out = pair.impact(V, warn=False)
         n = V.size
-        parts.append({
-            "series": np.full(n, str(name), dtype=object),
-            "kind": np.full(n, "model", dtype=object),
-            "velocity_m_s": np.asarray(out.velocity, dtype=float).ravel(),
-            "restitution": np.asarray(out.restitution, dtype=float).ravel(),
-            "yield_velocity_m_s": np.full(n, Vy),
-            "large_strain": np.asarray(out.large_strain, dtype=int).ravel(),
-        })
+        parts.append(
+            {
+                "series": np.full(n, str(name), dtype=object),
+                "kind": np.full(n, "model", dtype=object),
+                "velocity_m_s": np.asarray(out.velocity, dtype=float).ravel(),
+                "restitution": np.asarray(out.restitution, dtype=float).ravel(),
+                "yield_velocity_m_s": np.full(n, Vy),
+                "large_strain": np.asarray(out.large_strain, dtype=int).ravel(),
+            }
+        )
     for name, (V, e) in (data or {}).items():
         V = np.atleast_1d(np.asarray(V, dtype=float))
         e = np.atleast_1d(np.asarray(e, dtype=float))
         if V.shape != e.shape:
             raise ValueError(f"data[{name!r}]: velocity and restitution differ in length ({V.size} vs {e.size})")
         n = V.size
-        parts.append({
-            "series": np.full(n, str(name), dtype=object),
-            "kind": np.full(n, "measured", dtype=object),
-            "velocity_m_s": V,
-            "restitution": e,
-            "yield_velocity_m_s": np.full(n, np.nan),
-            "large_strain": np.zeros(n, dtype=int),
-        })
+        parts.append(
+            {
+                "series": np.full(n, str(name), dtype=object),
+                "kind": np.full(n, "measured", dtype=object),
+                "velocity_m_s": V,
+                "restitution": e,
+                "yield_velocity_m_s": np.full(n, np.nan),
+                "large_strain": np.zeros(n, dtype=int),
+            }
+        )
     return _concat(parts)
 
 
@@ -280,9 +284,17 @@ def plot_restitution(pairs=None, data=None, ax=None, *, velocity=None, table=Non
             else:
                 # the colour of the model curve of the same name, else one no model uses
                 c = model_colors.get(name, _style.COLORS[(len(model_colors) + i_meas) % len(_style.COLORS)])
-                ax.plot(V[m], e[m], linestyle="none", marker=_style.MARKERS[i_meas % len(_style.MARKERS)],
-                        markersize=3.5, markerfacecolor="none", markeredgecolor=c, markeredgewidth=0.8,
-                        label=f"{name} (measured)")
+                ax.plot(
+                    V[m],
+                    e[m],
+                    linestyle="none",
+                    marker=_style.MARKERS[i_meas % len(_style.MARKERS)],
+                    markersize=3.5,
+                    markerfacecolor="none",
+                    markeredgecolor=c,
+                    markeredgewidth=0.8,
+                    label=f"{name} (measured)",
+                )
                 i_meas += 1
         if logx:
             ax.set_xscale("log")
@@ -291,8 +303,16 @@ def plot_restitution(pairs=None, data=None, ax=None, *, velocity=None, table=Non
         ax.set_ylim(0.0, top)
         if math.isfinite(onset):
             _style.shade_large_strain(ax, onset, label=False)
-            ax.plot([], [], linestyle="none", marker="s", markersize=6, markerfacecolor="none",
-                    markeredgecolor="0.75", label=r"$a^*/R^* > 0.3$ (outside small strain)")
+            ax.plot(
+                [],
+                [],
+                linestyle="none",
+                marker="s",
+                markersize=6,
+                markerfacecolor="none",
+                markeredgecolor="0.75",
+                label=r"$a^*/R^* > 0.3$ (outside small strain)",
+            )
         ax.set_xlabel(_V_LABEL)
         ax.set_ylabel(r"Coefficient of restitution, $e$ (–)")
         ax.legend(loc="lower left")
@@ -314,8 +334,9 @@ def _pair_with(pair, parameter, value, particle_poisson, surface_modulus, surfac
     raise ValueError(f"parameter must be one of {', '.join(ENERGY_LOSS_PARAMETERS)}, got {parameter!r}")
 
 
-def energy_loss_data(parameter, values, pair=None, velocity=None, *, particle_poisson=0.3,
-                     surface_modulus=150e9, surface_poisson=0.3) -> dict:
+def energy_loss_data(
+    parameter, values, pair=None, velocity=None, *, particle_poisson=0.3, surface_modulus=150e9, surface_poisson=0.3
+) -> dict:
     """Data of Figs. 3-5: fraction of energy lost (eq. 29) against impact speed, one curve per value.
 
     Parameters
@@ -353,19 +374,20 @@ def energy_loss_data(parameter, values, pair=None, velocity=None, *, particle_po
         n = V.size
         part = {col: np.full(n, float(value))}
         part.update({k: np.full(n, v) for k, v in extra.items()})
-        part.update({
-            "velocity_m_s": np.asarray(out.velocity, float).ravel(),
-            "energy_loss": np.asarray(out.energy_loss, float).ravel(),
-            "restitution": np.asarray(out.restitution, float).ravel(),
-            "yield_velocity_m_s": np.full(n, Vy),
-            "large_strain": np.asarray(out.large_strain, dtype=int).ravel(),
-        })
+        part.update(
+            {
+                "velocity_m_s": np.asarray(out.velocity, float).ravel(),
+                "energy_loss": np.asarray(out.energy_loss, float).ravel(),
+                "restitution": np.asarray(out.restitution, float).ravel(),
+                "yield_velocity_m_s": np.full(n, Vy),
+                "large_strain": np.asarray(out.large_strain, dtype=int).ravel(),
+            }
+        )
         parts.append(part)
     return _concat(parts)
 
 
-def plot_energy_loss(parameter, values, ax=None, *, pair=None, velocity=None, table=None, legend_loc="above",
-                     **kws):
+def plot_energy_loss(parameter, values, ax=None, *, pair=None, velocity=None, table=None, legend_loc="above", **kws):
     """Figs. 3-5: fraction of energy lost ``1 - e^2`` against impact speed for several values of an input (seed eq. 29).
 
     Parameters
@@ -415,19 +437,42 @@ def plot_energy_loss(parameter, values, ax=None, *, pair=None, velocity=None, ta
             ax.plot(V[m], y[m], label=f"{symbol} = {_fmt_value(value * scale)} {unit}", **st)
             if ls_flag[m].any():
                 j = np.argmax(ls_flag[m])
-                ax.plot(V[m][j], y[m][j], marker="o", markersize=3.5, markerfacecolor="white",
-                        markeredgecolor=st["color"], markeredgewidth=0.8, zorder=4)
+                ax.plot(
+                    V[m][j],
+                    y[m][j],
+                    marker="o",
+                    markersize=3.5,
+                    markerfacecolor="white",
+                    markeredgecolor=st["color"],
+                    markeredgewidth=0.8,
+                    zorder=4,
+                )
                 any_onset = True
         if any_onset:
-            ax.plot([], [], linestyle="none", marker="o", markersize=3.5, markerfacecolor="white",
-                    markeredgecolor="0.3", markeredgewidth=0.8, label=r"$a^*/R^* = 0.3$ reached")
+            ax.plot(
+                [],
+                [],
+                linestyle="none",
+                marker="o",
+                markersize=3.5,
+                markerfacecolor="white",
+                markeredgecolor="0.3",
+                markeredgewidth=0.8,
+                label=r"$a^*/R^* = 0.3$ reached",
+            )
         ax.set_xlim(0.0, max(_VMAX, float(V.max())) if velocity is None else float(V.max()))
         ax.set_ylim(0.0, 1.0)
         ax.set_xlabel(_V_LABEL)
         ax.set_ylabel(r"Fraction of energy lost, $1-e^2$ (–)")
         if legend_loc == "above":
-            ax.legend(loc="lower center", bbox_to_anchor=(0.5, 1.01), ncol=2, borderaxespad=0.0,
-                      handlelength=2.6, columnspacing=1.5)
+            ax.legend(
+                loc="lower center",
+                bbox_to_anchor=(0.5, 1.01),
+                ncol=2,
+                borderaxespad=0.0,
+                handlelength=2.6,
+                columnspacing=1.5,
+            )
         else:
             ax.legend(loc=legend_loc)
     return ax
@@ -468,17 +513,21 @@ def force_displacement_data(velocities=(30.0, 50.0, 70.0), pair=None, n=201) -> 
         if 0.0 < a_y < a_star:
             load = np.unique(np.concatenate([load, [a_y]]))
         unload = np.linspace(a_star, a_p, n)
-        for branch, alpha, force in (("loading", load, pair.force(load)),
-                                     ("unloading", unload, pair.force(unload, max_approach=a_star))):
+        for branch, alpha, force in (
+            ("loading", load, pair.force(load)),
+            ("unloading", unload, pair.force(unload, max_approach=a_star)),
+        ):
             k = alpha.size
-            parts.append({
-                "velocity_m_s": np.full(k, float(V)),
-                "branch": np.full(k, branch, dtype=object),
-                "approach_m": alpha,
-                "force_N": np.asarray(force, float),
-                "max_approach_m": np.full(k, a_star),
-                "plastic_approach_m": np.full(k, a_p),
-            })
+            parts.append(
+                {
+                    "velocity_m_s": np.full(k, float(V)),
+                    "branch": np.full(k, branch, dtype=object),
+                    "approach_m": alpha,
+                    "force_N": np.asarray(force, float),
+                    "max_approach_m": np.full(k, a_star),
+                    "plastic_approach_m": np.full(k, a_p),
+                }
+            )
     return _concat(parts)
 
 
@@ -523,17 +572,25 @@ def plot_force_displacement(velocities=(30.0, 50.0, 70.0), ax=None, *, pair=None
             ax.plot(a[un], P[un], color=c, linestyle="--", **kws)
             a_p = float(np.asarray(table["plastic_approach_m"], float)[m][0]) * 1e9
             ax.plot([a_p], [0.0], marker="v", markersize=4, color=c, clip_on=False, zorder=5)
-            ax.annotate(f"{a_p:.1f}", (a_p, 0.0), xytext=(0, 5), textcoords="offset points",
-                        ha="center", va="bottom", fontsize=6, color=c)
+            ax.annotate(
+                f"{a_p:.1f}",
+                (a_p, 0.0),
+                xytext=(0, 5),
+                textcoords="offset points",
+                ha="center",
+                va="bottom",
+                fontsize=6,
+                color=c,
+            )
         ax.plot([], [], color="0.3", linestyle="-", label="loading")
         ax.plot([], [], color="0.3", linestyle="--", label="unloading")
-        ax.plot([], [], color="0.3", linestyle="none", marker="v", markersize=4,
-                label=r"plastic approach $\alpha_p$ (nm)")
+        ax.plot(
+            [], [], color="0.3", linestyle="none", marker="v", markersize=4, label=r"plastic approach $\alpha_p$ (nm)"
+        )
         ax.set_xlim(0.0, float(a.max()) * 1.05)
         ax.set_ylim(0.0, float(P.max()) * 1.08)
         # a*/R* > 0.3 <=> alpha > 0.09 R*
-        _style.shade_large_strain(ax, 0.09 * pair.effective_radius * 1e9, label=True,
-                                  text_xy=(0.985, 0.06))
+        _style.shade_large_strain(ax, 0.09 * pair.effective_radius * 1e9, label=True, text_xy=(0.985, 0.06))
         ax.set_xlabel(r"Approach, $\alpha$ (nm)")
         ax.set_ylabel(r"Contact force, $P$ (µN)")
         ax.legend(loc="upper left")
@@ -600,12 +657,22 @@ def plot_approach(pair=None, ax=None, *, velocity=None, table=None):
         ax = _style.new_axes(ax)
         V = np.asarray(table["velocity_m_s"], float)
         c0, c1 = _style.COLORS[0], _style.COLORS[2]
-        l0, = ax.plot(V, np.asarray(table["max_approach_m"], float) * 1e9, color=c0, linestyle="-",
-                      label=r"maximum approach $\alpha^*$")
+        (l0,) = ax.plot(
+            V,
+            np.asarray(table["max_approach_m"], float) * 1e9,
+            color=c0,
+            linestyle="-",
+            label=r"maximum approach $\alpha^*$",
+        )
         ax.tick_params(axis="y", right=False)
         right = ax.twinx()
-        l1, = right.plot(V, np.asarray(table["plastic_ratio"], float), color=c1, linestyle="--",
-                         label=r"plastic share $\alpha_p/\alpha^*$")
+        (l1,) = right.plot(
+            V,
+            np.asarray(table["plastic_ratio"], float),
+            color=c1,
+            linestyle="--",
+            label=r"plastic share $\alpha_p/\alpha^*$",
+        )
         right.tick_params(axis="y", colors=c1, direction="in")
         right.spines["right"].set_color(c1)
         right.set_ylim(0.0, 1.0)
@@ -705,14 +772,27 @@ def plot_contact_times(pair=None, ax=None, *, velocity=None, table=None):
         V = np.asarray(table["velocity_m_s"], float)
         for col, label, color, ls in _TIME_SERIES:
             lw = 1.6 if col == "ning_loading_time_s" else None
-            ax.plot(V, np.asarray(table[col], float) * 1e9, color=color, linestyle=ls, label=label,
-                    **({"linewidth": lw} if lw else {}))
+            ax.plot(
+                V,
+                np.asarray(table[col], float) * 1e9,
+                color=color,
+                linestyle=ls,
+                label=label,
+                **({"linewidth": lw} if lw else {}),
+            )
         ax.set_xlim(0.0, float(V.max()))
         Vy = _yield_velocity_of(table)
         if Vy is not None:
             ax.axvline(Vy, color="0.55", linewidth=0.6, linestyle=(0, (2, 2)), zorder=0)
-            ax.annotate(r"$V_y$", (Vy, 0.0), xytext=(2, 2), textcoords="offset points",
-                        xycoords=("data", "axes fraction"), fontsize=6.5, color="0.35")
+            ax.annotate(
+                r"$V_y$",
+                (Vy, 0.0),
+                xytext=(2, 2),
+                textcoords="offset points",
+                xycoords=("data", "axes fraction"),
+                fontsize=6.5,
+                color="0.35",
+            )
         ymax = float(np.nanmax(np.asarray(table["contact_time_s"], float))) * 1e9
         ax.set_ylim(0.0, ymax * 1.4)
         ls = np.asarray(table["large_strain"]).astype(bool)
@@ -728,8 +808,7 @@ def plot_contact_times(pair=None, ax=None, *, velocity=None, table=None):
 def _history(pair, velocity, n):
     if not hasattr(pair, "history"):
         raise NotImplementedError(
-            "ContactPair.history is not available in this version of microimpact; "
-            "Figs. 7 and 10 need it"
+            "ContactPair.history is not available in this version of microimpact; Figs. 7 and 10 need it"
         )
     return pair.history(velocity, n=n)
 
@@ -765,16 +844,20 @@ def force_time_data(velocity=70.0, pair=None, n=1001) -> dict:
     a_load = np.asarray(ep.approach, float)[loading]
     hertz = contact.hertz_force(a_load, pair.effective_modulus, pair.effective_radius)
     parts = []
-    for name, t, a, P in (("elastic-plastic", ep.time, ep.approach, ep.force),
-                          ("elastic", el.time, el.approach, el.force),
-                          ("hertz", t_load, a_load, hertz)):
+    for name, t, a, P in (
+        ("elastic-plastic", ep.time, ep.approach, ep.force),
+        ("elastic", el.time, el.approach, el.force),
+        ("hertz", t_load, a_load, hertz),
+    ):
         t = np.asarray(t, float)
-        parts.append({
-            "series": np.full(t.size, name, dtype=object),
-            "time_s": t,
-            "approach_m": np.asarray(a, float),
-            "force_N": np.asarray(P, float),
-        })
+        parts.append(
+            {
+                "series": np.full(t.size, name, dtype=object),
+                "time_s": t,
+                "approach_m": np.asarray(a, float),
+                "force_N": np.asarray(P, float),
+            }
+        )
     return _concat(parts)
 
 
@@ -886,9 +969,11 @@ def plot_dynamics(velocity=50.0, ax=None, *, pair=None, table=None):
             ("force_N", 1e6, r"Force, $P$ (µN)"),
             ("approach_m", 1e9, r"Approach, $\alpha$ (nm)"),
         ]
-        stage_style = {1: ("stage 1: Hertz loading", _style.COLORS[2], "-"),
-                       2: ("stage 2: plastic loading", _style.COLORS[1], "--"),
-                       3: ("stage 3: elastic unloading", _style.COLORS[3], "-.")}
+        stage_style = {
+            1: ("stage 1: Hertz loading", _style.COLORS[2], "-"),
+            2: ("stage 2: plastic loading", _style.COLORS[1], "--"),
+            3: ("stage 3: elastic unloading", _style.COLORS[3], "-."),
+        }
         for a_, (col, scale, ylabel) in zip(axes, series):
             y = np.asarray(table[col], float) * scale
             for s, (label, color, ls) in stage_style.items():
