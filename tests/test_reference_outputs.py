@@ -91,7 +91,18 @@ def _replay(group):
 def test_group_unchanged(group):
     new, stored = _replay(group)
     for name in sorted(stored):
-        assert_same(f"{group}/{name}", new[name], stored[name])
+        # An unloading force evaluated where alpha - alpha_p is itself a rounding residue (alpha
+        # within a few ulp of alpha_p): only its absolute size, tiny against the array's largest
+        # force, is meaningful. Moved by the core redesign from ~1e-33 N to ~1e-32 N (P* ~ 1e-6 N).
+        atol = 1e-13 * float(np.nanmax(np.abs(stored[name]))) if name in _CANCELLING.get(group, ()) else 0.0
+        # The approach velocity V (1 - u)^(1/2) near the maximum approach, where 1 - u is small and
+        # the last bits of B(2/5, 1/2) (now correctly rounded; scipy's was one ulp low) are amplified:
+        # moved by up to 2e-13 relative at 3 of 2,000 history points.
+        rtol = 1e-12 if group == "history" and name.endswith("approach_velocity") else RTOL
+        assert_same(f"{group}/{name}", new[name], stored[name], rtol=rtol, atol=atol)
+
+
+_CANCELLING = {"contact": ("contact_force_unloading",)}
 
 
 # ------------------------------------------------------------------ impacts: pairs x speeds grids
@@ -119,7 +130,9 @@ def _twin(group, name):
     if group == "impact_scalar":
         return array[name]
     if group == "impact_array":
-        return scalar.get(name)  # the 2-D and 0-d calls have no twin
+        if name.startswith("2d_"):  # pairs[0] at its speeds, reshaped as the call did
+            return scalar[name[3:]][0].reshape(-1, 4)[:, ::-1]
+        return scalar.get(name)  # the 0-d call has no twin
     return scalar.get(_FUNCTION_TWINS.get(name, ""))
 
 

@@ -14,8 +14,11 @@ from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 
-from . import _kernels, contact, dynamics, impact
-from ._validation import check_positive
+from . import contact, dynamics, impact
+from ._validation import check_positive, check_velocity
+from .core import models
+from .core.constants import LARGE_STRAIN_RATIO
+from .core.quantities import FLAG_FIELDS, OUTCOME_FIELDS
 from .dynamics import ImpactHistory
 from .materials import DEFAULT_K, PAPER_CASES, Material, effective_modulus, get_material, sphere_mass
 
@@ -24,6 +27,10 @@ __all__ = ["ContactPair", "ImpactResult", "LargeStrainWarning"]
 
 class LargeStrainWarning(UserWarning):
     """The contact radius exceeds the small-strain range of the model (``a/R* > 0.3``)."""
+
+
+_TRUE, _FALSE = np.bool_(True), np.bool_(False)
+_LARGE = OUTCOME_FIELDS.index("large_strain")
 
 
 def _scalar_or_array(x):
@@ -538,7 +545,7 @@ class ContactPair:
         )
 
     # ----------------------------------------------------------------- impact
-    def impact(self, velocity, *, warn: bool = True) -> ImpactResult:
+    def impact(self, velocity, *, model: str = models.DEFAULT, warn: bool = True, **params) -> ImpactResult:
         """Outcome and contact times of impacts at ``velocity`` [m/s] (scalar or array).
 
         Issues a :class:`LargeStrainWarning` (unless ``warn=False``) when some
@@ -547,35 +554,51 @@ class ContactPair:
         Parameters
         ----------
         velocity : float or array_like
-            Impact speed ``V`` [m/s], >= 0.
+            Impact speed ``V`` [m/s], >= 0 and finite.
+        model : str, optional
+            Name of the impact model (:func:`microimpact.models.available`); default the seed's,
+            ``"thornton_ning_2016"``. Fields a model does not define are NaN.
         warn : bool, optional
             Warn about large strain (default True).
+        **params : float
+            The model's own parameters by name (``microimpact.models.parameters(model)``).
 
         Returns
         -------
         ImpactResult
             Restitution, rebound speed, approaches, forces and contact times (seed
-            eqs. 5-33), shaped like ``velocity``.
+            eqs. 5-33 for the default model), shaped like ``velocity``.
 
         Raises
         ------
         ValueError
-            If ``velocity`` is negative or NaN.
+            If ``velocity`` is negative, NaN or infinite, the model is unknown or a parameter
+            is missing, unknown or invalid.
         """
-        if isinstance(velocity, (int, float)) and not isinstance(velocity, bool):
-            # One speed: the same closed forms with the math module (~10 us instead of ~0.4 ms).
-            d = _kernels.impact_scalar(velocity, *self._args)
-            res = ImpactResult._trusted({k: (np.bool_(x) if type(x) is bool else np.float64(x)) for k, x in d.items()})
-            flagged = d["large_strain"]
+        mod = models.get(model)
+        p = models.resolve_params(mod, params)
+        if type(velocity) is float or type(velocity) is int:
+            # One speed: the model's scalar outcome itself (microseconds; no numpy per field).
+            V = float(velocity)
+            if not 0.0 <= V < math.inf:
+                check_velocity("velocity", V)
+            values = mod.outcome(V, *self._args, p)
+            res = ImpactResult._trusted(
+                {
+                    k: (_TRUE if x == 1.0 else _FALSE) if k in FLAG_FIELDS else np.float64(x)
+                    for k, x in zip(OUTCOME_FIELDS, values)
+                }
+            )
+            flagged = values[_LARGE] == 1.0
         else:
-            out = impact.impact_outcome(velocity, *self._args)
-            times = dynamics.contact_times(velocity, *self._args, outcome=out)
-            res = ImpactResult(**{k: _scalar_or_array(v) for k, v in {**out, **times}.items()})
+            V = check_velocity("velocity", velocity)
+            out = impact.outcome_arrays(mod, V, *(np.float64(a) for a in self._args), p)
+            res = ImpactResult._trusted({k: _scalar_or_array(v) for k, v in out.items()})
             flagged = res.any_large_strain
         if warn and flagged:
             vmin = np.min(np.asarray(res.velocity)[np.asarray(res.large_strain)])
             warnings.warn(
-                f"contact radius exceeds {impact.LARGE_STRAIN_RATIO} R* from V = {vmin:.4g} m/s: "
+                f"contact radius exceeds {LARGE_STRAIN_RATIO} R* from V = {vmin:.4g} m/s: "
                 "outside the small-strain range of the model (results flagged in .large_strain)",
                 LargeStrainWarning,
                 stacklevel=2,
@@ -632,8 +655,7 @@ class ContactPair:
         numpy scalar or ndarray
             Coefficient of restitution ``e`` [-], shaped like ``velocity``.
         """
-        # The fused kernel (numba when installed, else blocked numpy): equal to eq. 27 to 1e-14.
-        return _scalar_or_array(_kernels.restitution_fast(velocity, self.yield_velocity))
+        return _scalar_or_array(impact.restitution_coefficient(velocity, self.yield_velocity))
 
     def ning_loading_time(self) -> float:
         """Ning's high-speed loading time [s] (seed eq. 31).

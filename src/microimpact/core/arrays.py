@@ -97,22 +97,28 @@ for _f in _jit.JITABLE:
     register_jitable(_f)
 
 
-def _loop(n, {args}, {steps}, params, out):
-    for i in _range(n):
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def serial(n, {args}, params, out):
+    for i in range(n):
         r = _fn({calls}{params_arg})
 {stores}
 
 
-_range = numba.prange
-parallel = numba.njit(parallel=True, cache=True, nogil=True)(_loop)
-_range = range
+@numba.njit(parallel=True, cache=True, nogil=True, error_model="numpy")
+def parallel(n, {args}, params, out):
+    for i in numba.prange(n):
+        r = _fn({calls}{params_arg})
+{stores}
 '''
 
+def _generate(fn, kinds: str, nout: int, with_params: bool) -> str:
+    """Source of the loops over ``fn``; ``kinds`` has ``"a"`` (array) or ``"s"`` (scalar) per argument.
 
-def _generate(fn, nargs: int, nout: int, with_params: bool) -> str:
-    args = ", ".join(f"a{k}" for k in range(nargs))
-    steps = ", ".join(f"s{k}" for k in range(nargs))
-    calls = ", ".join(f"a{k}[i * s{k}]" for k in range(nargs))
+    A scalar argument is passed as a float, so the compiler hoists it out of the loop and can
+    vectorise the loop; arrays are indexed directly.
+    """
+    args = ", ".join(f"a{k}" for k in range(len(kinds)))
+    calls = ", ".join(f"a{k}[i]" if c == "a" else f"a{k}" for k, c in enumerate(kinds))
     if nout == 1:
         stores = "        out[0, i] = r"
     else:
@@ -121,7 +127,6 @@ def _generate(fn, nargs: int, nout: int, with_params: bool) -> str:
         module=fn.__module__,
         name=fn.__name__,
         args=args,
-        steps=steps,
         calls=calls,
         params_arg=", params" if with_params else "",
         stores=stores,
@@ -141,16 +146,16 @@ def _write_atomic(path: Path, text: str) -> None:
         raise
 
 
-def _kernels(fn, nargs: int, nout: int, with_params: bool):
-    key = (fn, nargs, nout, with_params)
+def _kernels(fn, kinds: str, nout: int, with_params: bool):
+    key = (fn, kinds, nout, with_params)
     found = _KERNELS.get(key)
     if found is not None:
         return found
     import numba  # noqa: F401  (the first compiled call pays for this import, once per process)
 
-    text = _generate(fn, nargs, nout, with_params)
+    text = _generate(fn, kinds, nout, with_params)
     tag = hashlib.sha256((_source_hash() + text).encode()).hexdigest()[:16]
-    stem = f"{fn.__module__.replace('.', '_')}__{fn.__name__}_{tag}"
+    stem = f"{fn.__module__.replace('.', '_')}__{fn.__name__}_{kinds}_{tag}"
     for folder in (cache_dir(), Path(tempfile.gettempdir()) / f"microimpact-{os.getuid() if hasattr(os, 'getuid') else 0}"):
         path = folder / "kernels" / f"{stem}.py"
         try:
@@ -161,20 +166,17 @@ def _kernels(fn, nargs: int, nout: int, with_params: bool):
             continue
     else:  # pragma: no cover - no writable folder at all
         raise OSError(f"no writable cache folder for compiled loops (tried {cache_dir()})")
-    spec = importlib.util.spec_from_file_location(f"microimpact_kernels.{stem}", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    serial = _serial(module)
-    found = (serial, module.parallel)
+    # numba's cache finds the module again by name when it loads the compiled code.
+    name = f"_microimpact_kernel_{stem}"
+    module = sys.modules.get(name)
+    if module is None:
+        spec = importlib.util.spec_from_file_location(name, path)
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[name] = module
+        spec.loader.exec_module(module)
+    found = (module.serial, module.parallel)
     _KERNELS[key] = found
     return found
-
-
-def _serial(module):
-    import numba
-
-    # The same loop with range: compiled once more (cached too) under its own name.
-    return numba.njit(cache=True, nogil=True)(module._loop)
 
 
 def _flat(arrays, shape):
@@ -222,9 +224,11 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
     engine = backend or backend_for(n)
     with_params = params is not None
     if engine == "numba":
-        serial, parallel = _kernels(fn, len(arrays), nout, with_params)
+        kinds = "".join("s" if s == 0 else "a" for s in steps)
+        serial, parallel = _kernels(fn, kinds, nout, with_params)
         kern = parallel if n >= PARALLEL_MIN else serial
-        kern(n, *flats, *steps, tuple(params) if with_params else (), out)
+        inputs = [float(f[0]) if s == 0 else f for f, s in zip(flats, steps)]
+        kern(n, *inputs, tuple(params) if with_params else (), out)
     elif engine == "python":
         cols = [itertools.repeat(float(f[0]), n) if s == 0 else f.tolist() for f, s in zip(flats, steps)]
         if with_params:

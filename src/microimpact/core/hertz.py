@@ -42,7 +42,9 @@ def max_approach(V, E, R, m):
 @jitable
 def time_scale(V, E, R, m):
     """``alpha_m / V = (15 m/(16 E* R^(1/2)))^(2/5) V^(-1/5)`` [s]; ``inf`` at ``V = 0``, 0 at ``V = inf``."""
-    return (15.0 * m / (16.0 * E * math.sqrt(R))) ** 0.4 * (V ** (-0.2) if V > 0.0 else math.inf)
+    if not V > 0.0:
+        return math.inf
+    return (15.0 * m / (16.0 * E * math.sqrt(R))) ** 0.4 * V ** (-0.2)
 
 
 @jitable

@@ -21,7 +21,7 @@ import math
 from .. import hertz
 from .._jit import jitable
 from ..constants import LARGE_STRAIN_RATIO
-from ..special import BETA_25_12, incomplete_beta
+from ..special import BETA_25_12, hertz_beta
 
 NAME = "thornton_ning_2016"
 TITLE = "Elastic-plastic impact without adhesion (Aerosol Sci. Tech. 50(4), 2016; Thornton & Ning 1998)"
@@ -38,10 +38,15 @@ def yield_point(E, R, m, p_y):
     """
     if p_y == math.inf:
         return math.inf, math.inf, math.inf
-    ac = math.pi * p_y * R / (2.0 * E)  # yield contact radius a_y (eq. 4 with p0 = p_y)
-    a_y = ac * ac / R
+    a_y = yield_approach(p_y, E, R)
     P_y = hertz.force(a_y, E, R)
     return a_y, P_y, math.sqrt(0.8 * P_y * a_y / m)
+
+
+@jitable
+def yield_velocity_sphere_on_flat(p_y, E, rho):
+    """``V_y = (pi^4/40)^(1/2) (p_y^5/(E*^4 rho))^(1/2)`` [m/s] (eq. 28, a sphere on a flat)."""
+    return math.sqrt(math.pi**4 / 40.0) * math.sqrt(p_y**5 / (E**4 * rho))
 
 
 @jitable
@@ -86,6 +91,18 @@ def restitution(v):
 
 
 @jitable
+def restitution_at(V, V_y):
+    """Restitution coefficient of an impact at ``V`` [m/s] for the yield velocity ``V_y`` [m/s] (eq. 27)."""
+    return restitution(normalized_velocity(V, V_y))
+
+
+@jitable
+def energy_loss(e):
+    """Fraction of the kinetic energy lost, ``1 - e^2`` [-] (eq. 29); also takes arrays."""
+    return 1.0 - e * e
+
+
+@jitable
 def normalized_velocity(V, V_y):
     """``v = V/V_y``; 0 where ``V_y = inf`` (``p_y = inf``: every impact elastic, even ``V = inf``)."""
     return 0.0 if V_y == math.inf else V / V_y
@@ -99,8 +116,11 @@ def elastic_stage_time(V, E, R, m, V_y):
     """
     if V == math.inf:
         return 0.0
-    u = (V_y / V) ** 2 if V > V_y else 1.0
-    return 0.4 * hertz.time_scale(V, E, R, m) * incomplete_beta(u, 0.4, 0.5)
+    u = 1.0
+    if V > V_y:
+        w = V_y / V
+        u = w * w  # w * w, not w ** 2: compiled code must give the same bits
+    return 0.4 * hertz.time_scale(V, E, R, m) * hertz_beta(u)
 
 
 @jitable
@@ -154,7 +174,7 @@ def outcome(V, E, R, m, p_y, params):
     if V == inf:
         tU = 0.0
     elif elastic:
-        tU = 0.4 * BETA_25_12 * hertz.time_scale(V, E, R, m)
+        tU = 0.4 * BETA_25_12 * hertz.time_scale(V, E, R, m)  # the Hertz half-period
     else:
         # Hertz unloading with R_p from alpha* to alpha_p (eq. 26): the stage-1 integral run backwards.
         tU = 0.4 * BETA_25_12 * (max_approach - plastic) / rebound
@@ -170,7 +190,7 @@ def outcome(V, E, R, m, p_y, params):
         plastic,
         max_force,
         R_p,
-        1.0 - e * e,
+        energy_loss(e),
         a_max,
         1.0 if a_max / R > LARGE_STRAIN_RATIO else 0.0,
         t1,
@@ -182,29 +202,75 @@ def outcome(V, E, R, m, p_y, params):
 
 
 @jitable
-def loading_force(alpha, E, R, p_y):
-    """Loading force [N]: Hertz up to ``alpha_y`` (eq. 2), then ``P_y + pi p_y R* (alpha - alpha_y)`` (eqs. 6, 8)."""
-    if p_y == math.inf:
-        return hertz.force(alpha, E, R)
-    ac = math.pi * p_y * R / (2.0 * E)
-    a_y = ac * ac / R
-    if alpha <= a_y:
-        return hertz.force(alpha, E, R)
+def yield_contact_radius(p_y, E, R):
+    """Contact radius at yield, ``a_y = pi p_y R*/(2 E*)`` [m] (eq. 4 with ``p0 = p_y``)."""
+    return math.pi * p_y * R / (2.0 * E)
+
+
+@jitable
+def yield_approach(p_y, E, R):
+    """Yield approach ``alpha_y = a_y^2/R* = (pi p_y/(2 E*))^2 R*`` [m] (eq. 5)."""
+    ac = yield_contact_radius(p_y, E, R)
+    return ac * ac / R
+
+
+@jitable
+def plastic_loading_force(alpha, E, R, p_y):
+    """Plastic loading force ``P_y + pi p_y R* (alpha - alpha_y)`` [N] (eqs. 6, 8), for ``alpha >= alpha_y``."""
+    a_y = yield_approach(p_y, E, R)
     return hertz.force(a_y, E, R) + math.pi * p_y * R * (alpha - a_y)
 
 
 @jitable
-def unloading_geometry(alpha_max, E, R, p_y):
-    """``(P*, R_p, alpha_p)`` of unloading from ``alpha* = alpha_max`` (eqs. 9-11).
+def loading_force(alpha, E, R, p_y):
+    """Loading force [N]: Hertz up to ``alpha_y`` (eq. 2), then plastic (eqs. 6, 8)."""
+    if p_y == math.inf or alpha <= yield_approach(p_y, E, R):
+        return hertz.force(alpha, E, R)
+    return plastic_loading_force(alpha, E, R, p_y)
 
-    ``P*`` is the loading force there, ``R_p = R* F_e/P*`` with ``F_e`` the Hertz force at ``alpha*``
-    (eq. 9), ``alpha_p = alpha* (1 - P*/F_e)`` (eq. 11). Below yield: ``R_p = R*``, ``alpha_p = 0``.
-    """
-    P_max = loading_force(alpha_max, E, R, p_y)
+
+@jitable
+def unloading_radius(alpha_max, P_max, E, R):
+    """``R_p = R* F_e/P*`` [m] (eq. 9), ``F_e`` the Hertz force at ``alpha*``; ``R*`` where ``P* = 0``."""
+    if not P_max > 0.0:
+        return R
+    return R * (hertz.force(alpha_max, E, R) / P_max)
+
+
+@jitable
+def plastic_approach(alpha_max, P_max, E, R):
+    """Plastic approach ``alpha_p = alpha* (1 - P*/F_e)`` [m] (eq. 11), >= 0; 0 where ``F_e = 0``."""
     F_e = hertz.force(alpha_max, E, R)
-    if P_max >= F_e:
-        return P_max, R, 0.0
-    return P_max, R * F_e / P_max, max(alpha_max * (1.0 - P_max / F_e), 0.0)
+    if not F_e > 0.0:
+        return 0.0
+    return max(alpha_max * (1.0 - P_max / F_e), 0.0)
+
+
+@jitable
+def unloading_force(alpha, a_p, R_p, E):
+    """Unloading force ``4/3 E* R_p^(1/2) (alpha - alpha_p)^(3/2)`` [N] (eq. 10); 0 below ``alpha_p``."""
+    return hertz.force(max(alpha - a_p, 0.0), E, R_p)
+
+
+@jitable
+def unloading_force_from(alpha, alpha_max, E, R, p_y):
+    """Force [N] at ``alpha`` while unloading from the maximum approach ``alpha_max`` (eqs. 9-11, 10)."""
+    P_max = loading_force(alpha_max, E, R, p_y)
+    return unloading_force(alpha, plastic_approach(alpha_max, P_max, E, R), unloading_radius(alpha_max, P_max, E, R), E)
+
+
+@jitable
+def normalized_loading_force(a):
+    """``P/P_y`` against ``alpha/alpha_y`` on loading: ``a^(3/2)`` to 1, then ``(3a - 1)/2`` (eqs. 13, 14)."""
+    return a * math.sqrt(a) if a <= 1.0 else (3.0 * a - 1.0) / 2.0
+
+
+@jitable
+def normalized_unloading_force(a, am):
+    """``P/P_y`` on unloading from ``am = alpha*/alpha_y`` (eq. 15): ``(R_p/R*)^(1/2) (a - a_p)^(3/2)``."""
+    Pm = normalized_loading_force(am)
+    d = max(a - (am - Pm / math.sqrt(am)), 0.0)
+    return math.sqrt(am * math.sqrt(am) / Pm) * (d * math.sqrt(d))
 
 
 @jitable
@@ -214,7 +280,4 @@ def force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
         return 0.0
     if alpha >= alpha_max:
         return loading_force(alpha, E, R, p_y)
-    P_max, R_p, a_p = unloading_geometry(alpha_max, E, R, p_y)
-    if alpha <= a_p:
-        return 0.0
-    return hertz.force(alpha - a_p, E, R_p)
+    return unloading_force_from(alpha, alpha_max, E, R, p_y)
