@@ -35,6 +35,7 @@ def _R(x):
 def _py(x):
     return check_positive("limiting_pressure", x, allow_inf=True)
 
+
 __all__ = [
     "hertz_force",
     "hertz_contact_radius",
@@ -524,5 +525,3 @@ def normalized_unloading_force(alpha_hat, max_alpha_hat):
         np.asarray(alpha_hat, dtype=float),
         check_positive("max_alpha_hat", max_alpha_hat),
     )[0]
-
-

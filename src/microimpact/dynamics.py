@@ -58,7 +58,6 @@ __all__ = [
 ]
 
 
-
 def incomplete_beta(u, a=0.4, b=0.5):
     """Non-regularised incomplete beta function ``B(u; a, b) = I_u(a, b) B(a, b)`` [-].
 

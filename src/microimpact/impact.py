@@ -445,5 +445,3 @@ def outcome_arrays(model, V, E, R, m, p_y, params) -> dict:
     for name in ("elastic", "large_strain"):
         out[name] = out[name] == 1.0
     return out
-
-

@@ -111,6 +111,7 @@ def parallel(n, {args}, params, out):
 {stores}
 '''
 
+
 def _generate(fn, kinds: str, nout: int, with_params: bool) -> str:
     """Source of the loops over ``fn``; ``kinds`` has ``"a"`` (array) or ``"s"`` (scalar) per argument.
 
@@ -156,7 +157,10 @@ def _kernels(fn, kinds: str, nout: int, with_params: bool):
     text = _generate(fn, kinds, nout, with_params)
     tag = hashlib.sha256((_source_hash() + text).encode()).hexdigest()[:16]
     stem = f"{fn.__module__.replace('.', '_')}__{fn.__name__}_{kinds}_{tag}"
-    for folder in (cache_dir(), Path(tempfile.gettempdir()) / f"microimpact-{os.getuid() if hasattr(os, 'getuid') else 0}"):
+    for folder in (
+        cache_dir(),
+        Path(tempfile.gettempdir()) / f"microimpact-{os.getuid() if hasattr(os, 'getuid') else 0}",
+    ):
         path = folder / "kernels" / f"{stem}.py"
         try:
             if not path.exists() or path.read_text() != text:

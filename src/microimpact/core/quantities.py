@@ -101,7 +101,7 @@ HISTORY_FIELDS = ("time", "approach", "approach_velocity", "force", "stage")
 
 
 def label(name: str) -> str:
-    """``description (eq. N)`` of a quantity, for headers and attributes."""
+    """The description of a quantity followed by its seed equation, for headers and attributes."""
     q = QUANTITIES[name]
     return f"{q.description} (eq. {q.equation})" if q.equation else q.description
 

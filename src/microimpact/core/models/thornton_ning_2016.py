@@ -1,7 +1,7 @@
 """The seed's dynamic elastic-plastic impact model (the default model).
 
 Source: "Dynamic impact model of plastic deformation between micro-particles and flat surfaces
-without adhesion", *Aerosol Science and Technology* **50**(4):321-330 (2016), eqs. 1-33 (restored
+without adhesion", *Aerosol Science and Technology* 50(4):321-330 (2016), eqs. 1-33 (restored
 in the theory page), after Thornton & Ning (1998). Loading is Hertzian up to the yield approach
 ``alpha_y`` (eqs. 2, 5, 7), then linear with the limiting pressure ``p_y`` (eqs. 6, 8); unloading is
 Hertzian with the enlarged radius ``R_p`` from the plastic approach ``alpha_p`` (eqs. 9-11). The
