@@ -28,13 +28,13 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from . import contact
-from ._validation import check_nonnegative, check_positive, check_velocity
-from .core import hertz
+from ._validation import check_nonnegative, check_pair, check_positive, check_velocity
+from .core import hertz, quantities
 from .core import special as _special
 from .core.arrays import evaluate
 from .core.models import thornton_ning_2016 as _seed
 from .core.special import BETA_25_12, HERTZ_TIME_CONSTANT
-from .impact import _check_pair, elastic_max_approach, impact_outcome, outcome_arrays, yield_velocity
+from .impact import elastic_max_approach, impact_outcome, outcome_arrays, yield_velocity
 
 __all__ = [
     "BETA_25_12",
@@ -124,7 +124,7 @@ def hertz_contact_time(velocity, effective_modulus, effective_radius, effective_
     0.03347
     """
     V = check_velocity("velocity", velocity)
-    E, R, m, _ = _check_pair(effective_modulus, effective_radius, effective_mass, np.inf)
+    E, R, m, _ = check_pair(effective_modulus, effective_radius, effective_mass, np.inf)
     return evaluate(hertz.contact_time, V, E, R, m)[0]
 
 
@@ -164,7 +164,7 @@ def deresiewicz_contact_time(velocity, effective_modulus, effective_radius, effe
     0.03349
     """
     V = check_velocity("velocity", velocity)
-    E, R, m, _ = _check_pair(effective_modulus, effective_radius, effective_mass, 1.0)
+    E, R, m, _ = check_pair(effective_modulus, effective_radius, effective_mass, 1.0)
     with np.errstate(divide="ignore"):
         return constant * (m**2 / (R * E**2 * V)) ** 0.2
 
@@ -375,7 +375,7 @@ def contact_times(velocity, effective_modulus, effective_radius, effective_mass,
     """
     if outcome is None or "contact_time" not in outcome:
         V = check_velocity("velocity", velocity)
-        E, R, m, p_y = _check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
+        E, R, m, p_y = check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
         outcome = outcome_arrays(_seed, V, E, R, m, p_y, ())
     return {name: outcome[name] for name in TIME_FIELDS}
 
@@ -392,33 +392,29 @@ STAGE_NAMES = {
     3: "elastic unloading (eq. 10)",
 }
 
-#: Columns of a history, with units and a short description (CSV headers, CLI).
-HISTORY_COLUMNS: dict[str, tuple[str, str]] = {
-    "time": ("s", "time since first contact t"),
-    "approach": ("m", "approach alpha (negative: a gap, no contact)"),
-    "approach_velocity": ("m/s", "approach velocity dalpha/dt (positive while approaching)"),
-    "force": ("N", "contact force P"),
-    "stage": ("1", "0 no contact, 1 Hertz loading, 2 plastic loading, 3 elastic unloading"),
-}
+#: Columns of a history: name -> (unit, description), from the one table of quantities.
+HISTORY_COLUMNS: dict[str, tuple[str, str]] = quantities.table(quantities.HISTORY_FIELDS)
 
-#: Scalars of a history, with units and a short description.
-HISTORY_SCALARS: dict[str, tuple[str, str]] = {
-    "velocity": ("m/s", "impact speed V"),
-    "rebound_velocity": ("m/s", "rebound speed V_r"),
-    "max_approach": ("m", "maximum approach alpha*"),
-    "plastic_approach": ("m", "plastic approach alpha_p"),
-    "max_force": ("N", "maximum force P*"),
-    "elastic_stage_time": ("s", "stage 1 duration t1"),
-    "plastic_stage_time": ("s", "stage 2 duration t2"),
-    "loading_time": ("s", "loading time t_L = t1 + t2"),
-    "unloading_time": ("s", "unloading time t_U"),
-    "contact_time": ("s", "contact time t_c = t_L + t_U"),
-    "yield_velocity": ("m/s", "yield velocity V_y"),
-    "effective_modulus": ("Pa", "effective modulus E*"),
-    "effective_radius": ("m", "effective radius R*"),
-    "effective_mass": ("kg", "effective mass m*"),
-    "limiting_pressure": ("Pa", "limiting contact pressure p_y"),
-}
+#: Scalars of a history: name -> (unit, description), from the one table of quantities.
+HISTORY_SCALARS: dict[str, tuple[str, str]] = quantities.table(
+    (
+        "velocity",
+        "rebound_velocity",
+        "max_approach",
+        "plastic_approach",
+        "max_force",
+        "elastic_stage_time",
+        "plastic_stage_time",
+        "loading_time",
+        "unloading_time",
+        "contact_time",
+        "yield_velocity",
+        "effective_modulus",
+        "effective_radius",
+        "effective_mass",
+        "limiting_pressure",
+    )
+)
 
 
 def _scalar_pair(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure):
@@ -432,7 +428,7 @@ def _scalar_pair(velocity, effective_modulus, effective_radius, effective_mass, 
     V = float(check_velocity("velocity", out[0]))
     if not (0.0 < V < np.inf):
         raise ValueError(f"velocity must be positive and finite for a history, got {V!r}")
-    E, R, m, p_y = (float(x) for x in _check_pair(*out[1:]))
+    E, R, m, p_y = (float(x) for x in check_pair(*out[1:]))
     return V, E, R, m, p_y
 
 

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validation import check_positive, check_velocity
+from ._validation import check_pair, check_positive, check_velocity
 from .core import hertz
 from .core.arrays import evaluate
 from .core.constants import LARGE_STRAIN_RATIO
@@ -44,15 +44,6 @@ __all__ = [
     "energy_loss_fraction",
     "impact_outcome",
 ]
-
-
-def _check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure):
-    return (
-        check_positive("effective_modulus", effective_modulus),
-        check_positive("effective_radius", effective_radius),
-        check_positive("effective_mass", effective_mass),
-        check_positive("limiting_pressure", limiting_pressure, allow_inf=True),
-    )
 
 
 def yield_velocity(limiting_pressure, effective_modulus, effective_radius, effective_mass):
@@ -91,7 +82,7 @@ def yield_velocity(limiting_pressure, effective_modulus, effective_radius, effec
     >>> round(float(yield_velocity(156e6, 1.31e9, 2.45e-6, m)), 3)
     7.523
     """
-    E, R, m, p_y = _check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
+    E, R, m, p_y = check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
     return evaluate(_seed.yield_point, E, R, m, p_y, nout=3)[2]
 
 
@@ -429,7 +420,7 @@ def impact_outcome(velocity, effective_modulus, effective_radius, effective_mass
         ``large_strain`` (bool, ``a*/R* > 0.3``).
     """
     V = check_velocity("velocity", velocity)
-    E, R, m, p_y = _check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
+    E, R, m, p_y = check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
     out = outcome_arrays(_seed, V, E, R, m, p_y, ())
     return {name: out[name] for name in OUTCOME_FIELDS[: OUTCOME_FIELDS.index("large_strain") + 1]}
 

@@ -16,7 +16,7 @@ import numpy as np
 
 from . import contact, dynamics, impact
 from ._validation import check_positive, check_velocity
-from .core import models
+from .core import models, quantities
 from .core.constants import LARGE_STRAIN_RATIO
 from .core.quantities import FLAG_FIELDS, OUTCOME_FIELDS
 from .dynamics import ImpactHistory
@@ -38,27 +38,9 @@ def _scalar_or_array(x):
     return x[()] if x.ndim == 0 else x
 
 
-# Quantities of an ImpactResult, with units and a short description: used by the
-# CLI table, the sweep's attrs and the CSV headers.
-RESULT_FIELDS: dict[str, tuple[str, str]] = {
-    "velocity": ("m/s", "impact speed V"),
-    "restitution": ("1", "coefficient of restitution e (eq. 27)"),
-    "rebound_velocity": ("m/s", "rebound speed V_r = e V"),
-    "energy_loss": ("1", "fraction of kinetic energy lost, 1 - e^2 (eq. 29)"),
-    "max_approach": ("m", "maximum approach alpha* (eq. 22)"),
-    "plastic_approach": ("m", "plastic (unrecoverable) approach alpha_p (eq. 11)"),
-    "max_force": ("N", "maximum contact force P*"),
-    "unloading_radius": ("m", "curvature radius of the flattened contact R_p (eq. 9)"),
-    "max_contact_radius": ("m", "contact radius at maximum approach a* = (R* alpha*)^(1/2)"),
-    "elastic_stage_time": ("s", "stage 1 (Hertz loading) duration t1 (eq. 20)"),
-    "plastic_stage_time": ("s", "stage 2 (plastic loading) duration t2 (eq. 23)"),
-    "loading_time": ("s", "loading time t_L = t1 + t2 (eq. 32)"),
-    "unloading_time": ("s", "unloading time t_U (eq. 26)"),
-    "contact_time": ("s", "contact time t_c = t_L + t_U (eq. 33)"),
-    "normalized_velocity": ("1", "V / V_y"),
-    "elastic": ("1", "True where V <= V_y (purely elastic impact)"),
-    "large_strain": ("1", "True where a*/R* > 0.3 (outside the small-strain range)"),
-}
+#: Quantities of an ImpactResult: name -> (unit, description), from the one table
+#: (:data:`microimpact.core.quantities.QUANTITIES`); the CLI table, the sweep's attrs and CSV headers use it.
+RESULT_FIELDS: dict[str, tuple[str, str]] = quantities.table([f for f in OUTCOME_FIELDS if f != "yield_velocity"])
 
 
 @dataclass(frozen=True, eq=False)

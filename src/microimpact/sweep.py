@@ -26,9 +26,10 @@ import warnings
 
 import numpy as np
 
-from . import dynamics, impact
+from . import impact
 from ._optional import require
-from ._validation import check_poisson, check_positive, check_velocity
+from ._validation import check_pair, check_poisson, check_positive, check_velocity
+from .core import models, quantities
 from .materials import effective_modulus as _effective_modulus
 from .materials import sphere_mass
 from .pair import RESULT_FIELDS, ContactPair
@@ -44,17 +45,19 @@ __all__ = [
 ]
 
 #: The inputs that can be swept, in the order their dimensions appear: name -> (unit, description).
-SWEEP_DIMENSIONS: dict[str, tuple[str, str]] = {
-    "velocity": ("m/s", "impact speed V"),
-    "limiting_pressure": ("Pa", "limiting contact pressure p_y"),
-    "particle_modulus": ("Pa", "Young's modulus of the particle E1"),
-    "surface_modulus": ("Pa", "Young's modulus of the surface E2"),
-    "density": ("kg/m^3", "particle density rho"),
-    "radius": ("m", "particle radius R (sphere on a flat: R* = R)"),
-    "particle_poisson": ("1", "Poisson ratio of the particle nu1"),
-    "surface_poisson": ("1", "Poisson ratio of the surface nu2"),
-    "effective_modulus": ("Pa", "effective modulus E* = 1/((1-nu1^2)/E1 + (1-nu2^2)/E2)"),
-}
+SWEEP_DIMENSIONS: dict[str, tuple[str, str]] = quantities.table(
+    (
+        "velocity",
+        "limiting_pressure",
+        "particle_modulus",
+        "surface_modulus",
+        "density",
+        "radius",
+        "particle_poisson",
+        "surface_poisson",
+        "effective_modulus",
+    )
+)
 
 _MATERIAL_INPUTS = ("particle_modulus", "particle_poisson", "surface_modulus", "surface_poisson")
 
@@ -79,12 +82,9 @@ _IMPACT_FIELDS = (
 )
 _BOOL_FIELDS = ("elastic", "large_strain")
 
-_EXTRA_FIELDS: dict[str, tuple[str, str]] = {
-    "yield_velocity": ("m/s", "yield velocity V_y, 1/2 m* V_y^2 = 2/5 P_y alpha_y (eq. 28)"),
-    "effective_modulus": ("Pa", "effective modulus E*"),
-    "effective_radius": ("m", "effective radius R*"),
-    "effective_mass": ("kg", "effective mass m*"),
-}
+_EXTRA_FIELDS: dict[str, tuple[str, str]] = quantities.table(
+    ("yield_velocity", "effective_modulus", "effective_radius", "effective_mass")
+)
 
 #: Every data variable a sweep returns: name -> (unit, description).
 SWEEP_VARIABLES: dict[str, tuple[str, str]] = {
@@ -139,9 +139,9 @@ def _evaluate(group, p, spec):
     if group == "yield_velocity":
         return {"yield_velocity": impact.yield_velocity(p_y, E, R, m)}
     if group == "impact":
-        out = impact.impact_outcome(p["velocity"], E, R, m, p_y)
-        out.update(dynamics.contact_times(p["velocity"], E, R, m, p_y, outcome=out))
-        return out
+        V = check_velocity("velocity", p["velocity"])
+        E, R, m, p_y = check_pair(E, R, m, p_y)
+        return impact.outcome_arrays(models.get(spec.get("model", models.DEFAULT)), V, E, R, m, p_y, ())
     raise ValueError(f"unknown group {group!r}")  # pragma: no cover
 
 

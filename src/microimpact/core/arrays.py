@@ -20,12 +20,10 @@ poliastro's split (compiled core on floats; wrappers only convert and call).
 
 from __future__ import annotations
 
-import hashlib
-import importlib.util
 import itertools
 import os
 import sys
-import tempfile
+import threading
 from pathlib import Path
 
 import numpy as np
@@ -43,7 +41,7 @@ PARALLEL_MIN = 50_000
 
 _CORE = Path(__file__).resolve().parent
 _KERNELS: dict = {}
-_REGISTERED: set = set()
+_LOCK = threading.Lock()  # dask evaluates blocks in threads: one thread builds a loop, the others wait
 
 
 def _forced() -> str:
@@ -75,6 +73,8 @@ def cache_dir() -> Path:
 
 
 def _source_hash() -> str:
+    import hashlib
+
     h = hashlib.sha256()
     for path in sorted(_CORE.rglob("*.py")):
         h.update(path.relative_to(_CORE).as_posix().encode())
@@ -135,6 +135,8 @@ def _generate(fn, kinds: str, nout: int, with_params: bool) -> str:
 
 
 def _write_atomic(path: Path, text: str) -> None:
+    import tempfile
+
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name + ".", suffix=".tmp")
     try:
@@ -152,6 +154,18 @@ def _kernels(fn, kinds: str, nout: int, with_params: bool):
     found = _KERNELS.get(key)
     if found is not None:
         return found
+    with _LOCK:
+        found = _KERNELS.get(key)
+        if found is None:
+            found = _KERNELS[key] = _build(fn, kinds, nout, with_params)
+    return found
+
+
+def _build(fn, kinds: str, nout: int, with_params: bool):
+    import hashlib
+    import importlib.util
+    import tempfile
+
     import numba  # noqa: F401  (the first compiled call pays for this import, once per process)
 
     text = _generate(fn, kinds, nout, with_params)
@@ -178,9 +192,7 @@ def _kernels(fn, kinds: str, nout: int, with_params: bool):
         module = importlib.util.module_from_spec(spec)
         sys.modules[name] = module
         spec.loader.exec_module(module)
-    found = (module.serial, module.parallel)
-    _KERNELS[key] = found
-    return found
+    return module.serial, module.parallel
 
 
 def _flat(arrays, shape):
