@@ -78,7 +78,7 @@ def _write_csv(path, comments, header, rows):
 def _sized_pair(pair, diameter):
     if pair.density is None:
         raise ValueError("the pair needs a particle density to be rescaled to other diameters")
-    return pair.resized(radius=0.5 * float(check_positive("diameter", diameter)))
+    return pair.vary(diameter=float(check_positive("diameter", diameter)))
 
 
 #: Default grid of :func:`write_tables`: ``V/V_y`` from 0 to 100.
