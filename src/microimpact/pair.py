@@ -22,7 +22,14 @@ from .core.quantities import FLAG_FIELDS, OUTCOME_FIELDS
 from .dynamics import ImpactHistory
 from .materials import DEFAULT_K, PAPER_CASES, Material, effective_modulus, get_material, sphere_mass
 
-__all__ = ["ContactPair", "ImpactResult", "LargeStrainWarning", "PAIR_INPUTS", "DEFAULT_POISSON", "DEFAULT_SURFACE_MODULUS"]
+__all__ = [
+    "ContactPair",
+    "ImpactResult",
+    "LargeStrainWarning",
+    "PAIR_INPUTS",
+    "DEFAULT_POISSON",
+    "DEFAULT_SURFACE_MODULUS",
+]
 
 #: Poisson ratio of both bodies when a pair has no materials (the seed's Fig. 4 takes 0.3).
 DEFAULT_POISSON = 0.3

@@ -891,7 +891,7 @@ def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progre
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     report = PaperReport(out_dir=out)
-    from .figures import _style
+    from .figures import style as _style
 
     plt = _style.pyplot()
     pngs = {}

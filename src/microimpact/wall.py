@@ -35,8 +35,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._validation import check_nonnegative, check_positive
-from .adhesion import _adhesive, sticking_velocity
-from .impact import _restitution, yield_velocity
+from .adhesion import sticking_velocity
+from .core import adhesion as _adhesion
+from .core.arrays import evaluate
+from .impact import yield_velocity
 from .materials import DEFAULT_K, Material, get_material
 from .materials import effective_modulus as _effective_modulus
 
@@ -289,7 +291,8 @@ def wall_interaction(
     vn = vT[0] * nT[0] + vT[1] * nT[1] + vT[2] * nT[2]
     approaching = vn < 0.0
     V = np.where(approaching, -vn, 0.0)
-    e, stuck = _adhesive(V, _restitution(V, Vy), Vs)
+    e, stuck = evaluate(_adhesion.restitution, V, Vy, Vs, nout=2)
+    stuck = stuck == 1.0
     stuck &= approaching
     e = np.where(approaching, e, 1.0)
     Jn_over_m = (1.0 + e) * V  # normal impulse / m

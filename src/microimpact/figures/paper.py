@@ -37,7 +37,7 @@ from scipy import optimize
 
 from .. import contact
 from ..pair import ContactPair
-from . import _style
+from . import style as _style
 
 __all__ = [
     "COLUMNS",

@@ -25,13 +25,16 @@ __all__ = [
     "shade_large_strain",
 ]
 
-#: Single-column journal figure [in] and raster resolution [dpi].
+#: Single-column journal figure [in].
 FIGSIZE = (3.5, 2.8)
+#: Raster resolution [dpi].
 DPI = 300
 
 #: Okabe-Ito colours (black, vermillion, blue, bluish green, orange, reddish purple, sky blue).
 COLORS = ["#000000", "#D55E00", "#0072B2", "#009E73", "#E69F00", "#CC79A7", "#56B4E9"]
+#: Line styles, one per series, so that figures survive grey-scale printing.
 LINESTYLES = ["-", "--", "-.", ":", (0, (5, 1.5, 1, 1.5, 1, 1.5)), (0, (8, 2))]
+#: Markers, one per series of measured points.
 MARKERS = ["o", "s", "^", "D", "v", "P"]
 
 _RC = {

@@ -1,0 +1,43 @@
+"""Adhesion at impact: Thornton & Ning's (1998) sticking velocity and the adhesive energy loss.
+
+Thornton, C. & Ning, Z. (1998), "A theoretical model for the stick/bounce behaviour of adhesive,
+elastic-plastic spheres", *Powder Technology* 99:154-162: the elastic-adhesive sticking velocity
+``V_s = (14.18/m*)^(1/2) (G^5 R*^4/E*^2)^(1/6)`` (in terms of the work of adhesion ``G``), and the adhesive loss entering the restitution as ``e^2 = e_p^2 - (V_s/V)^2``, the particle
+sticking when ``e_p V <= V_s``.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ._jit import jitable
+from .models.thornton_ning_2016 import restitution_at
+
+__all__ = ["STICKING_CONSTANT", "sticking_velocity", "adhesive", "restitution"]
+
+#: ``14.18``: the constant of Thornton & Ning's (1998) sticking velocity. It is
+#: ``2 x 7.092``, the JKR work (in units of ``(G^5 R*^4 / E*^2)^(1/3)``) needed to pull
+#: a contact from zero approach (contact radius ``a_0``) to separation at
+#: ``a_0 / 4^(2/3)``, with ``G`` the work of adhesion (pull-off force ``1.5 pi G R*``).
+STICKING_CONSTANT = 14.18
+
+
+@jitable
+def sticking_velocity(G, E, R, m):
+    """``V_s = (14.18/m*)^(1/2) (G^5 R*^4 / E*^2)^(1/6)`` [m/s] (Thornton & Ning 1998); 0 without adhesion."""
+    return math.sqrt(STICKING_CONSTANT / m) * (G**5 * R**4 / E**2) ** (1.0 / 6.0)
+
+
+@jitable
+def adhesive(V, e_p, V_s):
+    """``(e, stuck)``: ``e = (e_p^2 - (V_s/V)^2)^(1/2)``, or ``(0, 1)`` when ``e_p V <= V_s`` (sticks)."""
+    if V_s > 0.0 and e_p * V <= V_s:
+        return 0.0, 1.0
+    ratio = V_s / V if V > 0.0 else 0.0
+    return math.sqrt(max(e_p * e_p - ratio * ratio, 0.0)), 0.0
+
+
+@jitable
+def restitution(V, V_y, V_s):
+    """``(e, stuck)`` of an adhesive elastic-plastic impact: the seed's ``e_p(V/V_y)`` (eq. 27) with the loss."""
+    return adhesive(V, restitution_at(V, V_y), V_s)
