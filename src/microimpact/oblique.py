@@ -52,6 +52,9 @@ __all__ = [
     "universal_table",
     "integrate_oblique_ode",
     "table_c_source",
+    "ALUMINA_CASE",
+    "alumina_pair",
+    "measured_alumina",
 ]
 
 #: Tangential models :func:`oblique_impact` knows, by name.
@@ -202,7 +205,8 @@ def _table(kappa, dpsi, psi_max, n_x, x_min, steps):
     log_x = np.linspace(math.log10(x_min), 0.0, n_x)
     values = np.empty((n_x, psi.size))
     for j, lx in enumerate(log_x):
-        values[j] = universal_curve(psi, kappa, 10.0**lx, steps=steps)[0]
+        F, _, regime = universal_curve(psi, kappa, 10.0**lx, steps=steps)
+        values[j] = np.where(regime == tg.REGIME_SLIDING, 1.0, F)  # exactly the Coulomb limit
     if not np.all(values[:, -1] == 1.0):  # pragma: no cover - grid too short for this kappa
         raise RuntimeError(f"psi_max = {psi_max} does not reach sliding throughout for kappa = {kappa}")
     values.setflags(write=False)
@@ -388,7 +392,9 @@ def oblique_impact(
         raise ValueError(f"method must be 'table' or 'direct', got {method!r}")
     speed = np.asarray(velocity, dtype=float)
     if np.any(~(speed > 0)) or np.any(~np.isfinite(speed)):
-        raise ValueError(f"velocity must be positive and finite, got {float(speed[~(speed > 0) | ~np.isfinite(speed)].flat[0])!r}")
+        raise ValueError(
+            f"velocity must be positive and finite, got {float(speed[~(speed > 0) | ~np.isfinite(speed)].flat[0])!r}"
+        )
     theta = np.asarray(angle, dtype=float)
     bad = ~((theta >= 0.0) & (theta < 90.0))
     if np.any(bad):
@@ -711,3 +717,63 @@ double {name}_impulse_ratio(double psi, double x)
        + tl * ((1 - tp) * {name}_table[j + 1][i] + tp * {name}_table[j + 1][i + 1]);
 }}
 """
+
+
+# ============================================================================ published measurements
+
+
+#: Chung & Ooi's (2011) Test 4, Kharaz, Gorham & Salman's (2001) experiment: 5 mm alumina
+#: sphere on a flat at 3.9 m/s (the flat is rigid in the benchmark; a thick glass anvil in
+#: the experiment).
+ALUMINA_CASE = {
+    "youngs_modulus": 3.8e11,
+    "poisson_ratio": 0.23,
+    "density": 4000.0,
+    "radius": 2.5e-3,
+    "friction": 0.092,
+    "velocity": 3.9,
+}
+
+
+def alumina_pair():
+    """:class:`~microimpact.pair.ContactPair` of :data:`ALUMINA_CASE` (elastic: ``p_y = inf``)."""
+    from .pair import ContactPair
+
+    c = ALUMINA_CASE
+    return ContactPair.sphere_on_flat(
+        radius=c["radius"],
+        density=c["density"],
+        effective_modulus=c["youngs_modulus"] / (1.0 - c["poisson_ratio"] ** 2),
+        limiting_pressure=math.inf,
+        label="alumina on a rigid flat (Chung & Ooi 2011, Test 4)",
+    )
+
+
+def measured_alumina(source="experiment", quantity="et"):
+    """Published points of the alumina case, read off figures (``data/oblique_alumina.csv``).
+
+    Parameters
+    ----------
+    source : {"experiment", "dem"}
+        Kharaz et al. (2001) measurements, or Chung & Ooi's (2011) DEM verification result,
+        both as plotted by Chung & Ooi (2011) (digitised; precision in the file header).
+    quantity : {"et", "spin", "angle"}
+        Tangential restitution of the centre [-], rebound spin [rad/s] (negative: opposing
+        the incident slip) or contact-point rebound angle [deg].
+
+    Returns
+    -------
+    angle, value : ndarray
+        Impact angle from the normal [deg] and the quantity.
+    """
+    from importlib import resources
+
+    if source not in ("experiment", "dem"):
+        raise ValueError(f"source must be 'experiment' or 'dem', got {source!r}")
+    if quantity not in ("et", "spin", "angle"):
+        raise ValueError(f"quantity must be 'et', 'spin' or 'angle', got {quantity!r}")
+    text = resources.files(__package__).joinpath("data/oblique_alumina.csv").read_text(encoding="utf-8")
+    rows = [ln.split(",") for ln in text.splitlines() if ln and not ln.startswith("#")][1:]
+    sel = [(float(a), float(v)) for s, q, a, v in rows if s == source and q == quantity]
+    arr = np.array(sel, dtype=float)
+    return arr[:, 0], arr[:, 1]
