@@ -467,7 +467,6 @@ def oblique_impact(
         e_t = np.where(vt != 0.0, vt_out / vt, np.nan)
         slip_ratio = np.where(u0 != 0.0, ur / u0, np.nan)
         F_out = np.where(mu > 0, np.abs(Jt) / (mu * one_e * Vn), 0.0)
-    a_max = _max_contact_radius(Vn, E, R, m, p_y)  # small-strain flag: a/R > 0.5 at maximum approach
     return ObliqueImpact(
         angle=theta,
         normal_speed=Vn,
@@ -484,15 +483,16 @@ def oblique_impact(
         regime=np.asarray([OBLIQUE_REGIMES[int(c)] for c in regime.ravel()]).reshape(regime.shape),
         tangential=tangential,
         kappa=float(kappa),
-        large_strain=a_max > 0.5 * R,
+        large_strain=_large_strain(Vn, E, R, m, p_y),
     )
 
 
-def _max_contact_radius(Vn, E, R, m, p_y):
+def _large_strain(Vn, E, R, m, p_y):
+    """The seed model's small-strain flag (``a*/R* > 0.3``) of the normal impact."""
     from .impact import impact_outcome
 
     out = impact_outcome(np.maximum(Vn, 1e-300), E, R, m, p_y)
-    return np.asarray(out["max_contact_radius"], dtype=float)
+    return np.asarray(out["large_strain"], dtype=bool)
 
 
 def _stuck_throughout(psi, kappa):
