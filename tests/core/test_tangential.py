@@ -82,7 +82,9 @@ def test_large_angle_slides_throughout_with_the_coulomb_impulse(x):
     u0 = 20.0 / KAPPA
     ur, regime = tg.integrate_tangential(u0, KAPPA, x, 200)
     assert regime == tg.REGIME_SLIDING
-    assert ur == pytest.approx(u0 - tg.SLIP_FACTOR * (1.0 + tg.history_constants(x)[13]), abs=1e-7)  # RK4 quadrature of P
+    assert ur == pytest.approx(
+        u0 - tg.SLIP_FACTOR * (1.0 + tg.history_constants(x)[13]), abs=1e-7
+    )  # RK4 quadrature of P
 
 
 @pytest.mark.parametrize("u0", [0.5, 2.0, 5.0])
