@@ -383,8 +383,8 @@ def oblique_impact(
     ...     effective_modulus=3.8e11 / (1 - 0.23**2), limiting_pressure=float("inf"))
     >>> out = oblique_impact(pair, 3.9, [10.0, 45.0], 0.092, poisson_ratio=0.23,
     ...                      tangential="rigid")
-    >>> out.tangential_restitution.round(3), out.regime
-    (array([0.714, 0.816]), array(['rolling', 'sliding'], dtype='<U8'))
+    >>> out.tangential_restitution.round(3).tolist(), out.regime.tolist()
+    ([0.714, 0.816], ['rolling', 'sliding'])
     """
     if tangential not in TANGENTIAL_MODELS:
         raise ValueError(f"tangential must be one of {TANGENTIAL_MODELS}, got {tangential!r}")

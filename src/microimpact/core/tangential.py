@@ -72,11 +72,13 @@ __all__ = [
     "REGIME_ROLLING",
 ]
 
-#: Regime codes: the contact never slid; it slid throughout; it did both (stick-slip, the
-#: model's stand-in for micro-slip); rigid model only: the slip was stopped (rolling).
+#: Regime code: the contact never slid.
 REGIME_STICKING = 0
+#: Regime code: the contact slid throughout the impact (the Coulomb impulse ``mu J_n``).
 REGIME_SLIDING = 1
+#: Regime code: the contact stuck and slid in turn (the model's stand-in for micro-slip).
 REGIME_MICROSLIP = 2
+#: Regime code, rigid model only: the slip was stopped (the sphere leaves rolling).
 REGIME_ROLLING = 3
 
 #: Slip change per tangential impulse for a solid sphere, ``m (1/m + r^2/I) = 7/2``.
