@@ -176,3 +176,39 @@ def test_compliant_model_needs_the_shear_modulus():
 def test_pair_from_materials_gives_kappa():
     pair = ContactPair.from_materials("nh4fl", "silicon", 2.45e-6)
     assert 0.6 < ob.stiffness_ratio_of(pair) < 1.2
+
+
+def test_wall_interaction_compliant_option_is_oblique_impact():
+    from microimpact.pair import ContactPair
+
+    pair = ContactPair.sphere_on_flat(radius=2.45e-6, density=1350.0, effective_modulus=1.31e9, limiting_pressure=156e6)
+    ang, V = np.array([5.0, 15.0, 30.0, 60.0]), 40.0
+    rad = np.radians(ang)
+    vel = np.stack([V * np.sin(rad), 0 * rad, -V * np.cos(rad)], axis=1)
+    wall = wall_interaction(
+        vel,
+        [0, 0, 1],
+        4.9e-6,
+        1350.0,
+        effective_modulus=1.31e9,
+        limiting_pressure=156e6,
+        friction=0.3,
+        tangential="mindlin",
+        poisson_ratio=0.3,
+    )
+    out = ob.oblique_impact(pair, V, ang, 0.3, poisson_ratio=0.3)
+    np.testing.assert_allclose(wall.velocity[:, 0], out.tangential_velocity, rtol=1e-12)
+    np.testing.assert_allclose(-wall.spin[:, 1], out.rebound_spin, rtol=1e-9)
+    assert np.all(wall.velocity[:, 1] == 0.0)
+
+
+def test_wall_interaction_rejects_an_unknown_tangential_model():
+    with pytest.raises(ValueError, match="tangential"):
+        wall_interaction(
+            [1.0, 0, -1.0], [0, 0, 1], 1e-6, 1000.0, effective_modulus=1e9, limiting_pressure=1e8, tangential="soft"
+        )
+
+
+def test_only_zero_slip_sticks_throughout():
+    out = _alumina([0.0, 0.5, 3.0], method="table")
+    assert out.regime.tolist() == ["sticking", "micro-slip", "micro-slip"]

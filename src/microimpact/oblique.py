@@ -443,11 +443,9 @@ def oblique_impact(
             table = universal_table(kappa)
             F = table(np.where(frictionless, 0.0, psi), np.minimum(x, 1.0))
             J = np.where(frictionless, 0.0, -np.sign(u0) * F * one_e)
-            regime[...] = np.where(
-                psi > 1.0,
-                np.where(F >= 1.0, tg.REGIME_SLIDING, tg.REGIME_MICROSLIP),
-                np.where(_stuck_throughout(psi, kappa), tg.REGIME_STICKING, tg.REGIME_MICROSLIP),
-            )
+            # A stuck contact always slips as it opens (T falls as a, mu P as a^3), so
+            # "sticking" throughout needs zero slip; F = 1 is sliding throughout.
+            regime[...] = np.where(F >= 1.0, tg.REGIME_SLIDING, tg.REGIME_MICROSLIP)
         else:
             for idx in np.ndindex(u0.shape):
                 if frictionless[idx]:
@@ -493,26 +491,6 @@ def _large_strain(Vn, E, R, m, p_y):
 
     out = impact_outcome(np.maximum(Vn, 1e-300), E, R, m, p_y)
     return np.asarray(out["large_strain"], dtype=bool)
-
-
-def _stuck_throughout(psi, kappa):
-    """Whether the compliant contact never slides, from the stick threshold of the table's kappa."""
-    return psi <= _stick_threshold(round(float(kappa), 12))
-
-
-@functools.lru_cache(maxsize=16)
-def _stick_threshold(kappa):
-    """Largest ``psi`` for which the elastic impact sticks throughout (bisection on the regime)."""
-    lo, hi = 0.0, 1.0
-    if _integrate(1.0 / kappa, kappa, 1.0, 200)[1] == tg.REGIME_STICKING:
-        return 1.0
-    for _ in range(40):
-        mid = 0.5 * (lo + hi)
-        if _integrate(mid / kappa, kappa, 1.0, 200)[1] == tg.REGIME_STICKING:
-            lo = mid
-        else:
-            hi = mid
-    return lo
 
 
 # ============================================================================ the independent check

@@ -72,7 +72,9 @@ __all__ = [
     "REGIME_ROLLING",
 ]
 
-#: Regime code: the contact never slid.
+#: Regime code: the contact never slid. With any initial slip the stuck contact slides at least
+#: as it opens (the stuck force falls as ``a``, the Coulomb limit as ``P ~ a^3``), so this
+#: needs zero slip.
 REGIME_STICKING = 0
 #: Regime code: the contact slid throughout the impact (the Coulomb impulse ``mu J_n``).
 REGIME_SLIDING = 1
