@@ -4,20 +4,26 @@ Model (one scalar source for every path; plain floats, :mod:`math` only, ``@jita
 
 * Tangential stiffness of the contact, Mindlin's no-slip value ``k_t = 8 G* a`` with the
   contact radius ``a`` of the seed's normal history and
-  ``G* = 1 / ((2 - nu1)/G1 + (2 - nu2)/G2)``, ``G = E / (2 (1 + nu))`` (the values DEM
-  codes use for the Hertz–Mindlin contact, e.g. YADE's Chung & Ooi Test 4 script:
-  ``Kso = 8 sqrt(r) G``).
-* Incremental loading, as Mindlin & Deresiewicz prescribe for a varying normal load and
-  as Thornton and co-workers implement it: while the contact grows, ``dT = -k_t du dt``
-  (a new annulus of contact carries no tangential traction); while it shrinks, the force
-  is first scaled with the stiffness (``T <- T k_t,new / k_t,old``) and then incremented.
-  ``|T| <= mu P`` (Coulomb); at the limit the contact slides (gross slip). Micro-slip
-  inside the contact (the ``theta`` factors of Mindlin–Deresiewicz) is not resolved:
-  this is the "no-slip" simplification that Di Renzo & Di Maio found as accurate as the
-  full theory for impacts. The sources' own equations could not be read here (no text
-  of Thornton & Yin 1991, Thornton et al. 2013 or Di Renzo & Di Maio 2004/2005 is
-  available to this project), so the rules above are stated as implemented, not as
-  quoted equations.
+  ``1/G* = (2 - nu1)/G1 + (2 - nu2)/G2``, ``G = E / (2 (1 + nu))``. This is the LAMMPS
+  ``pair_style granular`` documentation's *tangential mindlin* (force ``k_t a xi`` with
+  ``k_t = 4 G/(2 - nu)`` per body, i.e. ``8 G* a``, and its mixing rule
+  ``1/G = 2(2 - nu_i)(1 + nu_i)/E_i + 2(2 - nu_j)(1 + nu_j)/E_j``), and the stiffness of
+  Chung & Ooi's (2011) Test 4 as YADE scripts it (``Kso = 8 sqrt(r) G``).
+* Incremental loading (LAMMPS's *mindlin_rescale/force* form): while the contact grows,
+  ``dT = -k_t u dt`` (the force is a history variable, incremented by the stiffness of the
+  moment); while it shrinks, the force is first rescaled with the contact radius,
+  ``T <- T a / a_old``, then incremented. The LAMMPS documentation gives the rescaling
+  ``xi = xi_(n-1) a / a_(n-1)`` "if a < a_(n-1)", states that without it spurious energy is
+  created (Walton), and refers to Thornton et al. (2013) eq. 18(b); that paper itself could
+  not be read here, nor Thornton & Yin (1991), Maw, Barber & Fawcett (1976) or Di Renzo &
+  Di Maio (2004, 2005). ``|T| <= mu P`` (Coulomb); at the limit the contact slides. The
+  micro-slip annulus of the full Mindlin–Deresiewicz solution is not resolved (the
+  "no-slip" simplification DEM codes use); stick–slip alternation stands in for it.
+  Chosen because it is a closed set of rules in ``a(t)`` and ``P(t)`` only, so the seed's
+  closed-form history drives it exactly and the outcome collapses onto a universal curve,
+  and because it never creates energy: with ``U = T^2 / (2 k_t)``, ``dU <= T du`` in every
+  regime (while ``a`` grows the stored energy loses ``T^2 dk/(2 k^2)``, the rescaling
+  ``T^2 |dk|/(2 k^2)``, sliding ``mu P |slip rate|``).
 * The normal direction is the seed's closed-form history (THEORY.md sections 2–4):
   Hertz loading ``a^2 = R* alpha``, plastic loading ``P = P_y + pi p_y R* (alpha -
   alpha_y)`` with ``a^2 = R* alpha`` (Thornton & Ning), elastic unloading with ``R_p``
