@@ -496,7 +496,7 @@ def _large_strain(Vn, E, R, m, p_y):
 # ============================================================================ the independent check
 
 
-def integrate_oblique_ode(u0_hat, kappa, x, *, rtol=1e-12, atol=1e-14):
+def integrate_oblique_ode(u0_hat, kappa, x, *, rtol=1e-12, atol=1e-14, record=False):
     """The same impact as a 3-degree-of-freedom ODE: normal approach, tangential velocity, spin.
 
     Newton's equations ``alpha'' = -P(alpha)``, ``v_t' = T/m``, ``r omega' = 5/2 T/m`` are
@@ -507,6 +507,17 @@ def integrate_oblique_ode(u0_hat, kappa, x, *, rtol=1e-12, atol=1e-14):
     yield, the maximum approach, the separation and every stick/slip change. This is the
     independent check of the closed-form-history integration
     (:func:`~microimpact.core.tangential.integrate_tangential`). Normalised units as there.
+
+    Parameters
+    ----------
+    u0_hat, kappa, x : float
+        Initial slip ``u0/(mu V)`` [-], ``4 G*/E*`` [-], ``V_y/V`` [-].
+    rtol, atol : float
+        Solver tolerances.
+    record : bool
+        Also return ``time`` and ``energy``: the tangential energy (translational
+        ``v_t^2/2`` plus rotational ``(r omega)^2/5`` plus stored ``T^2/(2 k_t)``, in
+        ``m (mu V)^2``) at 40 points of every segment between events.
 
     Returns
     -------
@@ -586,6 +597,7 @@ def integrate_oblique_ode(u0_hat, kappa, x, *, rtol=1e-12, atol=1e-14):
     y = np.array([0.0, 1.0, u0, 0.0, 0.0])
     t = 0.0
     a_star = None
+    times, energy = [], []
     for _ in range(200):
         st = state["stage"]
         events = [switch_factory(sliding, sign)]
@@ -596,12 +608,27 @@ def integrate_oblique_ode(u0_hat, kappa, x, *, rtol=1e-12, atol=1e-14):
         else:
             events.append(ev(lambda t, y: y[0] - state["ap"], -1))
         sol = solve_ivp(
-            rhs_factory(sliding, sign), (t, t + 50.0), y, method="DOP853", rtol=rtol, atol=atol, events=events
+            rhs_factory(sliding, sign),
+            (t, t + 50.0),
+            y,
+            method="DOP853",
+            rtol=rtol,
+            atol=atol,
+            events=events,
+            dense_output=record,
         )
         hit = [i for i, te in enumerate(sol.t_events) if te.size]
         if not hit:  # pragma: no cover
             raise RuntimeError("integration did not reach an event")
         i = min(hit, key=lambda k: sol.t_events[k][0])
+        if record:
+            for tt in np.linspace(t, float(sol.t_events[i][0]), 40):
+                yy = sol.sol(tt)
+                T = tforce(yy, sliding, sign)
+                kt = 1.875 * kappa * normal(yy[0], yy[1])[1]
+                stored = 0.5 * T * T / kt if kt > 0 else 0.0
+                times.append(float(tt))
+                energy.append(0.5 * yy[2] ** 2 + 0.2 * yy[3] ** 2 + stored)
         t = float(sol.t_events[i][0])
         y = np.array(sol.y_events[i][0], dtype=float)
         if i == 0:  # regime change
@@ -633,7 +660,9 @@ def integrate_oblique_ode(u0_hat, kappa, x, *, rtol=1e-12, atol=1e-14):
         else:
             break
     regime = tg.REGIME_MICROSLIP if (slid and stuck) else (tg.REGIME_SLIDING if slid else tg.REGIME_STICKING)
+    extra = {"time": np.array(times), "energy": np.array(energy)} if record else {}
     return {
+        **extra,
         "u_r": float(y[2] + y[3]),
         "v_t": float(y[2]),
         "r_omega": float(y[3]),

@@ -135,3 +135,13 @@ def test_slip_never_grows(psi, x):
     ur, _ = tg.integrate_tangential(u0, KAPPA, x, 200)
     assert abs(ur) <= abs(u0) + 1e-9
     assert np.isfinite(ur)
+
+
+@settings(CI, max_examples=25)
+@given(psi=st.floats(0.05, 10.0), x=st.floats(0.02, 2.0), kappa=st.floats(0.6, 1.2))
+def test_energy_with_the_stored_part_never_increases_along_the_impact(psi, x, kappa):
+    # Translational + rotational + stored (T^2 / 2 k_t) energy along the 3-DOF ODE's path.
+    out = integrate_oblique_ode(psi / kappa, kappa, x, rtol=1e-10, atol=1e-12, record=True)
+    E = out["energy"]
+    assert E[0] == pytest.approx(0.5 * (psi / kappa) ** 2)
+    assert np.all(np.diff(E) <= 1e-9 * E[0])
