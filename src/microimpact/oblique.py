@@ -680,7 +680,8 @@ def table_c_source(table: UniversalTable, name: str = "microimpact_oblique") -> 
 
     Defines ``double NAME_impulse_ratio(double psi, double x)`` returning ``|J_t|/(mu J_n)``
     for the table's ``kappa`` (``psi = kappa u0/(mu V_n)``, ``x = V_y/V_n``), the same
-    interpolation as :meth:`UniversalTable.__call__`, and the constant ``NAME_KAPPA``. The
+    interpolation as :meth:`UniversalTable.__call__`, the constant ``NAME_KAPPA``, and
+    ``double NAME_impulse_per_mass(slip, V, mu, e, Vy)`` returning ``|J_t|/m`` [m/s]. The
     caller applies ``J_t = -F mu (1 + e) m V_n u0/|u0|``, ``v_t' = v_t + J_t/m``,
     ``omega' = omega - 5/(2 m r) n x J_t`` (as :func:`microimpact.wall.wall_interaction`).
     """
@@ -722,6 +723,15 @@ double {name}_impulse_ratio(double psi, double x)
   tp = fp - i; tl = fl - j;
   return (1 - tl) * ((1 - tp) * {name}_table[j][i] + tp * {name}_table[j][i + 1])
        + tl * ((1 - tp) * {name}_table[j + 1][i] + tp * {name}_table[j + 1][i + 1]);
+}}
+
+/* |J_t| / m [m/s] of the compliant model: slip speed |u_t| of the contact point [m/s], normal
+ * impact speed V [m/s], friction mu, normal restitution e, yield velocity V_y [m/s]. The impulse
+ * acts against the slip: J_t = -(this) m u_t / |u_t|. */
+double {name}_impulse_per_mass(double slip, double V, double mu, double e, double Vy)
+{{
+  if (!(mu > 0.0) || !(slip > 0.0) || !(V > 0.0)) return 0.0;
+  return {name}_impulse_ratio({up}_KAPPA * slip / (mu * V), Vy / V) * mu * (1.0 + e) * V;
 }}
 """
 
