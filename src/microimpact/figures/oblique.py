@@ -22,7 +22,7 @@ from . import _style
 __all__ = ["oblique_data", "plot_oblique", "universal_data", "plot_universal"]
 
 _MODELS = ("mindlin", "rigid")
-_LABELS = {"mindlin": "compliant (Mindlin + Coulomb)", "rigid": "rigid body + Coulomb"}
+_LABELS = {"mindlin": "compliant (Mindlin)", "rigid": "rigid body"}
 
 
 def oblique_data(pair=None, *, angle=None, velocity=None, friction=None, poisson_ratio=None, method="table") -> dict:
@@ -97,17 +97,24 @@ def plot_oblique(pair=None, axes=None, *, measured=True, table=None, **kws):
             ("rebound_spin", r"rebound spin $\omega'$ [rad/s]"),
             ("contact_rebound_angle", r"contact rebound angle [deg]"),
         ]
+        big = float(np.nanmax(np.abs(data["rebound_spin"]))) if data["rebound_spin"].size else 0.0
+        k3 = int(np.floor(np.log10(big) / 3.0)) * 3 if big >= 1e4 else 0
+        scale = {"rebound_spin": 10.0**-k3}
+        if k3:
+            keys[1] = ("rebound_spin", rf"rebound spin $\omega'$ [$10^{{{k3}}}$ rad/s]")
         for i, model in enumerate(_MODELS):
             sel = data["model"] == model
             for ax, (k, _) in zip(axes, keys):
-                ax.plot(data["angle"][sel], data[k][sel], label=_LABELS[model], **_style.series_style(i))
+                y = data[k][sel] * scale.get(k, 1.0)
+                ax.plot(data["angle"][sel], y, label=_LABELS[model], **_style.series_style(i))
         if measured and pair is None:
             for src, mk, lab in (
-                ("experiment", "o", "Kharaz et al. (2001), measured"),
-                ("dem", "s", "Chung & Ooi (2011), DEM"),
+                ("experiment", "o", "measured, Kharaz et al. 2001"),
+                ("dem", "s", "DEM, Chung & Ooi 2011"),
             ):
                 for ax, q in zip(axes, ("et", "spin", "angle")):
                     a, v = ob.measured_alumina(src, q)
+                    v = v * (scale["rebound_spin"] if q == "spin" else 1.0)
                     ax.plot(
                         a, v, mk, ms=3.2, mfc="none" if src == "dem" else "k", mec="k", mew=0.7, ls="none", label=lab
                     )
@@ -115,7 +122,8 @@ def plot_oblique(pair=None, axes=None, *, measured=True, table=None, **kws):
             ax.set_ylabel(lab)
         axes[-1].set_xlabel("impact angle from the normal [deg]")
         axes[-1].set_xlim(0, 90)
-        axes[0].legend(loc="lower right")
+        handles, labels = axes[0].get_legend_handles_labels()
+        axes[0].figure.legend(handles, labels, loc="outside upper center", ncol=2, columnspacing=0.8, handlelength=2.2)
     return axes
 
 
