@@ -25,6 +25,14 @@
 The wall is flat, fixed and massive (``R* = R``, ``m* = m``); spin about the
 normal is not changed (no torsional friction); the tangential impulse does not
 feed back on the normal restitution.
+
+``tangential="mindlin"`` replaces the rigid impulse by the compliant contact of
+:mod:`microimpact.oblique` (Mindlin's no-slip spring ``k_t = 8 G* a`` with a Coulomb
+limit, along the seed's normal history): the impulse is ``J_t = -F mu J_n u_t/|u_t|``
+with ``F`` from the universal table of ``kappa = 4 G*/E*`` at the normalised angle
+``psi = kappa |u_t| / (mu V)`` and ``V_y/V``. It keeps the slip's direction, and
+never adds energy. With adhesion (``G > 0``) the table is that of the non-adhesive
+history, scaled by the adhesive ``J_n``: an approximation.
 """
 
 from __future__ import annotations
@@ -161,6 +169,9 @@ def wall_interaction(
     friction=0.0,
     spin=None,
     k=DEFAULT_K,
+    tangential="rigid",
+    poisson_ratio=None,
+    effective_shear_modulus=None,
 ) -> WallInteraction:
     """Outgoing velocities, spins and stick flags of particles hitting a wall.
 
@@ -211,6 +222,15 @@ def wall_interaction(
         Incoming angular velocities [rad/s]; default zero.
     k : float, optional
         ``p_y / Y`` when ``limiting_pressure`` is not given (default 2.2).
+    tangential : {"rigid", "mindlin"}, optional
+        Tangential model: the rigid-body Coulomb impulse (default) or the compliant
+        contact (module docstring); ``rolling`` then flags particles whose contact
+        stuck at some time during the impact.
+    poisson_ratio : float, optional
+        ``"mindlin"`` only: one Poisson's ratio for particle and wall, giving
+        ``kappa = 2(1 - nu)/(2 - nu)``; default from the materials.
+    effective_shear_modulus : float, optional
+        ``"mindlin"`` only: ``G*`` [Pa], giving ``kappa = 4 G*/E*``.
 
     Returns
     -------
@@ -225,6 +245,8 @@ def wall_interaction(
     >>> out.restitution.round(4), out.regime
     (array([0.7248]), array(['rolling'], dtype='<U7'))
     """
+    if tangential not in ("rigid", "mindlin"):
+        raise ValueError(f"tangential must be 'rigid' or 'mindlin', got {tangential!r}")
     single = np.ndim(velocity) == 1
     v = _vectors("velocity", velocity)
     N = v.shape[0]
@@ -308,11 +330,19 @@ def wall_interaction(
     else:
         utT = vtT
     ut_mag = np.sqrt(utT[0] * utT[0] + utT[1] * utT[1] + utT[2] * utT[2])
-    stop = (2.0 / 7.0) * ut_mag  # |J_stop| / m
     limit = mu * Jn_over_m  # mu J_n / m; 0 where not approaching (V = 0)
-    rolling = approaching & ~stuck & (stop <= limit)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        scale = np.where(rolling, 2.0 / 7.0, np.where(ut_mag > 0.0, limit / ut_mag, 0.0))
+    if tangential == "rigid":
+        stop = (2.0 / 7.0) * ut_mag  # |J_stop| / m
+        rolling = approaching & ~stuck & (stop <= limit)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            scale = np.where(rolling, 2.0 / 7.0, np.where(ut_mag > 0.0, limit / ut_mag, 0.0))
+    else:
+        F = _compliant_impulse_ratio(
+            ut_mag, V, mu, Vy, E, mats, wall_mat, poisson_ratio, effective_shear_modulus, approaching
+        )
+        rolling = approaching & ~stuck & (F < 1.0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            scale = np.where(ut_mag > 0.0, F * limit / ut_mag, 0.0)
     JtT = utT * -scale  # tangential impulse / m; 0 where not approaching
 
     v_outT = vtT + JtT
@@ -343,3 +373,38 @@ def wall_interaction(
         sticking_velocity=Vs[0] if single else np.array(Vs),
         _single=single,
     )
+
+
+def _compliant_impulse_ratio(ut_mag, V, mu, Vy, E, mats, wall_mat, poisson_ratio, effective_shear_modulus, approaching):
+    """``|J_t| / (mu J_n)`` of the compliant model per particle, from the universal tables."""
+    from .core.tangential import effective_shear_modulus as _gstar
+    from .oblique import universal_table
+
+    n = ut_mag.size
+    if effective_shear_modulus is not None:
+        G = _per_particle(
+            "effective_shear_modulus", check_positive("effective_shear_modulus", effective_shear_modulus), n
+        )
+        kappa = 4.0 * G / E
+    elif poisson_ratio is not None:
+        nu = float(poisson_ratio)
+        if isinstance(poisson_ratio, bool) or not (-1.0 < nu <= 0.5):
+            raise ValueError(f"poisson_ratio must be in (-1, 0.5], got {poisson_ratio!r}")
+        kappa = np.full(n, 2.0 * (1.0 - nu) / (2.0 - nu))
+    elif mats is not None and wall_mat is not None:
+        Ew, nuw = wall_mat.youngs_modulus, wall_mat.poisson_ratio
+        G = np.array([_gstar(e1, n1, Ew, nuw) for e1, n1 in zip(mats[0], mats[1])])
+        E_mat = 1.0 / ((1.0 - mats[1] ** 2) / mats[0] + (1.0 - nuw**2) / Ew)
+        kappa = 4.0 * G / E_mat
+    else:
+        raise ValueError(
+            "tangential='mindlin' needs poisson_ratio=..., effective_shear_modulus=... or material=... and wall=..."
+        )
+    F = np.zeros(n)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        psi = np.where(approaching & (mu > 0.0), kappa * ut_mag / (mu * np.where(V > 0, V, 1.0)), 0.0)
+        x = np.where(V > 0.0, Vy / np.where(V > 0, V, 1.0), 1.0)
+    for kap in np.unique(np.round(kappa, 12)):
+        sel = np.round(kappa, 12) == kap
+        F[sel] = universal_table(float(kap))(psi[sel], np.minimum(x[sel], 1.0))
+    return np.where(approaching & (mu > 0.0), F, 0.0)

@@ -1,0 +1,182 @@
+"""Figures of oblique impacts: tangential restitution, rebound spin and rebound angle against angle.
+
+* :func:`plot_oblique` draws the three curves against the impact angle for the compliant
+  (Mindlin no-slip spring + Coulomb) and the rigid-body models, with the published points
+  of the alumina case (Kharaz, Gorham & Salman 2001 measurements and Chung & Ooi's 2011
+  DEM result, read off Chung & Ooi's figures: :func:`microimpact.oblique.measured_alumina`).
+* :func:`plot_universal` draws the universal curve: the normalised contact-point rebound
+  angle ``psi_2 = kappa u_r / (mu V_n)`` against the normalised impact angle ``psi_1 =
+  kappa u0 / (mu V_n)`` (the form of Maw, Barber & Fawcett's plots), for several
+  ``V_y / V_n``, and the rigid model.
+
+Each has a ``*_data`` twin returning the plotted numbers as equally long columns.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .. import oblique as ob
+from . import _style
+
+__all__ = ["oblique_data", "plot_oblique", "universal_data", "plot_universal"]
+
+_MODELS = ("mindlin", "rigid")
+_LABELS = {"mindlin": "compliant (Mindlin)", "rigid": "rigid body"}
+
+
+def oblique_data(pair=None, *, angle=None, velocity=None, friction=None, poisson_ratio=None, method="table") -> dict:
+    """Columns of :func:`plot_oblique`: both tangential models over the impact angle.
+
+    Defaults are the alumina case (:data:`microimpact.oblique.ALUMINA_CASE`).
+
+    Returns
+    -------
+    dict
+        ``model`` (str), ``angle`` [deg], ``tangential_restitution`` [-],
+        ``rebound_spin`` [rad/s], ``contact_rebound_angle`` [deg], ``rebound_angle`` [deg],
+        ``normalized_angle`` [-], ``impulse_ratio`` [-], ``regime`` (str).
+    """
+    case = ob.ALUMINA_CASE
+    if pair is None:
+        pair = ob.alumina_pair()
+        poisson_ratio = case["poisson_ratio"] if poisson_ratio is None else poisson_ratio
+    velocity = case["velocity"] if velocity is None else velocity
+    friction = case["friction"] if friction is None else friction
+    angle = np.linspace(0.5, 89.5, 179) if angle is None else np.atleast_1d(np.asarray(angle, dtype=float))
+    cols = {
+        k: []
+        for k in (
+            "model",
+            "angle",
+            "tangential_restitution",
+            "rebound_spin",
+            "contact_rebound_angle",
+            "rebound_angle",
+            "normalized_angle",
+            "impulse_ratio",
+            "regime",
+        )
+    }
+    for model in _MODELS:
+        out = ob.oblique_impact(
+            pair, velocity, angle, friction, poisson_ratio=poisson_ratio, tangential=model, method=method
+        )
+        cols["model"].append(np.full(angle.size, model))
+        cols["angle"].append(angle)
+        for k in list(cols)[2:]:
+            cols[k].append(np.broadcast_to(getattr(out, k), angle.shape))
+    return {k: np.concatenate(v) for k, v in cols.items()}
+
+
+def plot_oblique(pair=None, axes=None, *, measured=True, table=None, **kws):
+    """Tangential restitution, rebound spin and contact rebound angle against the impact angle.
+
+    Parameters
+    ----------
+    pair : ContactPair, optional
+        Default: the alumina case; the published points are drawn only for it.
+    axes : sequence of 3 Axes, optional
+        Where to draw; default a new figure of three stacked panels.
+    measured : bool
+        Draw the published points (alumina case only).
+    table : dict, optional
+        The output of :func:`oblique_data` (else computed with ``**kws``).
+
+    Returns
+    -------
+    ndarray of Axes
+    """
+    data = oblique_data(pair, **kws) if table is None else table
+    with _style.style() as plt:
+        if axes is None:
+            fig, axes = plt.subplots(3, 1, sharex=True, figsize=(3.5, 6.0), layout="constrained")
+        axes = np.asarray(axes)
+        keys = [
+            ("tangential_restitution", r"tangential restitution $v_t'/v_t$"),
+            ("rebound_spin", r"rebound spin $\omega'$ [rad/s]"),
+            ("contact_rebound_angle", r"contact rebound angle [deg]"),
+        ]
+        big = float(np.nanmax(np.abs(data["rebound_spin"]))) if data["rebound_spin"].size else 0.0
+        k3 = int(np.floor(np.log10(big) / 3.0)) * 3 if big >= 1e4 else 0
+        scale = {"rebound_spin": 10.0**-k3}
+        if k3:
+            keys[1] = ("rebound_spin", rf"rebound spin $\omega'$ [$10^{{{k3}}}$ rad/s]")
+        for i, model in enumerate(_MODELS):
+            sel = data["model"] == model
+            for ax, (k, _) in zip(axes, keys):
+                y = data[k][sel] * scale.get(k, 1.0)
+                ax.plot(data["angle"][sel], y, label=_LABELS[model], **_style.series_style(i))
+        if measured and pair is None:
+            for src, mk, lab in (
+                ("experiment", "o", "measured, Kharaz et al. 2001"),
+                ("dem", "s", "DEM, Chung & Ooi 2011"),
+            ):
+                for ax, q in zip(axes, ("et", "spin", "angle")):
+                    a, v = ob.measured_alumina(src, q)
+                    v = v * (scale["rebound_spin"] if q == "spin" else 1.0)
+                    ax.plot(
+                        a, v, mk, ms=3.2, mfc="none" if src == "dem" else "k", mec="k", mew=0.7, ls="none", label=lab
+                    )
+        for ax, (_, lab) in zip(axes, keys):
+            ax.set_ylabel(lab)
+        axes[-1].set_xlabel("impact angle from the normal [deg]")
+        axes[-1].set_xlim(0, 90)
+        handles, labels = axes[0].get_legend_handles_labels()
+        axes[0].figure.legend(handles, labels, loc="outside upper center", ncol=2, columnspacing=0.8, handlelength=2.2)
+    return axes
+
+
+def universal_data(kappa=None, *, x=(1.0, 0.1, 0.01), psi=None) -> dict:
+    """Columns of :func:`plot_universal`: ``psi_2`` against ``psi_1`` for each ``x = V_y/V_n``.
+
+    Returns
+    -------
+    dict
+        ``model`` (str), ``x`` [-], ``psi_1`` [-], ``psi_2`` [-] (``kappa u_r/(mu V_n)``),
+        ``impulse_ratio`` [-] (``|J_t|/(mu J_n)``).
+    """
+    if kappa is None:
+        nu = ob.ALUMINA_CASE["poisson_ratio"]
+        kappa = 2 * (1 - nu) / (2 - nu)
+    psi = np.linspace(0.0, 8.0, 321) if psi is None else np.atleast_1d(np.asarray(psi, dtype=float))
+    from ..core import tangential as tg
+
+    cols = {k: [] for k in ("model", "x", "psi_1", "psi_2", "impulse_ratio")}
+    for xv in x:
+        F, ratio, _ = ob.universal_curve(psi, kappa, xv)
+        one_e = 1.0 + tg.history_constants(min(float(xv), 1.0))[13]
+        psi2 = psi - tg.SLIP_FACTOR * kappa * F * one_e
+        for model, f in (("mindlin", F), ("rigid", np.minimum(1.0, 2.0 * psi / (7.0 * kappa * one_e)))):
+            cols["model"].append(np.full(psi.size, model))
+            cols["x"].append(np.full(psi.size, float(xv)))
+            cols["psi_1"].append(psi)
+            cols["psi_2"].append(psi - tg.SLIP_FACTOR * kappa * f * one_e if model == "rigid" else psi2)
+            cols["impulse_ratio"].append(f)
+    return {k: np.concatenate(v) for k, v in cols.items()}
+
+
+def plot_universal(kappa=None, ax=None, *, x=(1.0, 0.1, 0.01), table=None):
+    """The universal curve ``psi_2(psi_1)`` of the compliant model (and the rigid model).
+
+    Returns
+    -------
+    Axes
+    """
+    data = universal_data(kappa, x=x) if table is None else table
+    with _style.style():
+        ax = _style.new_axes(ax)
+        for i, xv in enumerate(np.unique(data["x"])[::-1]):
+            sel = (data["x"] == xv) & (data["model"] == "mindlin")
+            lab = r"compliant, elastic ($V_n \leq V_y$)" if xv >= 1 else rf"compliant, $V_y/V_n = {xv:g}$"
+            ax.plot(data["psi_1"][sel], data["psi_2"][sel], label=lab, **_style.series_style(i))
+        sel = (data["x"] == np.max(data["x"])) & (data["model"] == "rigid")
+        ax.plot(
+            data["psi_1"][sel], data["psi_2"][sel], color="0.5", lw=0.9, ls=(0, (1, 1.2)), label="rigid body, elastic"
+        )
+        ax.axhline(0.0, color="0.7", lw=0.5, zorder=0)
+        ax.set_xlabel(r"normalised impact angle $\psi_1 = \kappa u_0 / (\mu V_n)$")
+        ax.set_ylabel(r"normalised rebound angle $\psi_2 = \kappa u_r / (\mu V_n)$")
+        ax.set_xlim(0, float(np.max(data["psi_1"])))
+        ax.legend(loc="upper left")
+    return ax
