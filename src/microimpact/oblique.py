@@ -39,7 +39,8 @@ import numpy as np
 
 from ._validation import check_nonnegative, check_poisson
 from .core import tangential as tg
-from .impact import _restitution, yield_velocity
+from .core.arrays import evaluate
+from .impact import restitution_coefficient, yield_velocity
 
 __all__ = [
     "ObliqueImpact",
@@ -73,24 +74,11 @@ DEFAULT_STEPS = 400
 # ============================================================================ compiled integrator
 
 
-@functools.lru_cache(maxsize=1)
-def _integrator():
-    """:func:`~microimpact.core.tangential.integrate_tangential`, compiled by numba when available."""
-    try:
-        import numba
-        from numba.extending import register_jitable
-    except ImportError:  # pragma: no cover - numba is a dependency of the venv
-        return tg.integrate_tangential
-    from .core import _jit
-
-    for fn in _jit.JITABLE:
-        if fn.__module__ == tg.__name__ and fn is not tg.integrate_tangential:
-            register_jitable(fn)
-    return numba.njit(cache=False)(tg.integrate_tangential)
-
-
 def _integrate(u0_hat, kappa, x, steps):
-    return _integrator()(float(u0_hat), float(kappa), float(x), int(steps))
+    """Final slip and regime of :func:`~microimpact.core.tangential.integrate_tangential` over arrays."""
+    u0_hat, kappa, x = (np.asarray(a, dtype=float) for a in (u0_hat, kappa, x))
+    ur, rg = evaluate(tg.integrate_tangential, u0_hat, kappa, x, np.asarray(float(steps)), nout=2)
+    return ur, rg.astype(np.int8)
 
 
 # ============================================================================ the universal curve
@@ -129,13 +117,11 @@ def universal_curve(psi, kappa, x=1.0, *, steps=DEFAULT_STEPS):
     F = np.empty_like(psi)
     ratio = np.full_like(psi, np.nan)
     regime = np.empty(psi.shape, dtype=np.int8)
-    for i, p in enumerate(psi):
-        u0 = p / kappa
-        ur, rg = _integrate(u0, kappa, x, steps)
-        F[i] = (u0 - ur) / tg.SLIP_FACTOR / one_e
-        if u0 > 0.0:
-            ratio[i] = ur / u0
-        regime[i] = rg
+    u0 = psi / kappa
+    ur, regime[...] = _integrate(u0, kappa, x, steps)
+    F[...] = (u0 - ur) / tg.SLIP_FACTOR / one_e
+    pos = u0 > 0.0
+    ratio[pos] = ur[pos] / u0[pos]
     return F, ratio, regime
 
 
@@ -413,7 +399,7 @@ def oblique_impact(
     vt = speed * np.sin(rad)
     u0 = vt + R * w0
     Vy = float(yield_velocity(p_y, E, R, m))
-    e = np.asarray(_restitution(Vn, Vy), dtype=float)
+    e = np.asarray(restitution_coefficient(Vn, Vy), dtype=float)
     one_e = 1.0 + e
     kappa = math.nan if tangential == "rigid" and poisson_ratio is None and effective_shear_modulus is None else None
     if kappa is None:
@@ -447,12 +433,9 @@ def oblique_impact(
             # "sticking" throughout needs zero slip; F = 1 is sliding throughout.
             regime[...] = np.where(F >= 1.0, tg.REGIME_SLIDING, tg.REGIME_MICROSLIP)
         else:
-            for idx in np.ndindex(u0.shape):
-                if frictionless[idx]:
-                    continue
-                ur, rg = _integrate(u0_hat[idx], kappa, min(x[idx], 1.0), steps)
-                J[idx] = (ur - u0_hat[idx]) / tg.SLIP_FACTOR
-                regime[idx] = rg
+            ur, rg = _integrate(u0_hat, kappa, np.minimum(x, 1.0), steps)
+            J[...] = np.where(frictionless, J, (ur - u0_hat) / tg.SLIP_FACTOR)
+            regime[...] = np.where(frictionless, regime, rg)
         regime[frictionless & (mu > 0.0)] = tg.REGIME_STICKING
         regime[mu == 0.0] = tg.REGIME_SLIDING
 

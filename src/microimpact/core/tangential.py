@@ -328,6 +328,7 @@ def integrate_tangential(u0_hat, kappa, x, steps):
     sign = 1.0 if u0_hat >= 0.0 else -1.0
     slid = sliding
     stuck = not sliding
+    steps = int(steps)  # arrays pass it as a float
     h = 1.0 / steps
     for stage in range(1, 4):
         if stage == 2 and elastic:
@@ -372,4 +373,4 @@ def integrate_tangential(u0_hat, kappa, x, steps):
         regime = REGIME_SLIDING
     else:
         regime = REGIME_STICKING
-    return u, regime
+    return u, float(regime)

@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import oblique as ob
-from . import _style
+from . import style as _style
 
 __all__ = ["oblique_data", "plot_oblique", "universal_data", "plot_universal"]
 
