@@ -398,11 +398,11 @@ def force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
     else:
         ac = math.pi * p_y * R / (2.0 * E)
         alpha_y = ac * ac / R
-    if top <= alpha_y:
-        f_top = k * top**1.5
-    else:
-        f_top = k * alpha_y**1.5 + math.pi * p_y * R * (top - alpha_y)
+    if top <= alpha_y:  # never yielded: Hertz both ways
+        return k * alpha**1.5
+    f_top = k * alpha_y**1.5 + math.pi * p_y * R * (top - alpha_y)
     if top == alpha:
         return f_top
-    f = f_top - k * (top**1.5 - alpha**1.5)
+    # P* - k (alpha*^(3/2) - alpha^(3/2)), written as k alpha^(3/2) - (F_e - P*) with F_e - P* >= 0
+    f = k * alpha**1.5 - (k * top**1.5 - f_top)
     return f if f > 0.0 else 0.0
