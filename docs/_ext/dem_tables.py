@@ -1,0 +1,48 @@
+"""Build-time tables of ``dem_codes.rst`` from the stored DEM runs (no typed-in numbers).
+
+On ``builder-inited`` this extension reads ``benchmarks/data/dem_runs.csv`` (written by
+``benchmarks/dem_runs.py``, which runs LIGGGHTS and LAMMPS where they are installed) and writes
+``docs/_generated/dem_tables.rst``: the runs beside the closed forms microimpact computes now
+(``benchmarks/dem_runs.py::rst_tables``). The DEM codes are not needed to build the docs. A
+failure is a Sphinx warning, hence an error under ``-W``.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+
+from sphinx.util import logging
+
+logger = logging.getLogger(__name__)
+
+ROOT = Path(__file__).resolve().parents[2]
+SCRIPT = ROOT / "benchmarks" / "dem_runs.py"
+
+
+def load_script():
+    """``benchmarks/dem_runs.py`` as a module (it is a script, not part of the package)."""
+    spec = importlib.util.spec_from_file_location("dem_runs", SCRIPT)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def _write(app):
+    out = Path(app.srcdir) / "_generated"
+    out.mkdir(exist_ok=True)
+    try:
+        mod = load_script()
+        text = mod.rst_tables(mod.read_csv(mod.DEFAULT_OUT))
+    except Exception as exc:  # noqa: BLE001 - any failure must surface as a warning
+        logger.warning(f"dem_tables: could not build the DEM tables: {exc!r}")
+        text = ""
+    target = out / "dem_tables.rst"
+    tmp = target.with_suffix(".rst.tmp")
+    tmp.write_text(text)
+    tmp.replace(target)
+
+
+def setup(app):
+    app.connect("builder-inited", _write)
+    return {"parallel_read_safe": True, "parallel_write_safe": True}
