@@ -510,11 +510,11 @@ def _label(r):
 
 
 def rst_tables(rows):
-    """The tables of ``docs/dem_codes.rst``, as reStructuredText, from the CSV's rows.
+    """The tables of ``docs/dem_codes.rst``, as a list of reStructuredText strings, from the CSV's rows.
 
-    The LIGGGHTS ``thornton_ning`` runs beside the closed forms of ``liggghts_thornton_ning`` and
-    of the seed (computed here with microimpact), then ``e`` and contact time of every other run,
-    then how much halving the time step changed each run.
+    First the LIGGGHTS ``thornton_ning`` runs beside the closed forms of ``liggghts_thornton_ning``
+    and of the seed (computed here with microimpact), then ``e`` and contact time of every other
+    run, then how much halving the time step changed each run.
     """
     from microimpact._kernels import impact_scalar
     from microimpact.core.models import get
@@ -593,7 +593,7 @@ def rst_tables(rows):
                 dt = max(dt, abs(pair[1]["contact_time_s"] / pair[0]["contact_time_s"] - 1))
         body.append([_label(sel[0]), f"{de:.1e}", f"{dt:.1e}"])
     text.append(_list_table("Relative change when the time step is halved (10..100 m/s)", head, body))
-    return "\n".join(text)
+    return text
 
 
 def main(argv=None):
@@ -605,7 +605,7 @@ def main(argv=None):
     ap.add_argument("--table", action="store_true", help="print the docs tables from --out and exit (runs nothing)")
     args = ap.parse_args(argv)
     if args.table:
-        print(rst_tables(read_csv(args.out)))
+        print("\n".join(rst_tables(read_csv(args.out))))
         return 0
     speeds = [float(s) for s in args.speeds.split(",")]
     only = {s.strip().lower() for s in args.only.split(",")}
