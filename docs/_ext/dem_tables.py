@@ -17,13 +17,20 @@ from sphinx.util import logging
 
 logger = logging.getLogger(__name__)
 
-ROOT = Path(__file__).resolve().parents[2]
-SCRIPT = ROOT / "benchmarks" / "dem_runs.py"
+
+def _script() -> Path:
+    """``benchmarks/dem_runs.py`` of the checkout: beside these docs, or beside the imported sources."""
+    import microimpact
+
+    for root in (Path(__file__).resolve().parents[2], Path(microimpact.__file__).resolve().parents[2]):
+        if (root / "benchmarks" / "dem_runs.py").is_file():
+            return root / "benchmarks" / "dem_runs.py"
+    raise FileNotFoundError("benchmarks/dem_runs.py (build the docs from a checkout)")
 
 
 def load_script():
     """``benchmarks/dem_runs.py`` as a module (it is a script, not part of the package)."""
-    spec = importlib.util.spec_from_file_location("dem_runs", SCRIPT)
+    spec = importlib.util.spec_from_file_location("dem_runs", _script())
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
     return mod

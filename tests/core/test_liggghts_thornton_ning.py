@@ -135,7 +135,10 @@ def test_elastic_impact_is_hertz_both_ways(V):
 
 
 @settings(CI)
-@given(x=st.floats(0.0, 1.0), a=st.sampled_from([0.4, 0.5, 1.3]), b=st.sampled_from([0.5, 0.4, 2.0]))
+# scipy loses digits for subnormal x (x^a/a is 1.190e-129 at x = 5e-324, a = 0.4; scipy gives 1.152e-129)
+@given(
+    x=st.floats(0.0, 1.0, allow_subnormal=False), a=st.sampled_from([0.4, 0.5, 1.3]), b=st.sampled_from([0.5, 0.4, 2.0])
+)
 def test_incomplete_beta_against_scipy(x, a, b):
     ref = special.betainc(a, b, x) * special.beta(a, b)
     assert M._beta_lower(a, b, x, 1.0 - x) == pytest.approx(ref, rel=1e-13, abs=1e-300)
