@@ -596,6 +596,69 @@ def rst_tables(rows):
     return text
 
 
+def plot_dem(rows=None, axes=None):
+    """Figure of ``docs/dem_codes.rst``: ``e`` and contact time against ``V``, DEM runs and closed forms.
+
+    Parameters
+    ----------
+    rows : list of dict, optional
+        Rows of the CSV (default: the stored ``benchmarks/data/dem_runs.csv``).
+    axes : pair of matplotlib Axes, optional
+        Where to draw; a new figure of two panels otherwise.
+
+    Returns
+    -------
+    tuple of Axes
+        The restitution panel and the contact-time panel.
+    """
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    from microimpact._kernels import impact_scalar
+    from microimpact.core.models import get
+    from microimpact.core.quantities import OUTCOME_FIELDS
+
+    rows = read_csv(DEFAULT_OUT) if rows is None else rows
+    if axes is None:
+        _, axes = plt.subplots(1, 2, figsize=(9.0, 3.6), constrained_layout=True)
+    model = get("liggghts_thornton_ning")
+    V = np.linspace(1.0, 105.0, 400)
+    here = [dict(zip(OUTCOME_FIELDS, model.outcome(v, E_STAR, RADIUS, MASS, P_Y, ()))) for v in V]
+    seed = [impact_scalar(v, E_STAR, RADIUS, MASS, P_Y) for v in V]
+    tn = finest(rows, "LIGGGHTS", "thornton_ning")
+    mdr = finest(rows, "LAMMPS", "mdr")
+    for ax, key, dem_key, scale, label in (
+        (axes[0], "restitution", "restitution", 1.0, "restitution coefficient e [-]"),
+        (axes[1], "contact_time", "contact_time_s", 1e9, "contact time $t_c$ [ns]"),
+    ):
+        ax.plot(V, [o[key] * scale for o in seed], "k--", lw=1.2, label="seed (thornton_ning_2016)")
+        ax.plot(V, [o[key] * scale for o in here], "C0-", lw=1.5, label="liggghts_thornton_ning (closed form)")
+        ax.plot(
+            [r["velocity_m_s"] for r in tn],
+            [r[dem_key] * scale for r in tn],
+            "o",
+            mfc="none",
+            mec="C0",
+            ms=7,
+            label="LIGGGHTS 3.8.0 thornton_ning",
+        )
+        ax.plot(
+            [r["velocity_m_s"] for r in mdr],
+            [r[dem_key] * scale for r in mdr],
+            "s",
+            color="C3",
+            ms=5,
+            label="LAMMPS 22Jul2025 mdr (Y = 74 MPa)",
+        )
+        ax.set_xlabel("impact velocity V [m/s]")
+        ax.set_ylabel(label)
+        ax.set_xlim(0, 105)
+        ax.grid(alpha=0.3)
+    axes[0].set_ylim(0.3, 1.02)
+    axes[0].legend(fontsize=8, loc="lower left")
+    return axes
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--out", default=str(DEFAULT_OUT), help="CSV to write (default: benchmarks/data/dem_runs.csv)")

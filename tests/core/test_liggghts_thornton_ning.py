@@ -144,6 +144,7 @@ def test_incomplete_beta_against_scipy(x, a, b):
     assert M._beta_lower(a, b, x, 1.0 - x) == pytest.approx(ref, rel=1e-13, abs=1e-300)
 
 
+@pytest.mark.filterwarnings("ignore::scipy.integrate.IntegrationWarning")  # quad's own accuracy notes
 @settings(CI)
 @given(v=st.floats(1.0001, 100.0))
 def test_unloading_quadrature_against_scipy_quad(v):
