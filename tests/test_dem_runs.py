@@ -126,3 +126,23 @@ def test_docs_tables_from_stored_runs(dem, rows):
     assert "``liggghts_thornton_ning``" in tables[0]
     page = (ROOT / "docs" / "dem_codes.rst").read_text()
     assert "_generated/dem_thornton_ning.rst" in page and "_generated/dem_other.rst" in page
+
+
+def test_stored_hysteresis_runs_follow_the_law_read_in_liggghts(dem, rows):
+    """hooke/hysteresis (normal_model_hooke_hysteresis.h, no adhesion, no damping, alpha* < alpha_lim):
+    loading k1, unloading k2 = k1 + (k2max - k1) alpha*/alpha_lim, alpha_lim = k2max/(k2max - k1) phi_F 2 R.
+    Two half oscillations: alpha* = V (m/k1)^(1/2), e = (k1/k2)^(1/2), t_c = pi/2 ((m/k1)^(1/2) + (m/k2)^(1/2)),
+    dent alpha* (1 - k1/k2)."""
+    sel = [r for r in rows if r["code"] == "LIGGGHTS" and r["model_style"] == "hooke/hysteresis"]
+    assert len(sel) == 20
+    m = dem.MASS
+    for r in sel:
+        k1, ratio, phi = r["stiffness_N_m"], r["k2max_over_k1"], r["plasticity_depth_phiF"]
+        lim = ratio / (ratio - 1) * phi * 2 * r["particle_radius_m"]
+        amax = r["velocity_m_s"] * math.sqrt(m / k1)
+        assert amax < lim
+        k2 = k1 + (ratio - 1) * k1 * amax / lim
+        assert r["max_approach_m"] == pytest.approx(amax, rel=1e-7)
+        assert r["restitution"] == pytest.approx(math.sqrt(k1 / k2), rel=1e-7)
+        assert r["contact_time_s"] == pytest.approx(math.pi / 2 * (math.sqrt(m / k1) + math.sqrt(m / k2)), rel=1e-7)
+        assert r["plastic_approach_m"] == pytest.approx(amax * (1 - k1 / k2), rel=1e-6)
