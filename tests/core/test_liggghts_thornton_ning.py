@@ -15,6 +15,9 @@ from __future__ import annotations
 
 import csv
 import math
+import os
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -36,6 +39,7 @@ CI = settings.get_profile("ci")
 
 M = get("liggghts_thornton_ning")
 CSV = Path(__file__).resolve().parents[2] / "benchmarks" / "data" / "dem_runs.csv"
+SRC = Path(__file__).resolve().parents[2] / "src"
 
 # The seed's silicon case (THEORY.md section 5): NH4Fl sphere, d = 4.9 um, rho = 1350, on silicon.
 E_SI, R_SI, RHO, PY_SI = 1.31e9, 2.45e-6, 1350.0, 156e6
@@ -247,19 +251,31 @@ def test_difference_from_seed():
 
 
 def test_numba_compiles_the_same_source():
-    numba = pytest.importorskip("numba")
-    from numba.extending import register_jitable
+    """numba compiles outcome and force from this very source (registered as the core's arrays will).
 
-    from microimpact.core._jit import JITABLE
-
-    for fn in JITABLE:
-        if fn.__module__ == M.__name__:
-            register_jitable(fn)
-    fast = numba.njit(M.outcome)
-    for V in (5.0, 10.0, 50.0, 100.0):
-        ref = M.outcome(V, E_SI, R_SI, M_SI, PY_SI, ())
-        got = fast(V, E_SI, R_SI, M_SI, PY_SI, ())
-        np.testing.assert_allclose(got, ref, rtol=1e-14)
+    In a fresh interpreter, so that registering the functions here cannot clash with other tests.
+    """
+    pytest.importorskip("numba")
+    code = f"""
+import numpy as np, numba
+from numba.extending import register_jitable
+from microimpact.core._jit import JITABLE
+from microimpact.core.models import get
+M = get("liggghts_thornton_ning")
+for fn in JITABLE:
+    if fn.__module__ == M.__name__:
+        register_jitable(fn)
+outcome, force = numba.njit(M.outcome), numba.njit(M.force)
+args = ({E_SI!r}, {R_SI!r}, {M_SI!r}, {PY_SI!r}, ())
+for V in (5.0, 10.0, 50.0, 100.0):
+    np.testing.assert_allclose(outcome(V, *args), M.outcome(V, *args), rtol=1e-14)
+for a in (1e-9, 1e-7, 3e-7):
+    assert abs(force(a, -1.0, 3e-7, *args) - M.force(a, -1.0, 3e-7, *args)) <= 1e-14 * M.force(3e-7, 1.0, 3e-7, *args)
+print("ok")
+"""
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(SRC), os.environ.get("PYTHONPATH", "")]))
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=600)
+    assert proc.returncode == 0 and proc.stdout.strip() == "ok", proc.stderr[-3000:]
 
 
 def _liggghts_rows():
