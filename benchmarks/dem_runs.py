@@ -130,6 +130,22 @@ def hertz_time(V):
     return 0.8 * beta * (15.0 / 16.0) ** 0.4 * (MASS**2 / (RADIUS * E_STAR**2 * V)) ** 0.2
 
 
+def seed_outcome(V, E=E_STAR, R=RADIUS, m=MASS, p_y=P_Y):
+    """The seed's outcome of one impact as a dict keyed by ``OUTCOME_FIELDS``.
+
+    From the core's ``"thornton_ning_2016"`` model where it exists, else from the scalar path it
+    replaces (``microimpact._kernels.impact_scalar``): the same numbers (1e-13).
+    """
+    from microimpact.core.models import available, get
+    from microimpact.core.quantities import OUTCOME_FIELDS
+
+    if "thornton_ning_2016" in available():
+        return dict(zip(OUTCOME_FIELDS, get("thornton_ning_2016").outcome(V, E, R, m, p_y, ())))
+    from microimpact._kernels import impact_scalar
+
+    return impact_scalar(V, E, R, m, p_y)
+
+
 # ------------------------------------------------------------------ codes
 
 
@@ -516,7 +532,6 @@ def rst_tables(rows):
     and of the seed (computed here with microimpact), then ``e`` and contact time of every other
     run, then how much halving the time step changed each run.
     """
-    from microimpact._kernels import impact_scalar
     from microimpact.core.models import get
     from microimpact.core.quantities import OUTCOME_FIELDS
 
@@ -526,7 +541,7 @@ def rst_tables(rows):
     for r in tn:
         V = r["velocity_m_s"]
         o = dict(zip(OUTCOME_FIELDS, model.outcome(V, E_STAR, RADIUS, MASS, P_Y, ())))
-        s = impact_scalar(V, E_STAR, RADIUS, MASS, P_Y)
+        s = seed_outcome(V)
         body.append(
             [
                 f"{V:g}",
@@ -614,7 +629,6 @@ def plot_dem(rows=None, axes=None):
     import matplotlib.pyplot as plt
     import numpy as np
 
-    from microimpact._kernels import impact_scalar
     from microimpact.core.models import get
     from microimpact.core.quantities import OUTCOME_FIELDS
 
@@ -624,7 +638,7 @@ def plot_dem(rows=None, axes=None):
     model = get("liggghts_thornton_ning")
     V = np.linspace(1.0, 105.0, 400)
     here = [dict(zip(OUTCOME_FIELDS, model.outcome(v, E_STAR, RADIUS, MASS, P_Y, ()))) for v in V]
-    seed = [impact_scalar(v, E_STAR, RADIUS, MASS, P_Y) for v in V]
+    seed = [seed_outcome(v) for v in V]
     tn = finest(rows, "LIGGGHTS", "thornton_ning")
     mdr = finest(rows, "LAMMPS", "mdr")
     for ax, key, dem_key, scale, label in (

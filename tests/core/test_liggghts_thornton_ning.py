@@ -27,7 +27,6 @@ from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 from scipy import integrate, special
 
-from microimpact._kernels import impact_scalar
 from microimpact.core.models import available, get
 from microimpact.core.quantities import OUTCOME_FIELDS
 
@@ -48,6 +47,15 @@ M_SI = 4.0 / 3.0 * math.pi * R_SI**3 * RHO
 
 def out(V, E=E_SI, R=R_SI, m=M_SI, p_y=PY_SI):
     return dict(zip(OUTCOME_FIELDS, M.outcome(V, E, R, m, p_y, ())))
+
+
+def impact_scalar(V, E, R, m, p_y):
+    """The seed's outcome: the core's ``thornton_ning_2016`` where it exists, else the scalar path it replaces."""
+    if "thornton_ning_2016" in available():
+        return dict(zip(OUTCOME_FIELDS, get("thornton_ning_2016").outcome(V, E, R, m, p_y, ())))
+    from microimpact._kernels import impact_scalar as seed
+
+    return seed(V, E, R, m, p_y)
 
 
 def integrate_force_law(V, E, R, m, p_y, rtol=1e-13):
