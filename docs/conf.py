@@ -38,6 +38,7 @@ extensions = [
     "numpydoc",
     "matplotlib.sphinxext.plot_directive",
     "paper_comparison",  # docs/_ext: writes _generated/comparison.rst at build time
+    "dem_tables",  # docs/_ext: writes _generated/dem_*.rst from benchmarks/data/dem_runs.csv
 ]
 
 templates_path = ["_templates"]
