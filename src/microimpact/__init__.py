@@ -15,7 +15,7 @@ time histories.
 """
 
 from . import contact, coupling, deposition, dynamics, fitting, impact, materials, sweep
-from .coupling import WallInteraction, adhesive_restitution, sticking_velocity, wall_interaction, work_of_adhesion
+from .adhesion import adhesive_restitution, sticking_velocity, work_of_adhesion
 from .dynamics import (
     ImpactHistory,
     contact_times,
@@ -34,6 +34,7 @@ from .impact import (
 )
 from .materials import MATERIALS, Material, effective_mass, effective_modulus, effective_radius, get_material
 from .pair import ContactPair, ImpactResult, LargeStrainWarning
+from .wall import WallInteraction, wall_interaction
 
 __version__ = "0.1.0"
 

@@ -27,7 +27,7 @@ and an event at the wall, ``method="ode"``, is kept as a cross-check.) Spin
 decays with the rotational relaxation time ``rho d^2 / (60 mu)`` (the flow is
 irrotational).
 
-At the wall :func:`microimpact.coupling.wall_interaction` decides: stick
+At the wall :func:`microimpact.wall.wall_interaction` decides: stick
 (deposited) or bounce with the seed's restitution, adhesion and Coulomb
 friction. A bounced particle flies again and may hit the plate again (up to
 ``max_impacts`` impacts); it counts as **not deposited** if it leaves the plate
@@ -44,7 +44,7 @@ import numpy as np
 
 from ._optional import require
 from ._validation import check_nonnegative, check_positive
-from .coupling import wall_interaction
+from .wall import wall_interaction
 
 __all__ = [
     "AIR_MEAN_FREE_PATH",
@@ -379,7 +379,7 @@ def simulate_deposition(
 
     See the module docstring for the flow, the drag law and what counts as
     deposited. Every (jet speed, diameter, start position) is tracked at once
-    (vectorized); the wall decides by :func:`~microimpact.coupling.wall_interaction`.
+    (vectorized); the wall decides by :func:`~microimpact.wall.wall_interaction`.
 
     Parameters
     ----------
@@ -396,7 +396,7 @@ def simulate_deposition(
     n_particles : int
         Start positions per (speed, diameter).
     material, wall, density, limiting_pressure, effective_modulus, work_of_adhesion, friction
-        Passed to :func:`~microimpact.coupling.wall_interaction` (``work_of_adhesion``
+        Passed to :func:`~microimpact.wall.wall_interaction` (``work_of_adhesion``
         ``G`` [J/m^2] is the work of adhesion, ``2 gamma`` for identical surfaces).
     max_impacts : int
         Impacts tracked per particle (1: the first impact decides).

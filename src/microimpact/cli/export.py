@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from ..coupling import DEFAULT_VS_OVER_VY, work_of_adhesion, write_c_source, write_tables
+from ..adhesion import work_of_adhesion
+from ..cexport import DEFAULT_VS_OVER_VY, write_c_source, write_tables
 from ._common import add_pair_arguments, pair_from_args, parse_float, parse_values
 
 

@@ -1,0 +1,342 @@
+"""Bounce or stick at a wall, for whole particle arrays: the wall interaction CFD codes call.
+
+* **Normal direction**: the seed's elastic-plastic restitution with Thornton & Ning's (1998)
+  adhesion loss (:mod:`microimpact.adhesion`).
+* **Tangential direction**: the rigid-body impulse model with Coulomb friction
+  (Walton 1993; Brach 1988) for a solid sphere (moment of inertia
+  ``I = 2/5 m r^2``): the tangential impulse that would stop the slip of the
+  contact point is applied if it lies within the Coulomb limit ``mu J_n``
+  ("rolling": the particle leaves rolling on the wall), otherwise the impulse is
+  ``mu J_n`` against the slip ("sliding"). No energy is ever gained.
+* ``n`` is the unit wall normal pointing **out of the wall, into the fluid**.
+  (Fluent's ``F_AREA`` and OpenFOAM's patch ``Sf`` point out of the fluid
+  domain, i.e. into the wall: pass their negatives.)
+* ``v_n = v . n``; a particle approaches the wall when ``v_n < 0`` and its
+  normal impact speed is ``V = -v . n > 0``. Particles with ``v . n >= 0`` are
+  moving away: they are passed through unchanged and flagged
+  (``approaching = False``).
+* The contact point is at ``-r n`` from the particle centre (``r = d/2``); its
+  slip velocity is ``u_t = v_t + omega x (-r n) = v_t + r n x omega`` with
+  ``v_t = v - v_n n``; spins ``omega`` [rad/s] are angular velocity vectors,
+  right-handed, in the same frame as ``v``.
+* After the impact ``v_n' = +e V`` (away from the wall); the tangential impulse
+  ``J_t`` changes ``v_t' = v_t + J_t/m`` and ``omega' = omega - 5/(2 m r) n x J_t``.
+
+The wall is flat, fixed and massive (``R* = R``, ``m* = m``); spin about the
+normal is not changed (no torsional friction); the tangential impulse does not
+feed back on the normal restitution.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ._validation import check_nonnegative, check_positive
+from .adhesion import _adhesive, sticking_velocity
+from .impact import _restitution, yield_velocity
+from .materials import DEFAULT_K, Material, get_material
+from .materials import effective_modulus as _effective_modulus
+
+__all__ = ["REGIMES", "WallInteraction", "wall_interaction"]
+
+#: Codes of :attr:`WallInteraction.regime`.
+REGIMES = {0: "none", 1: "rolling", 2: "sliding", 3: "stuck"}
+
+
+@dataclass(frozen=True, eq=False)
+class WallInteraction:
+    """Outcome of :func:`wall_interaction` for ``N`` particles (SI units).
+
+    Attributes
+    ----------
+    velocity : ndarray (N, 3)
+        Outgoing velocity [m/s]; zero where stuck; the incoming one where the
+        particle was not approaching.
+    spin : ndarray (N, 3) or None
+        Outgoing angular velocity [rad/s]; None when no spin was given and
+        there is no friction.
+    stuck : ndarray of bool (N,)
+        True where the particle sticks (adhesion; never with ``G = 0``).
+    restitution : ndarray (N,)
+        Normal restitution ``e`` used: ``-v'.n / v.n``; 0 where stuck, 1 where
+        the particle was not approaching.
+    normal_speed : ndarray (N,)
+        Incoming normal impact speed ``V = -v.n`` [m/s]; 0 where not approaching.
+    approaching : ndarray of bool (N,)
+        False where ``v . n >= 0``: no impact, passed through unchanged.
+    rolling : ndarray of bool (N,)
+        True where the tangential impulse stopped the slip (within the Coulomb limit).
+    yield_velocity, sticking_velocity : ndarray (N,)
+        ``V_y`` (eq. 28) and ``V_s`` (Thornton & Ning) [m/s] of each particle.
+    """
+
+    velocity: np.ndarray
+    spin: np.ndarray | None
+    stuck: np.ndarray
+    restitution: np.ndarray
+    normal_speed: np.ndarray
+    approaching: np.ndarray
+    rolling: np.ndarray
+    yield_velocity: np.ndarray
+    sticking_velocity: np.ndarray
+    _single: bool = field(default=False, repr=False)
+
+    @property
+    def regime(self) -> np.ndarray:
+        """Per particle: ``"none"`` (not approaching), ``"stuck"``, ``"rolling"`` or ``"sliding"``."""
+        code = np.where(~self.approaching, 0, np.where(self.stuck, 3, np.where(self.rolling, 1, 2)))
+        return np.asarray(list(REGIMES.values()))[code]
+
+    @property
+    def deposited_fraction(self) -> float:
+        """Fraction of the approaching particles that stick."""
+        n = int(np.count_nonzero(self.approaching))
+        return float(np.count_nonzero(self.stuck)) / n if n else 0.0
+
+    def __len__(self):
+        return int(np.size(self.stuck))
+
+
+def _vectors(name, value, n_expected=None):
+    arr = np.asarray(value, dtype=float)
+    if arr.ndim == 1:
+        arr = arr[None, :]
+    if arr.ndim != 2 or arr.shape[1] != 3:
+        raise ValueError(f"{name} must have shape (N, 3) or (3,), got shape {np.shape(value)}")
+    if not np.all(np.isfinite(arr)):
+        bad = arr[~np.isfinite(arr)].flat[0]
+        raise ValueError(f"{name} must be finite, got {float(bad)!r}")
+    return arr
+
+
+def _per_particle(name, arr, n):
+    arr = np.asarray(arr, dtype=float)
+    if arr.ndim > 1 or (arr.ndim == 1 and arr.size not in (1, n)):
+        raise ValueError(f"{name} must be a scalar or have one value per particle ({n}), got shape {arr.shape}")
+    return np.broadcast_to(arr.reshape(-1) if arr.ndim else arr, (n,))
+
+
+def _cross(a, b):
+    """Cross product of component rows: ``a``, ``b`` shaped (3, ...)."""
+    return np.stack([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+
+
+def _materials(material, n):
+    """Per-particle arrays (E, nu, rho, Y) from one material or one per particle."""
+    if isinstance(material, (str, Material)):
+        m = get_material(material)
+        y = m.yield_strength if m.yield_strength else math.nan
+        return tuple(np.full(n, x, dtype=float) for x in (m.youngs_modulus, m.poisson_ratio, m.density, y))
+    arr = np.asarray(material, dtype=object).reshape(-1)
+    if arr.size != n:
+        raise ValueError(f"material must be one material or one per particle ({n}), got {arr.size}")
+    keys: dict = {}
+    inv = np.fromiter((keys.setdefault(x, len(keys)) for x in arr), dtype=np.intp, count=n)
+    table = np.array(
+        [
+            (m.youngs_modulus, m.poisson_ratio, m.density, m.yield_strength or math.nan)
+            for m in (get_material(k) for k in keys)
+        ],
+        dtype=float,
+    )
+    return tuple(table[inv, j] for j in range(4))
+
+
+def wall_interaction(
+    velocity,
+    normal,
+    diameter,
+    density=None,
+    *,
+    material=None,
+    wall="silicon",
+    limiting_pressure=None,
+    effective_modulus=None,
+    work_of_adhesion=0.0,
+    friction=0.0,
+    spin=None,
+    k=DEFAULT_K,
+) -> WallInteraction:
+    """Outgoing velocities, spins and stick flags of particles hitting a wall.
+
+    Normal: the seed's restitution (eqs. 22, 27, 28) of the normal impact speed
+    ``V = -v.n`` with the adhesive loss of Thornton & Ning (1998)
+    (:func:`adhesive_restitution`). Tangential: rigid-body Coulomb impulse model
+    for a solid sphere (Walton 1993; Brach 1988). Sign conventions: see the
+    module docstring (``n`` points from the wall into the fluid).
+
+    Tangential impulse: the contact-point slip ``u_t = v_t + r n x omega``
+    would be stopped by ``J_stop = -(2 m / 7) u_t`` (a sphere's slip changes by
+    ``J (1/m + r^2/I) = 7 J / (2 m)``). If ``|J_stop| <= mu J_n`` with the
+    normal impulse ``J_n = m (1 + e) V``, that impulse is applied (rolling: a
+    non-spinning sphere leaves with ``5/7`` of its tangential velocity);
+    otherwise ``J_t = -mu J_n u_t / |u_t|`` (sliding). Either way the slip
+    keeps its direction and shrinks, so the kinetic energy (translational plus
+    rotational) never increases. Stuck particles get zero velocity and spin.
+
+    Parameters
+    ----------
+    velocity : array_like (N, 3) or (3,)
+        Incoming particle velocities [m/s] in the wall's frame.
+    normal : array_like (N, 3) or (3,)
+        Wall normals, pointing out of the wall into the fluid; normalised here.
+    diameter : array_like (N,) or scalar
+        Particle diameters [m].
+    density : array_like (N,) or scalar, optional
+        Particle densities [kg/m^3]; default: the particle material's.
+    material : str, Material or sequence of them, optional
+        Particle material, one for all or one per particle (names from
+        :data:`~microimpact.materials.MATERIALS`). Needed unless ``density`` and
+        ``effective_modulus`` are given.
+    wall : str or Material, optional
+        Wall material (default ``"silicon"``); not used when ``effective_modulus`` is given.
+    limiting_pressure : array_like, optional
+        ``p_y`` [Pa] of the pair (scalar or per particle); ``inf`` for no
+        yielding. Default: ``k Y`` with ``Y`` the smaller known yield strength
+        of particle and wall.
+    effective_modulus : array_like, optional
+        ``E*`` [Pa], overriding the materials' value.
+    work_of_adhesion : array_like, optional
+        ``G`` [J/m^2] (the work of adhesion, ``2 gamma`` for identical surfaces;
+        see :func:`work_of_adhesion`), scalar or per particle. Default 0: no
+        adhesion, nothing sticks.
+    friction : array_like, optional
+        Coulomb friction coefficient ``mu`` >= 0, scalar or per particle. Default 0.
+    spin : array_like (N, 3), optional
+        Incoming angular velocities [rad/s]; default zero.
+    k : float, optional
+        ``p_y / Y`` when ``limiting_pressure`` is not given (default 2.2).
+
+    Returns
+    -------
+    WallInteraction
+
+    Examples
+    --------
+    >>> out = wall_interaction([[3.0, 0.0, -50.0]], [0, 0, 1], 4.9e-6, 1350.0,
+    ...                        effective_modulus=1.31e9, limiting_pressure=156e6, friction=0.3)
+    >>> out.velocity.round(3)
+    array([[ 2.143,  0.   , 36.241]])
+    >>> out.restitution.round(4), out.regime
+    (array([0.7248]), array(['rolling'], dtype='<U7'))
+    """
+    single = np.ndim(velocity) == 1
+    v = _vectors("velocity", velocity)
+    N = v.shape[0]
+    nrm = _vectors("normal", normal)
+    if nrm.shape[0] not in (1, N):
+        raise ValueError(f"normal must be one vector or one per particle ({N}), got {nrm.shape[0]}")
+    length = np.sqrt(np.einsum("ij,ij->i", nrm, nrm))
+    if np.any(length == 0.0):
+        raise ValueError("normal must not be a zero vector")
+    nrm = nrm / length[:, None]  # (1, 3) or (N, 3)
+
+    d = _per_particle("diameter", check_positive("diameter", diameter), N)
+    mats = _materials(material, N) if material is not None else None
+    if density is None:
+        if mats is None:
+            raise ValueError("density is needed (or give material=...)")
+        rho = mats[2]
+    else:
+        rho = _per_particle("density", check_positive("density", density), N)
+
+    if effective_modulus is not None:
+        E = _per_particle("effective_modulus", check_positive("effective_modulus", effective_modulus), N)
+        wall_mat = None
+    else:
+        if mats is None or wall is None:
+            raise ValueError("effective_modulus is needed (or give material=... and wall=...)")
+        wall_mat = get_material(wall)
+        E = _effective_modulus(mats[0], mats[1], wall_mat.youngs_modulus, wall_mat.poisson_ratio)
+
+    if limiting_pressure is None:
+        Y = np.full(N, math.nan) if mats is None else mats[3].copy()
+        if wall_mat is not None and wall_mat.yield_strength:
+            Y = np.fmin(Y, wall_mat.yield_strength)
+        if np.any(np.isnan(Y)):
+            raise ValueError(
+                "limiting_pressure is needed: give limiting_pressure=... or materials with a yield strength"
+            )
+        p_y = float(check_positive("k", k)) * Y
+    else:
+        p_y = _per_particle(
+            "limiting_pressure", check_positive("limiting_pressure", limiting_pressure, allow_inf=True), N
+        )
+    G = _per_particle("work_of_adhesion", check_nonnegative("work_of_adhesion", work_of_adhesion), N)
+    mu = _per_particle("friction", check_nonnegative("friction", friction), N)
+    if np.any(np.isinf(G)) or np.any(np.isinf(mu)):
+        raise ValueError("work_of_adhesion and friction must be finite")
+    has_spin = spin is not None
+    if has_spin:
+        w = _vectors("spin", spin)
+        if w.shape[0] not in (1, N):
+            raise ValueError(f"spin must have one vector per particle ({N}), got {w.shape[0]}")
+        w = np.broadcast_to(w, (N, 3))
+
+    r = 0.5 * d
+    m = 4.0 / 3.0 * np.pi * r**3 * rho  # as materials.sphere_mass: same bits as ContactPair
+    Vy = np.broadcast_to(yield_velocity(p_y, E, r, m), (N,))
+    Vs = np.broadcast_to(sticking_velocity(G, E, r, m), (N,)) if np.any(G > 0.0) else np.zeros(N)
+
+    # Components as contiguous rows (structure of arrays): (3, N) and (3, N or 1).
+    vT = np.ascontiguousarray(v.T)
+    nT = np.ascontiguousarray(nrm.T)
+
+    # Normal direction.
+    vn = vT[0] * nT[0] + vT[1] * nT[1] + vT[2] * nT[2]
+    approaching = vn < 0.0
+    V = np.where(approaching, -vn, 0.0)
+    e, stuck = _adhesive(V, _restitution(V, Vy), Vs)
+    stuck &= approaching
+    e = np.where(approaching, e, 1.0)
+    Jn_over_m = (1.0 + e) * V  # normal impulse / m
+
+    # Tangential direction: slip of the contact point, u_t = v_t + r n x omega.
+    # (In-place updates keep the number of passes over (3, N) arrays low.)
+    vtT = vT - vn * nT
+    if has_spin:
+        wT = np.ascontiguousarray(w.T)
+        utT = _cross(nT, wT)
+        utT *= r
+        utT += vtT
+    else:
+        utT = vtT
+    ut_mag = np.sqrt(utT[0] * utT[0] + utT[1] * utT[1] + utT[2] * utT[2])
+    stop = (2.0 / 7.0) * ut_mag  # |J_stop| / m
+    limit = mu * Jn_over_m  # mu J_n / m; 0 where not approaching (V = 0)
+    rolling = approaching & ~stuck & (stop <= limit)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        scale = np.where(rolling, 2.0 / 7.0, np.where(ut_mag > 0.0, limit / ut_mag, 0.0))
+    JtT = utT * -scale  # tangential impulse / m; 0 where not approaching
+
+    v_outT = vtT + JtT
+    v_outT += np.where(approaching, e * V, vn) * nT
+    v_out = np.ascontiguousarray(v_outT.T)
+    away = ~approaching
+    if away.any():
+        v_out[away] = v[away]  # passed through bit for bit
+    v_out[stuck] = 0.0
+    w_out = None
+    if has_spin or np.any(mu > 0.0):
+        # omega' = omega + (-r n) x J / I = omega - 5/(2 m r) n x J
+        w_outT = _cross(nT, JtT)
+        w_outT *= -2.5 / r
+        if has_spin:
+            w_outT += wT
+        w_out = np.ascontiguousarray(w_outT.T)
+        w_out[stuck] = 0.0
+    return WallInteraction(
+        velocity=v_out[0] if single else v_out,
+        spin=None if w_out is None else (w_out[0] if single else w_out),
+        stuck=stuck[0] if single else stuck,
+        restitution=e[0] if single else e,
+        normal_speed=V[0] if single else V,
+        approaching=approaching[0] if single else approaching,
+        rolling=rolling[0] if single else rolling,
+        yield_velocity=Vy[0] if single else np.array(Vy),
+        sticking_velocity=Vs[0] if single else np.array(Vs),
+        _single=single,
+    )
