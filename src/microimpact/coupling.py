@@ -8,8 +8,8 @@ bounce off the impacting surface"; these three modules do that.
 
 from __future__ import annotations
 
-from .adhesion import STICKING_CONSTANT, adhesive_restitution, sticking_velocity, work_of_adhesion
-from .cexport import (
+from .adhesion import STICKING_CONSTANT, adhesive_restitution, sticking_velocity, work_of_adhesion  # noqa: F401
+from .cexport import (  # noqa: F401
     DEFAULT_SPEEDS,
     DEFAULT_V_OVER_VY,
     DEFAULT_VS_OVER_VY,
