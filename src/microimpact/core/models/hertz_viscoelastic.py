@@ -7,9 +7,9 @@ Springer 2005, eq. 2.14),
 .. math::  P = \\tfrac{4}{3} E^* R^{*1/2} \\left(\\alpha^{3/2} + A\\, \\alpha^{1/2}\\, \\dot\\alpha\\right),
 
 with the material's dissipative constant ``A`` [s]. It is what LAMMPS computes for
-``pair_coeff * * hertz/material E e nu ... damping viscoelastic`` (``doc/src/pair_granular.rst``:
-``F = 4/3 E a delta + eta_n0 a m_eff delta_dot`` with ``a = (R delta)^(1/2)``), so
-``eta_n0 = 2 E* A / m*`` [1/(s m)] there. Near the end of the contact the damping term can make
+``pair_coeff * * hertz/material E e nu ... damping viscoelastic`` (``doc/src/pair_granular.rst``: ``hertz`` force ``k_N R^(1/2) delta^(3/2)`` with
+``k_N = 4/3 E*``, damping ``eta_n0 a m_eff delta_dot`` with ``a = (R delta)^(1/2)``), so
+``eta_n0 = 4 E* A / (3 m*)`` [1/(s m)] there. Near the end of the contact the damping term can make
 ``P`` negative: LAMMPS keeps the attractive force unless ``limit_damping`` is given; Poschel &
 Schwager (2005, sect. 2.2) and Schwager & Poschel (2008, Phys. Rev. E 78, 051304) clip it at zero
 and end the contact when it vanishes. ``limit_force`` selects the convention.
