@@ -46,8 +46,10 @@ Closed form (solution of ``m* alpha'' + eta alpha' + k alpha = 0``, ``alpha(0) =
   ``omega t_P = atan2((omega_0^2 - 4 beta^2) omega, beta (3 omega_0^2 - 4 beta^2))``.
 
 Fields this model does not define (NaN): ``yield_velocity``, ``normalized_velocity``,
-``unloading_radius``, ``elastic_stage_time``, ``plastic_stage_time``. ``plastic_approach`` is 0
-(no permanent deformation). ``max_contact_radius`` is the Hertz geometry ``(R* alpha*)^(1/2)``,
+``unloading_radius``, ``elastic_stage_time``, ``plastic_stage_time``. ``plastic_approach`` is the
+approach where the contact ends: 0 with ``limit_force = 0``; with ``limit_force = 1`` the
+deformation not yet recovered when the particle leaves (the spring is elastic: nothing is
+permanent). ``max_contact_radius`` is the Hertz geometry ``(R* alpha*)^(1/2)``,
 for comparison only. ``p_y`` is not used.
 
 Validity: any speed (the law has no yield point and no speed dependence); it is a numerical
@@ -147,7 +149,8 @@ def outcome(V, E, R, m, p_y, params):
             p_max = p
     tL = th_m / w
     tU = (th_c - th_m) / w
-    return dem_outcome(V, e, a_max, 0.0, p_max, R, tL, tU)
+    a_end = V / w * dec * math.sin(th_c) if limit else 0.0
+    return dem_outcome(V, e, a_max, a_end, p_max, R, tL, tU)
 
 
 @jitable
