@@ -102,7 +102,7 @@ def _agree(mod, V, E, R, m, params, tol=1e-8):
     return o
 
 
-@settings(max_examples=60, **PROFILE)
+@settings(max_examples=30, **PROFILE)
 @given(
     V=st.floats(-3.0, 3.0),
     k=st.floats(-2.0, 6.0),
@@ -116,7 +116,7 @@ def test_linear_closed_form_equals_ode(V, k, e, limit, r, rho):
     _agree(lin, 10.0**V, E_SI, R, m, (10.0**k, e, limit))
 
 
-@settings(max_examples=60, **PROFILE)
+@settings(max_examples=30, **PROFILE)
 @given(
     V=st.floats(-3.0, 3.0),
     k1=st.floats(-2.0, 6.0),
@@ -130,7 +130,7 @@ def test_hysteretic_closed_form_equals_ode(V, k1, ratio, phi, r, rho):
     _agree(lud, 10.0**V, E_SI, R, m, (10.0**k1, ratio * 10.0**k1, phi))
 
 
-@settings(max_examples=60, **PROFILE)
+@settings(max_examples=30, **PROFILE)
 @given(
     V=st.floats(-3.0, 2.5),
     kappa=st.floats(0.0, 3.0),
