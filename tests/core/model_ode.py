@@ -24,7 +24,7 @@ def _run(model, V, E, R, m, p_y, params, ts, rtol):
     c = ts / (m * V)  # u' = -P c
 
     def rhs1(t, y):
-        a = y[0] * xs if y[0] > 0.0 else 0.0
+        a = y[0] * xs if y[0] > 0.0 else 0.0  # loading starts at zero approach
         return [y[1], -f(a, y[1] * V, a, E, R, m, p_y, params) * c]
 
     def top(t, y):
@@ -42,8 +42,10 @@ def _run(model, V, E, R, m, p_y, params, ts, rtol):
     def rhs2(t, y):
         return [y[1], -f(y[0] * xs, y[1] * V, amax, E, R, m, p_y, params) * c]
 
+    sep = model.separation_approach(E, R, m, p_y, params) / xs if hasattr(model, "separation_approach") else 0.0
+
     def zero_overlap(t, y):
-        return y[0]
+        return y[0] - sep
 
     zero_overlap.terminal = True
     zero_overlap.direction = -1
