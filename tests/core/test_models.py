@@ -16,11 +16,12 @@ from microimpact._kernels import impact_scalar
 from microimpact.core import models
 from microimpact.core.models import _common
 from microimpact.core.models import hertz_viscoelastic as hv
+from microimpact.core.models import jkr_elastic_adhesive as jkr
 from microimpact.core.models import linear_spring_dashpot as lin
 from microimpact.core.models import luding_hysteretic as lud
 from microimpact.core.quantities import OUTCOME_FIELDS
 
-NEW = (lin, hv, lud)
+NEW = (lin, hv, lud, jkr)
 PROFILE = dict(derandomize=True, deadline=None)
 
 # the seed's silicon case (THEORY.md section 5)
@@ -71,6 +72,8 @@ def test_private_helpers_not_listed():
         (lud, (1e3, 5e2, 0), "unloading_stiffness must be finite and >= loading_stiffness"),
         (lud, (0.0, 5e2, 0), "loading_stiffness must be positive and finite, got 0.0"),
         (lud, (1e3, 5e3, -0.1), "plasticity_depth must be non-negative and finite, got -0.1"),
+        (jkr, (-0.1,), "surface_energy must be non-negative and finite, got -0.1"),
+        (jkr, (0.1, 0.2), "params must hold 1 value"),
     ],
 )
 def test_validate_names_the_parameter(mod, params, match):
@@ -79,7 +82,8 @@ def test_validate_names_the_parameter(mod, params, match):
 
 
 @pytest.mark.parametrize(
-    "mod, params", [(lin, (-1.0, 0.5, 0.0)), (hv, (-1.0, 1.0)), (lud, (1e3, 1.0, 0.0)), (lin, (1.0,))]
+    "mod, params",
+    [(lin, (-1.0, 0.5, 0.0)), (hv, (-1.0, 1.0)), (lud, (1e3, 1.0, 0.0)), (lin, (1.0,)), (jkr, (-1.0,))],
 )
 def test_invalid_params_give_nan_not_an_exception(mod, params):
     out = mod.outcome(10.0, E_SI, R_SI, M_SI, PY_SI, params)
@@ -97,8 +101,13 @@ def _agree(mod, V, E, R, m, params, tol=1e-8):
     assert abs(o["restitution"] - r["restitution"]) < tol, (o["restitution"], r["restitution"])
     for k in KEYS_T:
         assert rel(o[k], r[k]) < tol, (k, o[k], r[k])
-    # the end state: the ODE's event sits within its absolute tolerance of zero approach
-    assert abs(o["plastic_approach"] - r["plastic_approach"]) < 1e-7 * o["max_approach"]
+    # the end state: the ODE's event sits within its absolute tolerance of the end approach
+    end = (
+        mod.separation_approach(E, R, m, PY_SI, params)
+        if hasattr(mod, "separation_approach")
+        else o["plastic_approach"]
+    )
+    assert abs(end - r["plastic_approach"]) < 1e-7 * o["max_approach"]
     return o
 
 
@@ -159,7 +168,7 @@ def test_viscoelastic_integration_equals_ode(V, kappa, limit, Eexp, r, rho):
 @settings(max_examples=150, **PROFILE)
 @given(
     V=st.floats(-4.0, 4.0),
-    mod_i=st.integers(0, 2),
+    mod_i=st.integers(0, 3),
     a=st.floats(-3.0, 7.0),
     b=st.floats(0.0, 1.0),
     c=st.floats(0.0, 1.0),
@@ -172,8 +181,10 @@ def test_restitution_in_unit_interval_energy_never_created(V, mod_i, a, b, c, r)
     elif mod_i == 1:
         T = (m / (4.0 / 3.0 * E_SI * math.sqrt(R) * math.sqrt(10.0**V))) ** 0.4
         mod, params = hv, (5.0 * b * T, round(c))
-    else:
+    elif mod_i == 2:
         mod, params = lud, (10.0**a, 10.0**a * (1.0 + 99.0 * b), c * c)
+    else:
+        mod, params = jkr, (10.0 ** (a - 5.0),)
     o = fields(mod, 10.0**V, E_SI, R, m, PY_SI, params)
     assert 0.0 <= o["restitution"] <= 1.0
     assert 0.0 <= o["energy_loss"] <= 1.0
@@ -296,3 +307,92 @@ def test_viscoelastic_speed_limits():
     o = fields(hv, 0.0, E_SI, R_SI, M_SI, PY_SI, (1e-9, 1.0))
     assert o["restitution"] == 1.0 and o["max_approach"] == 0.0
     assert all(math.isnan(x) for x in hv.outcome(math.inf, E_SI, R_SI, M_SI, PY_SI, (1e-9, 1.0))[1:])
+
+
+# ----------------------------------------------------------------------------- JKR elastic adhesion
+
+
+def _sticking_speed(gamma, E, R, m):
+    W = jkr.WORK_CONSTANT * E * R ** (4.0 / 3.0) * (math.pi * gamma / E) ** (5.0 / 3.0)
+    return math.sqrt(2.0 * W / m)
+
+
+@settings(max_examples=30, **PROFILE)
+@given(
+    over=st.floats(0.01, 4.0),
+    g=st.floats(-3.0, 1.0),
+    Eexp=st.floats(7.0, 11.5),
+    r=st.floats(-7.0, -4.0),
+    rho=st.floats(500.0, 20000.0),
+)
+def test_jkr_closed_form_equals_ode(over, g, Eexp, r, rho):
+    """Speeds from 1.01 V_s to ~10^4 V_s (``over`` is log10(V/V_s) shifted)."""
+    R, m = _sphere(r, rho)
+    E = 10.0**Eexp
+    gamma = 10.0**g
+    V = _sticking_speed(gamma, E, R, m) * (1.0 + 10.0 ** (over - 2.0))
+    _agree(jkr, V, E, R, m, (gamma,))
+
+
+def test_jkr_pulloff_is_lammps():
+    """LAMMPS: pull-off distance JKRPREFIX (R gamma^2/E^2)^(1/3), JKRPREFIX = cbrt(3 pi^2/16) =
+    1.2277228507842888 (gran_sub_mod_normal_kernel.h); pull-off force 3 pi gamma R (pair_granular doc)."""
+    gamma = 0.2
+    dc = jkr.pulloff_approach(E_SI, R_SI, gamma)
+    assert dc == pytest.approx(1.2277228507842888 * (R_SI * gamma**2 / E_SI**2) ** (1.0 / 3.0), rel=1e-15)
+    p = jkr.signed_force(-dc, 0.0, 1e-9, E_SI, R_SI, M_SI, 0.0, (gamma,))
+    assert p == pytest.approx(-3.0 * math.pi * gamma * R_SI, rel=1e-12)
+    # it is the force minimum of the curve: the force grows on both sides
+    for d in (-dc * (1 - 1e-4), -dc * (1 + 1e-4)):
+        assert jkr.signed_force(d, 0.0, 1e-9, E_SI, R_SI, M_SI, 0.0, (gamma,)) > p
+    # at first touch the force jumps to -8/3 pi gamma R (derived from the curve at zero approach)
+    p0 = jkr.force(0.0, 1.0, 0.0, E_SI, R_SI, M_SI, 0.0, (gamma,))
+    assert p0 == pytest.approx(-8.0 / 3.0 * math.pi * gamma * R_SI, rel=1e-12)
+    # outside the contact there is no force
+    assert jkr.force(-0.5 * dc, -1.0, 0.0, E_SI, R_SI, M_SI, 0.0, (gamma,)) == 0.0
+    assert jkr.force(-1.01 * dc, -1.0, 1e-9, E_SI, R_SI, M_SI, 0.0, (gamma,)) == 0.0
+
+
+@pytest.mark.parametrize("alpha_over_dc", [-0.99, -0.5, 0.0, 0.3, 10.0, 1e4])
+def test_jkr_contact_radius_solves_the_doc_relation(alpha_over_dc):
+    """LAMMPS' closed-form contact radius inverts alpha = a^2/R - 2 (pi gamma a/E)^(1/2) (doc)."""
+    gamma = 0.05
+    alpha = alpha_over_dc * jkr.pulloff_approach(E_SI, R_SI, gamma)
+    a = jkr.contact_radius(alpha, E_SI, R_SI, gamma)
+    back = a * a / R_SI - 2.0 * math.sqrt(math.pi * gamma * a / E_SI)
+    assert back == pytest.approx(alpha, rel=1e-9, abs=1e-12 * jkr.pulloff_approach(E_SI, R_SI, gamma))
+
+
+def test_jkr_work_constant_is_the_tensile_work():
+    """The closed-form pull-off work against a quadrature of the force along the curve."""
+    from scipy.integrate import quad
+
+    gamma = 0.3
+    dc = jkr.pulloff_approach(E_SI, R_SI, gamma)
+    W = -quad(
+        lambda d: jkr.signed_force(d, 0.0, 1.0, E_SI, R_SI, M_SI, 0.0, (gamma,)), -dc, 0.0, epsabs=0, epsrel=1e-13
+    )[0]
+    ref = jkr.WORK_CONSTANT * E_SI * R_SI ** (4.0 / 3.0) * (math.pi * gamma / E_SI) ** (5.0 / 3.0)
+    assert W == pytest.approx(ref, rel=1e-10)
+    assert round(jkr.WORK_CONSTANT, 5) == 1.65015
+
+
+def test_jkr_sticks_below_the_critical_speed():
+    gamma = 0.5
+    Vs = _sticking_speed(gamma, E_SI, R_SI, M_SI)
+    below = fields(jkr, 0.999 * Vs, E_SI, R_SI, M_SI, PY_SI, (gamma,))
+    assert below["restitution"] == 0.0 and below["contact_time"] == math.inf
+    above = fields(jkr, 1.2 * Vs, E_SI, R_SI, M_SI, PY_SI, (gamma,))
+    assert above["restitution"] == pytest.approx(math.sqrt(1.0 - 1.0 / 1.2**2), rel=1e-13)
+    # e increases with speed above V_s, towards 1
+    es = [fields(jkr, f * Vs, E_SI, R_SI, M_SI, PY_SI, (gamma,))["restitution"] for f in (1.1, 2.0, 10.0, 100.0)]
+    assert es == sorted(es) and es[-1] > 0.9999
+
+
+def test_jkr_without_adhesion_is_hertz():
+    for V in (0.01, 1.0, 50.0):
+        o = fields(jkr, V, E_SI, R_SI, M_SI, PY_SI, (0.0,))
+        ref = impact_scalar(V, E_SI, R_SI, M_SI, math.inf)
+        assert o["restitution"] == 1.0
+        for k in ("max_approach", "max_force", "loading_time", "contact_time"):
+            assert o[k] == pytest.approx(ref[k], rel=1e-12)
