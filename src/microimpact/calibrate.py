@@ -363,8 +363,6 @@ def _linear(e_t, t_t, limit, pv):
 
 
 def _luding_plastic(V, e_t, t_t, ratio, pv):
-    from .core.models import luding_hysteretic as lud
-
     E, R, m, p_y = pv
     e0 = float(e_t[0]) if V.size == 1 else float(np.mean(e_t))
     t0 = float(np.mean(t_t))
@@ -384,7 +382,7 @@ def _luding_plastic(V, e_t, t_t, ratio, pv):
         return float(np.sum((e - e_t) ** 2))
 
     a1 = float(np.max(V)) * math.sqrt(m / k1)
-    guess = math.log(lud.plasticity_overlap(R, (k1, k2, 1.0)) and a1 / (2.0 * R))
+    guess = math.log(a1 / (2.0 * R))  # phi_f of order alpha_max/(2 R*)
     r = minimize_scalar(cost, bounds=(guess - 20.0, guess + 20.0), method="bounded", options={"xatol": 1e-10})
     return (k1, k2, math.exp(r.x))
 
