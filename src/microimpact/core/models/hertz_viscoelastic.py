@@ -11,14 +11,17 @@ with the material's dissipative constant ``A`` [s]. It is what LAMMPS computes f
 ``k_N = 4/3 E*``, damping ``eta_n0 a m_eff delta_dot`` with ``a = (R delta)^(1/2)``), so
 ``eta_n0 = 4 E* A / (3 m*)`` [1/(s m)] there. Near the end of the contact the damping term can make
 ``P`` negative: LAMMPS keeps the attractive force unless ``limit_damping`` is given; Poschel &
-Schwager (2005, sect. 2.2) and Schwager & Poschel (2008, Phys. Rev. E 78, 051304) clip it at zero
-and end the contact when it vanishes. ``limit_force`` selects the convention.
+Schwager (2005, p. 22, as quoted in the comments of a public implementation of eq. 2.14) set it to
+zero. ``limit_force`` selects the convention. (Schwager & Poschel's series for ``e`` in
+``V^(1/5)`` and Muller & Poschel's (2011) compact forms were not available to this project: ``e``
+is computed from the force law itself, below.)
 
 Scaling: with ``rho = 4/3 E* R*^(1/2)``, time ``T = (m*/(rho V^(1/2)))^(2/5)`` and length
 ``X = V T``, Newton's equation becomes ``x'' = -(x^(3/2) + kappa x^(1/2) x')``, ``x(0) = 0``,
 ``x'(0) = 1``, with the single number ``kappa = A/T = A (rho/m*)^(2/5) V^(1/5)``: ``e`` is one
-function of ``kappa`` (Schwager & Poschel's variable, up to a constant factor), decreasing from 1
-as ``V`` (or ``A``) grows. That function has no closed form; it is computed here by integrating the
+function of ``kappa``, decreasing from 1 as ``V`` (or ``A``) grows, with
+``1 - e = C kappa + O(kappa^2)``, ``C = 4/5 (5/4)^(3/5) B(3/5, 3/2) = 1.1534`` (the damping work
+along Hertz's trajectory; derived here and checked in the tests). That function has no closed form; it is computed here by integrating the
 scaled equation with an embedded Runge-Kutta 5(4) pair (Dormand & Prince; tableau as in
 :class:`scipy.integrate.RK45`) at a relative tolerance of 1e-12, starting from the series
 ``x = t - 4/15 kappa t^(5/2) - 4/35 t^(7/2) + 1/15 kappa^2 t^4`` at ``t = 1e-4`` (derived here),
@@ -26,13 +29,13 @@ and locating the maximum approach, the maximum force and the end of the contact 
 on the step length. It agrees with scipy's DOP853 integration of :func:`force` to better than
 1e-9 (``tests/core/test_models.py``); ``kappa = 0`` gives Hertz's elastic impact exactly.
 
-Parameters of this model (``params``, in this order)
--------------------------------------------------------
+**Parameters of this model** (``params``, in this order):
+
 ``dissipative_constant`` ``A`` [s], ``>= 0``
     ``A = 0`` is Hertz's elastic impact.
 ``limit_force`` [0 or 1]
-    ``1`` (default): force clipped at zero, the contact ends when it vanishes (Poschel & Schwager;
-    LAMMPS ``limit_damping``). ``0``: the force may become attractive, the contact ends when the
+    ``1`` (default): force clipped at zero, the contact ends when it vanishes (Poschel & Schwager
+    2005; LAMMPS ``limit_damping``). ``0``: the force may become attractive, the contact ends when the
     approach returns to zero (LAMMPS without ``limit_damping``); at large ``kappa`` the particle
     may then never leave (``e = 0``, ``contact_time = inf``).
 

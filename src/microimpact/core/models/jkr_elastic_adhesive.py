@@ -31,8 +31,8 @@ loading and unloading times are the integrals ``int d alpha / |alpha'|``, comput
 Gauss-Legendre quadrature after the substitutions ``b = b_max - w^2`` (turning point) and
 ``b = b_F + w^2`` (pull-off, near the sticking speed) that remove the square-root singularities (agreement with the integration of :func:`force` to 1e-8 is tested).
 
-Parameters of this model (``params``)
---------------------------------------
+**Parameters of this model** (``params``):
+
 ``surface_energy`` ``gamma`` [J/m^2], ``>= 0``
     LAMMPS' ``cohesion`` of the ``jkr`` normal model; 0 gives Hertz's elastic impact.
 
@@ -42,8 +42,7 @@ Fields this model does not define (NaN): ``yield_velocity``, ``normalized_veloci
 ``max_contact_radius`` is the JKR contact radius at the maximum approach. ``p_y`` is not used.
 
 Validity: elastic spheres with a short-range adhesion (JKR limit: large, soft, strongly adhesive
-particles; Tabor parameter well above 1); no plasticity, no damping. Thornton & Ning (1998,
-Powder Technol. 99, 154) use this law for the elastic-adhesive stage of their model.
+particles; Tabor parameter well above 1); no plasticity, no damping.
 """
 
 from __future__ import annotations

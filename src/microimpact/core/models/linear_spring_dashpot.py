@@ -12,8 +12,8 @@ compute from the restitution coefficient ``e_n`` the user gives. ``pair_style gr
 LAMMPS writes the same force as ``k alpha + m* gamma_n alpha_dot`` (``doc/src/pair_gran.rst``), so
 ``gamma_n = eta / m*`` [1/s].
 
-Parameters of this model (``params``, in this order)
--------------------------------------------------------
+**Parameters of this model** (``params``, in this order):
+
 ``stiffness`` ``k`` [N/m]
     The spring constant, as DEM codes take it (``kn``). A linear spring has no contact mechanics
     of its own: ``k`` is a numerical choice (it sets the contact time, ``t_c ~ pi (m*/k)^(1/2)``),
@@ -27,8 +27,7 @@ Parameters of this model (``params``, in this order)
     The force-sign convention at the end of the contact. ``0`` (default; LAMMPS without
     ``limit_damping``, LIGGGHTS ``limitForce off``): the force is used as it is, turns attractive
     near the end of the contact, and the contact ends when the approach returns to zero; then
-    ``e = e_n`` exactly. ``1`` (LAMMPS ``limit_damping``, LIGGGHTS ``limitForce on``; Schwager &
-    Poschel's choice): the force is clipped at zero and the particle leaves when it first
+    ``e = e_n`` exactly. ``1`` (LAMMPS ``limit_damping``, LIGGGHTS ``limitForce on``): the force is clipped at zero and the particle leaves when it first
     vanishes, at ``alpha > 0``; the rebound is then faster, ``e > e_n``.
 
 Closed form (solution of ``m* alpha'' + eta alpha' + k alpha = 0``, ``alpha(0) = 0``,

@@ -1,8 +1,10 @@
 """Linear hysteretic (elastic-plastic) spring of Walton & Braun and Luding, without damping or adhesion.
 
-The contact law DEM codes offer for plastic particles (Walton & Braun 1986, J. Rheol. 30, 949;
-Luding 2008, Granular Matter 10, 235, "Cohesive, frictional powders: contact models for tension"):
-loading along a soft spring ``k1``, unloading along a stiffer one ``k2`` from the largest approach
+The contact law DEM codes offer for plastic particles, known after Walton & Braun (1986, J. Rheol.
+30, 949) and Luding (2008, Granular Matter 10, 235); those papers were not available to this
+project, and the formulas here are those of the two codes read, DEMLab
+(``src/interactions/force_models/ContactForceN_ElastoPlasticLinear.m``) and LIGGGHTS-PUBLIC
+(``src/normal_model_hooke_hysteresis.h``): loading along a soft spring ``k1``, unloading along a stiffer one ``k2`` from the largest approach
 ``alpha_max``, down to the plastic approach ``alpha_0 = (1 - k1/k2) alpha_max`` where the force
 vanishes and the particle leaves:
 
@@ -21,8 +23,8 @@ Two variants, chosen by ``plasticity_depth``:
   adhesion stiffness ``kc`` and its viscous damping set to zero (``kn2kc = 0``,
   ``coefficientRestitution = 1``).
 
-Parameters of this model (``params``, in this order)
--------------------------------------------------------
+**Parameters of this model** (``params``, in this order):
+
 ``loading_stiffness`` ``k1`` [N/m]
     Stiffness of the loading branch.
 ``unloading_stiffness`` ``k2`` [N/m], ``>= k1``
@@ -35,8 +37,8 @@ Closed form (piecewise harmonic motion; derived here, checked against the integr
 
 * constant ``k2`` (and Luding's law while ``alpha_max = V/omega_1 <= delta_p``, with ``k2`` replaced
   by ``k2(alpha_max)``): ``alpha* = V/omega_1``, ``P* = k1 alpha*``, ``e = (k1/k2)^(1/2)``,
-  ``alpha_0 = (1 - k1/k2) alpha*``, ``t_L = pi/(2 omega_1)``, ``t_U = pi/(2 omega_2)``
-  (Luding 2008, sect. 2: ``e = (k1/k2)^(1/2)``, contact duration ``pi/(2 omega_1) + pi/(2 omega_2)``);
+  ``alpha_0 = (1 - k1/k2) alpha*`` (DEMLab's residual overlap ``V (m*/k1)^(1/2) (1 - e^2)``),
+  ``t_L = pi/(2 omega_1)``, ``t_U = pi/(2 omega_2)``;
 * Luding's law beyond ``delta_p``: ``k1`` loading to ``delta_p`` (reached at speed
   ``v_p = (V^2 - omega_1^2 delta_p^2)^(1/2)`` after ``asin(omega_1 delta_p / V)/omega_1``), then
   harmonic motion with ``omega_2`` about ``delta_0 = (1 - k1/k2) delta_p``, of amplitude
