@@ -104,43 +104,42 @@ def validate(params):
 
 
 @jitable
-def _acc(x, v, kappa):
-    """Scaled acceleration ``-(x^(3/2) + kappa x^(1/2) v)`` (no force outside the contact)."""
+def _acc(x, v, kappa, q):
+    """Scaled acceleration ``-(x^(3/2) + kappa x^q v)`` (no force outside the contact)."""
     if x <= 0.0:
         return 0.0
-    s = math.sqrt(x)
-    return -(x * s + kappa * s * v)
+    return -(x * math.sqrt(x) + kappa * x**q * v)
 
 
 @jitable
-def _step(x, v, h, kappa):
+def _step(x, v, h, kappa, q):
     """One Dormand-Prince step of length ``h``: ``(x, v, error estimate)``."""
     k1x = v
-    k1v = _acc(x, v, kappa)
+    k1v = _acc(x, v, kappa, q)
     x2 = x + h * _A21 * k1x
     v2 = v + h * _A21 * k1v
     k2x = v2
-    k2v = _acc(x2, v2, kappa)
+    k2v = _acc(x2, v2, kappa, q)
     x3 = x + h * (_A31 * k1x + _A32 * k2x)
     v3 = v + h * (_A31 * k1v + _A32 * k2v)
     k3x = v3
-    k3v = _acc(x3, v3, kappa)
+    k3v = _acc(x3, v3, kappa, q)
     x4 = x + h * (_A41 * k1x + _A42 * k2x + _A43 * k3x)
     v4 = v + h * (_A41 * k1v + _A42 * k2v + _A43 * k3v)
     k4x = v4
-    k4v = _acc(x4, v4, kappa)
+    k4v = _acc(x4, v4, kappa, q)
     x5 = x + h * (_A51 * k1x + _A52 * k2x + _A53 * k3x + _A54 * k4x)
     v5 = v + h * (_A51 * k1v + _A52 * k2v + _A53 * k3v + _A54 * k4v)
     k5x = v5
-    k5v = _acc(x5, v5, kappa)
+    k5v = _acc(x5, v5, kappa, q)
     x6 = x + h * (_A61 * k1x + _A62 * k2x + _A63 * k3x + _A64 * k4x + _A65 * k5x)
     v6 = v + h * (_A61 * k1v + _A62 * k2v + _A63 * k3v + _A64 * k4v + _A65 * k5v)
     k6x = v6
-    k6v = _acc(x6, v6, kappa)
+    k6v = _acc(x6, v6, kappa, q)
     xn = x + h * (_B1 * k1x + _B3 * k3x + _B4 * k4x + _B5 * k5x + _B6 * k6x)
     vn = v + h * (_B1 * k1v + _B3 * k3v + _B4 * k4v + _B5 * k5v + _B6 * k6v)
     k7x = vn
-    k7v = _acc(xn, vn, kappa)
+    k7v = _acc(xn, vn, kappa, q)
     ex = h * (_E1 * k1x + _E3 * k3x + _E4 * k4x + _E5 * k5x + _E6 * k6x + _E7 * k7x)
     ev = h * (_E1 * k1v + _E3 * k3v + _E4 * k4v + _E5 * k5v + _E6 * k6v + _E7 * k7v)
     err = max(abs(ex) / (_TOL * (1e-3 + abs(xn))), abs(ev) / (_TOL * (1e-3 + abs(vn))))
@@ -148,33 +147,33 @@ def _step(x, v, h, kappa):
 
 
 @jitable
-def _event(which, x, v, kappa):
+def _event(which, x, v, kappa, q):
     """Event functions, each crossing zero from above: 0 top (``x' = 0``), 1 force maximum
-    (``x^(1/2) dP/dt``), 2 zero force (``x + kappa x'``), 3 zero approach (``x``)."""
+    (``x^(1-q) dP/dt``), 2 zero force (``x^(3/2-q) + kappa x'``), 3 zero approach (``x``)."""
     if which == 0:
         return v
     if which == 1:
-        return 1.5 * x * v + kappa * (0.5 * v * v + x * _acc(x, v, kappa))
+        return 1.5 * x ** (1.5 - q) * v + kappa * (q * v * v + x * _acc(x, v, kappa, q))
     if which == 2:
-        return x + kappa * v
+        return x ** (1.5 - q) + kappa * v
     return x
 
 
 @jitable
-def _locate(which, x, v, h, kappa):
+def _locate(which, x, v, h, kappa, q):
     """Step length ``0 < s <= h`` from ``(x, v)`` at which event ``which`` crosses zero (Illinois)."""
     a = 0.0
-    ga = _event(which, x, v, kappa)
+    ga = _event(which, x, v, kappa, q)
     b = h
-    xb, vb, _ = _step(x, v, b, kappa)
-    gb = _event(which, xb, vb, kappa)
+    xb, vb, _ = _step(x, v, b, kappa, q)
+    gb = _event(which, xb, vb, kappa, q)
     side = 0
     for _ in range(200):
         s = (a * gb - b * ga) / (gb - ga)
         if not (s > a and s < b):
             s = 0.5 * (a + b)
-        xs, vs, _ = _step(x, v, s, kappa)
-        gs = _event(which, xs, vs, kappa)
+        xs, vs, _ = _step(x, v, s, kappa, q)
+        gs = _event(which, xs, vs, kappa, q)
         if gs > 0.0:
             a = s
             ga = gs
@@ -196,15 +195,29 @@ def _locate(which, x, v, h, kappa):
 def scaled_impact(kappa, clip):
     """Scaled impact ``x'' = -(x^(3/2) + kappa x^(1/2) x')``, ``x(0)=0``, ``x'(0)=1``.
 
+    Returns ``(e, x_max, t_max, p_max, t_end, x_end)`` (see :func:`scaled_damped_hertz`).
+    """
+    return scaled_damped_hertz(kappa, clip, 0.5)
+
+
+@jitable
+def scaled_damped_hertz(kappa, clip, q):
+    """Scaled impact ``x'' = -(x^(3/2) + kappa x^q x')``, ``x(0)=0``, ``x'(0)=1`` (``0 < q < 3/2``).
+
     Returns ``(e, x_max, t_max, p_max, t_end, x_end)``: restitution, maximum approach and its time,
-    maximum scaled force ``x^(3/2) + kappa x^(1/2) x'``, and time and approach at the end of the
+    maximum scaled force ``x^(3/2) + kappa x^q x'``, and time and approach at the end of the
     contact (``clip``: where the force vanishes; else where ``x`` returns to zero). A particle that
     never leaves (possible without ``clip``) gives ``e = 0`` and ``t_end = inf``.
     """
+    # series start (derived here): x = t - kappa t^(q+2)/((q+1)(q+2)) - 4/35 t^(7/2)
+    #   + 2 kappa^2 t^(2q+3)/((q+2)(2q+2)(2q+3)) + ...
     t = _T0
     t32 = t * math.sqrt(t)
-    x = t - 4.0 / 15.0 * kappa * t * t32 - 4.0 / 35.0 * t * t * t32 + 1.0 / 15.0 * kappa * kappa * t * t * t * t
-    v = 1.0 - 2.0 / 3.0 * kappa * t32 - 0.4 * t * t32 + 4.0 / 15.0 * kappa * kappa * t * t * t
+    tq1 = t ** (q + 1.0)
+    t2q2 = t ** (2.0 * q + 2.0)
+    x = t - kappa * tq1 * t / ((q + 1.0) * (q + 2.0)) - 4.0 / 35.0 * t * t * t32
+    x += 2.0 * kappa * kappa * t2q2 * t / ((q + 2.0) * (2.0 * q + 2.0) * (2.0 * q + 3.0))
+    v = 1.0 - kappa * tq1 / (q + 1.0) - 0.4 * t * t32 + 2.0 * kappa * kappa * t2q2 / ((q + 2.0) * (2.0 * q + 2.0))
     h = 1e-2 * t
     end_event = 2 if clip else 3
     found_top = False
@@ -213,25 +226,25 @@ def scaled_impact(kappa, clip):
     t_max = 0.0
     p_max = 0.0
     for _ in range(_MAX_STEPS):
-        xn, vn, err = _step(x, v, h, kappa)
+        xn, vn, err = _step(x, v, h, kappa, q)
         if err > 1.0:
             h *= max(0.2, 0.9 * err**-0.2)
             continue
         # events inside the accepted step, in the order they can occur
-        if not found_pmax and _event(1, xn, vn, kappa) <= 0.0:
-            s = _locate(1, x, v, h, kappa)
-            xs, vs, _ = _step(x, v, s, kappa)
-            p_max = xs * math.sqrt(xs) + kappa * math.sqrt(xs) * vs
+        if not found_pmax and _event(1, xn, vn, kappa, q) <= 0.0:
+            s = _locate(1, x, v, h, kappa, q)
+            xs, vs, _ = _step(x, v, s, kappa, q)
+            p_max = xs * math.sqrt(xs) + kappa * xs**q * vs
             found_pmax = True
         if not found_top and vn <= 0.0:
-            s = _locate(0, x, v, h, kappa)
-            xs, vs, _ = _step(x, v, s, kappa)
+            s = _locate(0, x, v, h, kappa, q)
+            xs, vs, _ = _step(x, v, s, kappa, q)
             x_max = xs
             t_max = t + s
             found_top = True
-        if found_top and _event(end_event, xn, vn, kappa) <= 0.0:
-            s = _locate(end_event, x, v, h, kappa)
-            xs, vs, _ = _step(x, v, s, kappa)
+        if found_top and _event(end_event, xn, vn, kappa, q) <= 0.0:
+            s = _locate(end_event, x, v, h, kappa, q)
+            xs, vs, _ = _step(x, v, s, kappa, q)
             return -vs, x_max, t_max, p_max, t + s, (xs if clip else 0.0)
         t += h
         x = xn
