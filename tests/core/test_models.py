@@ -15,13 +15,14 @@ from microimpact import impact
 from microimpact._kernels import impact_scalar
 from microimpact.core import models
 from microimpact.core.models import _common
+from microimpact.core.models import hertz_tsuji as ht
 from microimpact.core.models import hertz_viscoelastic as hv
 from microimpact.core.models import jkr_elastic_adhesive as jkr
 from microimpact.core.models import linear_spring_dashpot as lin
 from microimpact.core.models import luding_hysteretic as lud
 from microimpact.core.quantities import OUTCOME_FIELDS
 
-NEW = (lin, hv, lud, jkr)
+NEW = (lin, hv, lud, jkr, ht)
 PROFILE = dict(derandomize=True, deadline=None)
 
 # the seed's silicon case (THEORY.md section 5)
@@ -73,6 +74,8 @@ def test_private_helpers_not_listed():
         (lud, (0.0, 5e2, 0), "loading_stiffness must be positive and finite, got 0.0"),
         (lud, (1e3, 5e3, -0.1), "plasticity_depth must be non-negative and finite, got -0.1"),
         (jkr, (-0.1,), "surface_energy must be non-negative and finite, got -0.1"),
+        (ht, (-0.1, 1), "damping_ratio must be non-negative and finite, got -0.1"),
+        (ht, (0.1, 3), "limit_force must be 0 or 1, got 3.0"),
         (jkr, (0.1, 0.2), "params must hold 1 value"),
     ],
 )
@@ -396,3 +399,47 @@ def test_jkr_without_adhesion_is_hertz():
         assert o["restitution"] == 1.0
         for k in ("max_approach", "max_force", "loading_time", "contact_time"):
             assert o[k] == pytest.approx(ref[k], rel=1e-12)
+
+
+# ----------------------------------------------------------------------------- Hertz with Tsuji damping
+
+
+@settings(max_examples=30, **PROFILE)
+@given(
+    V=st.floats(-3.0, 2.5),
+    alpha=st.floats(0.0, 2.0),
+    limit=st.sampled_from([0.0, 1.0]),
+    Eexp=st.floats(6.0, 12.0),
+    r=st.floats(-7.0, -2.0),
+    rho=st.floats(500.0, 20000.0),
+)
+def test_tsuji_integration_equals_ode(V, alpha, limit, Eexp, r, rho):
+    R, m = _sphere(r, rho)
+    o = fields(ht, 10.0**V, 10.0**Eexp, R, m, PY_SI, (alpha, limit))
+    if o["contact_time"] == math.inf:
+        assert limit == 0.0 and o["restitution"] == 0.0
+        return
+    _agree(ht, 10.0**V, 10.0**Eexp, R, m, (alpha, limit))
+
+
+def test_tsuji_restitution_independent_of_speed_and_pair():
+    es = [
+        fields(ht, V, E, R_SI, M_SI, PY_SI, (0.7, 1.0))["restitution"] for V in (0.01, 1.0, 100.0) for E in (1e7, 1e11)
+    ]
+    assert max(es) - min(es) < 1e-11
+
+
+@pytest.mark.parametrize("e", [0.05, 0.1, 0.3, 0.5, 0.7, 0.9, 0.95])
+def test_tsuji_code_formulas(e):
+    """What LAMMPS and LIGGGHTS give for the e_n their users enter (Hertz, no limit_damping):
+    ``coeff_restitution`` (and LIGGGHTS' hertz) gives e_n back (to the integration's accuracy);
+    ``damping tsuji`` (Marshall's polynomial as printed in the LAMMPS doc, 4-5 digits) within 2e-3."""
+    got = fields(ht, 10.0, E_SI, R_SI, M_SI, PY_SI, (ht.alpha_coeff_restitution(e), 0.0))["restitution"]
+    assert abs(got - e) < 1e-9
+    got = fields(ht, 10.0, E_SI, R_SI, M_SI, PY_SI, (ht.alpha_tsuji(e), 0.0))["restitution"]
+    assert abs(got - e) < 2e-3
+    # with the force clipped at zero (limit_damping / limitForce) the rebound is faster, and it equals
+    # the clipped linear spring-dashpot's for the same e_n (found here, to the integration's accuracy)
+    clipped = fields(ht, 10.0, E_SI, R_SI, M_SI, PY_SI, (ht.alpha_coeff_restitution(e), 1.0))["restitution"]
+    lin_clipped = fields(lin, 10.0, E_SI, R_SI, M_SI, PY_SI, (1e3, e, 1.0))["restitution"]
+    assert clipped > e and abs(clipped - lin_clipped) < 1e-9

@@ -152,10 +152,11 @@ def _event(which, x, v, kappa, q):
     (``x^(1-q) dP/dt``), 2 zero force (``x^(3/2-q) + kappa x'``), 3 zero approach (``x``)."""
     if which == 0:
         return v
+    xp = x if x > 0.0 else 0.0
     if which == 1:
-        return 1.5 * x ** (1.5 - q) * v + kappa * (q * v * v + x * _acc(x, v, kappa, q))
+        return 1.5 * xp ** (1.5 - q) * v + kappa * (q * v * v + xp * _acc(xp, v, kappa, q))
     if which == 2:
-        return x ** (1.5 - q) + kappa * v
+        return x if x <= 0.0 else xp ** (1.5 - q) + kappa * v
     return x
 
 
