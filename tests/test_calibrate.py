@@ -29,6 +29,8 @@ CASES = [
     ("linear_spring_dashpot", {"limit_force": 1}),
     ("hertz_viscoelastic", {"limit_force": 1}),
     ("hertz_viscoelastic", {"limit_force": 0}),
+    ("hertz_tsuji", {"limit_force": 0}),
+    ("hertz_tsuji", {"limit_force": 1}),
     ("luding_hysteretic", {}),
     ("luding_hysteretic", {"plasticity": True}),
     ("luding_hysteretic", {"plasticity": True, "unloading_ratio": 10.0}),
@@ -43,7 +45,7 @@ def test_reproduces_the_seed_at_the_calibration_speed(pair, model, opts, V):
     seed = _seed(pair, V)
     assert cal.target_restitution[0] == seed["restitution"]
     assert abs(cal.restitution[0] - seed["restitution"]) < 1e-10
-    if model != "hertz_viscoelastic":  # the laws with a free stiffness also match the contact time
+    if not model.startswith("hertz"):  # the laws with a free stiffness also match the contact time
         assert cal.contact_time[0] == pytest.approx(seed["contact_time"], rel=1e-12)
     # the Calibration's numbers are the model's own
     mod = mi.core.models.get(model)
@@ -57,6 +59,7 @@ def test_elastic_target_gives_elastic_laws():
     cals = calibrate_all(pair, V)
     assert cals["linear_spring_dashpot"].params[1] == 1.0
     assert cals["hertz_viscoelastic"].params[0] == 0.0
+    assert cals["hertz_tsuji"].params[0] == 0.0
     lud = cals["luding_hysteretic"].params
     assert lud[0] == lud[1]
     for cal in cals.values():
@@ -204,7 +207,7 @@ def test_unsupported_lines_raise():
         (
             ("bogus", 10.0),
             {},
-            "model must be one of linear_spring_dashpot, hertz_viscoelastic, luding_hysteretic; got 'bogus'",
+            "model must be one of linear_spring_dashpot, hertz_viscoelastic, hertz_tsuji, luding_hysteretic; got 'bogus'",
         ),
         (("linear_spring_dashpot", -1.0), {}, "velocity must be positive and finite, got -1.0"),
         (("linear_spring_dashpot", True), {}, "velocity must be a number or an array of numbers, not a bool"),
@@ -242,3 +245,25 @@ def test_not_a_pair():
 def test_models_listed():
     assert set(DEM_MODELS) <= set(mi.core.models.available())
     assert math.isfinite(calibrate_all(mi.ContactPair.paper_case("silicon"), 30.0)["luding_hysteretic"].params[0])
+
+
+def test_code_lines_tsuji():
+    """The e_n written for LAMMPS coeff_restitution / LIGGGHTS hertz maps back to the law's alpha_T."""
+    from microimpact.core.models import hertz_tsuji as ht
+
+    pair = mi.ContactPair.paper_case("silicon")
+    for lim in (0, 1):
+        cal = calibrate(pair, "hertz_tsuji", 50.0, limit_force=lim)
+        line = next(s for s in cal.lammps().splitlines() if s.startswith("pair_coeff"))
+        e_n = float(line.split()[5])
+        assert ht.alpha_coeff_restitution(e_n) == pytest.approx(cal.params[0], rel=1e-10)
+        assert ("limit_damping" in line) == (lim == 1)
+        lig = cal.liggghts()
+        e_l = float(next(s for s in lig.splitlines() if "coefficientRestitution" in s).split()[-1])
+        assert e_l == pytest.approx(e_n, rel=1e-11)
+        assert f"limitForce {'on' if lim else 'off'}" in lig
+    # the code's own formula gives back e_n without clipping: the line holds the target e itself
+    cal = calibrate(pair, "hertz_tsuji", 50.0, limit_force=0)
+    assert float(next(s for s in cal.lammps().splitlines() if s.startswith("pair_coeff")).split()[5]) == pytest.approx(
+        cal.target_restitution[0], abs=1e-9
+    )

@@ -11,7 +11,7 @@ What is matched
   reproduce the target to 1e-10 and better), or, over several speeds, in the least-squares sense.
 * The contact time where the law has a free stiffness (linear spring-dashpot: ``k``; hysteretic
   spring: ``k1``): the target's contact time at that speed (the mean over several speeds). Hertz's
-  stiffness is fixed by ``E*`` and ``R*``, so the viscoelastic law matches ``e`` only.
+  stiffness is fixed by ``E*`` and ``R*``, so the two Hertz laws match ``e`` only.
 
 Targets default to the seed's model (``thornton_ning_2016``) for the pair; pass
 ``target_restitution`` (and ``target_contact_time``) as callables of the speed [m/s], or as
@@ -32,7 +32,7 @@ from .core.quantities import OUTCOME_FIELDS
 __all__ = ["Calibration", "calibrate", "calibrate_all", "DEM_MODELS"]
 
 #: The DEM laws :func:`calibrate` knows.
-DEM_MODELS = ("linear_spring_dashpot", "hertz_viscoelastic", "luding_hysteretic")
+DEM_MODELS = ("linear_spring_dashpot", "hertz_viscoelastic", "hertz_tsuji", "luding_hysteretic")
 
 _E = OUTCOME_FIELDS.index("restitution")
 _TC = OUTCOME_FIELDS.index("contact_time")
@@ -146,6 +146,15 @@ class Calibration:
             lim = " limit_damping" if p["limit_force"] == 1.0 else ""
             coeff = f"hertz {k_n:.12g} {eta0:.12g} {tang} damping viscoelastic{lim}"
             legacy = f"# eta_n0 = 4 E* A / (3 m*) for m* = {self.effective_mass:.12g} kg (one particle size only)"
+        elif self.model == "hertz_tsuji":
+            from .core.models.hertz_tsuji import code_restitution
+
+            k_n = 4.0 / 3.0 * self.effective_modulus
+            lim = " limit_damping" if p["limit_force"] == 1.0 else ""
+            coeff = (
+                f"hertz {k_n:.12g} {code_restitution(p['damping_ratio']):.12g} {tang} damping coeff_restitution{lim}"
+            )
+            legacy = "# coeff_restitution with hertz: eta_n = alpha_T (m* k_nd)^(1/2), k_nd = 4/3 E* a"
         else:
             raise ValueError(f"LAMMPS has no normal contact model for {self.model!r}; use liggghts()")
         return "\n".join(
@@ -189,6 +198,23 @@ class Calibration:
                 f"fix m3 all property/global gamman peratomtypepair 1 {gamma_n:.12g}",
                 "fix m4 all property/global gammat peratomtypepair 1 0.0",
                 f"fix wall all wall/gran model hooke/stiffness tangential no_history limitForce {lim} primitive type 1 {wall}",
+            ]
+        elif self.model == "hertz_tsuji":
+            from .core.models.hertz_tsuji import code_restitution
+
+            e_n = code_restitution(p["damping_ratio"])
+            if not e_n > 0.05:
+                raise ValueError(f"LIGGGHTS requires coefficientRestitution > 0.05; this law needs {e_n!r}")
+            lim = "on" if p["limit_force"] == 1.0 else "off"
+            Y = 2.0 * (1.0 - poisson**2) * self.effective_modulus
+            lines = [
+                f"pair_style gran model hertz tangential no_history limitForce {lim}",
+                "pair_coeff * *",
+                f"fix m1 all property/global youngsModulus peratomtype {Y:.12g}",
+                f"fix m2 all property/global poissonsRatio peratomtype {poisson:.12g}",
+                f"fix m3 all property/global coefficientRestitution peratomtypepair 1 {e_n:.12g}",
+                "fix m4 all property/global coefficientFriction peratomtypepair 1 0.0",
+                f"fix wall all wall/gran model hertz tangential no_history limitForce {lim} primitive type 1 {wall}",
             ]
         elif self.model == "luding_hysteretic" and p["plasticity_depth"] > 0.0:
             k1, k2, phi = p["loading_stiffness"], p["unloading_stiffness"], p["plasticity_depth"]
@@ -235,7 +261,7 @@ def calibrate(
     ----------
     pair : ContactPair
         The particle and surface (its ``E*``, ``R*``, ``m*``, ``p_y``).
-    model : {"linear_spring_dashpot", "hertz_viscoelastic", "luding_hysteretic"}
+    model : {"linear_spring_dashpot", "hertz_viscoelastic", "hertz_tsuji", "luding_hysteretic"}
         The law to calibrate.
     velocity : float or array_like
         Calibration speed [m/s], or several: then ``e`` is matched in the least-squares sense
@@ -243,8 +269,8 @@ def calibrate(
     target_restitution, target_contact_time : callable or array_like, optional
         Target ``e`` [-] and contact time [s] at ``velocity``; default: the seed's model.
     limit_force : {0, 1}, optional
-        Force-sign convention of the linear and viscoelastic laws (see their model files); default:
-        the model's default (0 for the linear law, 1 for the viscoelastic one).
+        Force-sign convention of the linear and Hertz laws (see their model files); default: the
+        model's default (0 for the linear law, 1 for the Hertz laws).
     plasticity : bool
         ``luding_hysteretic`` only: False (default) calibrates the constant-``k2`` spring; True
         Luding's ``k2(alpha_max)`` (LIGGGHTS ``hooke/hysteresis``), whose free ``plasticity_depth``
@@ -272,7 +298,7 @@ def calibrate(
     if model not in DEM_MODELS:
         raise ValueError(f"model must be one of {', '.join(DEM_MODELS)}; got {model!r}")
     if limit_force is None:
-        limit_force = 1 if model == "hertz_viscoelastic" else 0
+        limit_force = 1 if model in ("hertz_viscoelastic", "hertz_tsuji") else 0
     if isinstance(limit_force, bool) or limit_force not in (0, 1):
         raise ValueError(f"limit_force must be 0 or 1, got {limit_force!r}")
     if not isinstance(plasticity, bool):
@@ -304,6 +330,8 @@ def calibrate(
                 raise ValueError(f"unloading_ratio applies to plasticity=True only, got {unloading_ratio!r}")
             k1 = m * (math.pi * (1.0 + e_mean) / (2.0 * t_mean)) ** 2
             params = (k1, k1 / (e_mean * e_mean), 0.0)
+    elif model == "hertz_tsuji":
+        params = _tsuji(e_mean, float(limit_force), pv)
     else:
         params = _viscoelastic(V, e_t, float(limit_force), pv)
     e_c, t_c = _run(model, V, pv, params)
@@ -336,6 +364,23 @@ def calibrate_all(pair, velocity, **options) -> dict:
 
 
 # ----------------------------------------------------------------------------- per law
+
+
+def _tsuji(e_t, limit, pv):
+    from .core.models import hertz_tsuji as ht
+
+    E, R, m, p_y = pv
+
+    def f(a):
+        return ht.outcome(1.0, E, R, m, p_y, (a, limit))[_E] - e_t
+
+    if e_t == 1.0:
+        return (0.0, limit)
+    hi = math.sqrt(5.0) * (1.0 - 1e-9)  # critical damping of coeff_restitution's formula
+    if f(hi) > 0.0:
+        e_min = f(hi) + e_t
+        raise ValueError(f"target_restitution {e_t!r} is below what this law can give ({e_min:.6g})")
+    return (brentq(f, 0.0, hi, xtol=1e-16, rtol=1e-15, maxiter=500), limit)
 
 
 def _linear(e_t, t_t, limit, pv):

@@ -86,6 +86,16 @@ def alpha_coeff_restitution(e):
 
 
 @jitable
+def code_restitution(alpha):
+    """The ``e_n`` to enter in LAMMPS (``coeff_restitution``) or LIGGGHTS (``hertz``) for ``alpha_T``:
+    the inverse of :func:`alpha_coeff_restitution`, ``-ln e_n = alpha_T pi/(5 - alpha_T^2)^(1/2)``
+    (``alpha_T < 5^(1/2)``)."""
+    if alpha >= math.sqrt(5.0):
+        return 0.0
+    return math.exp(-alpha * math.pi / math.sqrt(5.0 - alpha * alpha))
+
+
+@jitable
 def alpha_tsuji(e):
     """``alpha_T`` of LAMMPS' ``damping tsuji`` for ``e_n`` (Marshall's polynomial times ``2^(1/2)``)."""
     p = 1.2728 - 4.2783 * e + 11.087 * e**2 - 22.348 * e**3 + 27.467 * e**4 - 18.022 * e**5 + 4.8218 * e**6
