@@ -76,4 +76,4 @@ def resolve_params(module, given: dict) -> tuple:
         if not math.isfinite(value):
             raise ValueError(f"{name} must be finite, got {value!r}")
         out.append(value)
-    return tuple(out)
+    return tuple(module.validate(tuple(out)))

@@ -118,7 +118,11 @@ from __future__ import annotations
 
 import math
 
+from .. import hertz
 from .._jit import jitable
+from ..constants import LARGE_STRAIN_RATIO
+from ..special import BETA_25_12
+from . import thornton_ning_2016 as seed
 
 NAME = "liggghts_thornton_ning"
 TITLE = (
@@ -126,75 +130,6 @@ TITLE = (
 )
 PARAMETERS = ()
 DEFAULTS = ()
-
-#: Contact radius over effective radius above which ``large_strain`` is flagged (as for the seed).
-LARGE_STRAIN_RATIO = 0.3
-#: Complete beta function B(2/5, 1/2) of the Hertz stages (= 3.67909...).
-BETA_25_12 = math.exp(math.lgamma(0.4) + math.lgamma(0.5) - math.lgamma(0.9))
-
-
-@jitable
-def _betacf(a, b, x):
-    """Continued fraction of the incomplete beta function, modified Lentz evaluation.
-
-    The even and odd coefficients ``m (b - m) x / ((a + 2m - 1)(a + 2m))`` and
-    ``-(a + m)(a + b + m) x / ((a + 2m)(a + 2m + 1))`` of Press et al., *Numerical Recipes*,
-    routine ``betacf`` (read in the ``ibeta``/``betacf_`` documentation of the Dart ``data``
-    package); converges fast for ``x < (a + 1)/(a + b + 2)``.
-    """
-    tiny = 1e-300
-    qab = a + b
-    qap = a + 1.0
-    qam = a - 1.0
-    c = 1.0
-    d = 1.0 - qab * x / qap
-    if abs(d) < tiny:
-        d = tiny
-    d = 1.0 / d
-    h = d
-    for m in range(1, 400):
-        m2 = 2.0 * m
-        aa = m * (b - m) * x / ((qam + m2) * (a + m2))
-        d = 1.0 + aa * d
-        if abs(d) < tiny:
-            d = tiny
-        c = 1.0 + aa / c
-        if abs(c) < tiny:
-            c = tiny
-        d = 1.0 / d
-        h *= d * c
-        aa = -(a + m) * (qab + m) * x / ((a + m2) * (qap + m2))
-        d = 1.0 + aa * d
-        if abs(d) < tiny:
-            d = tiny
-        c = 1.0 + aa / c
-        if abs(c) < tiny:
-            c = tiny
-        d = 1.0 / d
-        step = d * c
-        h *= step
-        if abs(step - 1.0) < 4e-16:
-            break
-    return h
-
-
-@jitable
-def _beta_lower(a, b, x, y):
-    """``B(x; a, b)``, the non-regularised incomplete beta function; ``y = 1 - x`` given exactly.
-
-    ``x^a y^b / a`` times the continued fraction for ``x < (a + 1)/(a + b + 2)``, else
-    ``B(a, b)`` less the same for ``(b, a, y)`` (the symmetry ``I_x(a, b) = 1 - I_y(b, a)``).
-    """
-    if x <= 0.0:
-        return 0.0
-    full = math.exp(math.lgamma(a) + math.lgamma(b) - math.lgamma(a + b))
-    if y <= 0.0:
-        return full
-    front = math.exp(a * math.log(x) + b * math.log(y))
-    if x < (a + 1.0) / (a + b + 2.0):
-        return front * _betacf(a, b, x) / a
-    return full - front * _betacf(b, a, y) / b
-
 
 @jitable
 def _hertz_remainder(x):
@@ -292,34 +227,23 @@ def outcome(V, E, R, m, p_y, params):
         In the order of :data:`microimpact.core.quantities.OUTCOME_FIELDS`; every field defined.
     """
     inf = math.inf
-    sqR = math.sqrt(R)
-    k = 4.0 / 3.0 * E * sqR
-    # Yield point (seed eqs. 4, 5, 7; the code's yield_stress = 2 E a_yield/(pi reff)), eq. 28.
-    if p_y == inf:
-        a_y = P_y = Vy = inf
-    else:
-        ac = math.pi * p_y * R / (2.0 * E)
-        a_y = ac * ac / R
-        P_y = k * a_y**1.5
-        Vy = math.sqrt(0.8 * P_y * a_y / m)
-    v = 0.0 if Vy == inf else V / Vy
+    k = 4.0 / 3.0 * E * math.sqrt(R)
+    # Loading is the seed's: yield point (eqs. 4, 5, 7, 28), Hertz below it, plastic above.
+    a_y, P_y, Vy = seed.yield_point(E, R, m, p_y)
+    v = seed.normalized_velocity(V, Vy)
     elastic = v <= 1.0
     infinite = v == inf
-    ts = (15.0 * m / (16.0 * E * sqR)) ** 0.4 * (V ** (-0.2) if V > 0.0 else inf)
 
     if elastic:
-        alpha_m = (15.0 * m * (V * V) / (16.0 * E * sqR)) ** 0.4
+        max_approach = hertz.max_approach(V, E, R, m)
+        max_force = hertz.force(max_approach, E, R)
         e = 1.0
-        max_approach = alpha_m
-        max_force = k * alpha_m**1.5
         plastic = 0.0
     elif infinite:
         e = 0.0
         max_approach = max_force = plastic = inf
     else:
-        q = math.sqrt((24.0 - 4.0 / (v * v)) / 5.0)  # s/v
-        A = (1.0 + v * q) / 3.0  # seed eq. 22
-        Phat = 0.5 * v * q  # P^*/P_y
+        A, Phat = seed.plastic_stage(v)[:2]  # alpha*/alpha_y (seed eq. 22), P*/P_y
         A15 = A * math.sqrt(A)
         D = max(A15 - Phat, 0.0)  # x_p^(3/2)
         W = 0.4 * A * A15 - D * A + 0.6 * D ** (5.0 / 3.0)  # returned work / (P_y alpha_y)
@@ -331,24 +255,13 @@ def outcome(V, E, R, m, p_y, params):
     a_max = math.sqrt(R * max_approach)
 
     # Loading times: the seed's (eqs. 20, 23).
-    if V == inf:
-        t1 = 0.0
-    elif V > Vy:
-        u = (Vy / V) ** 2
-        t1 = 0.4 * ts * _beta_lower(0.4, 0.5, u, (V - Vy) * (V + Vy) / (V * V))
-    else:
-        t1 = 0.4 * ts * BETA_25_12
-    if V > Vy:
-        omega = math.sqrt(math.pi * p_y * R / m)
-        v1 = math.sqrt(max(V * V - Vy * Vy, 0.0))
-        t2 = math.atan2(v1, 2.0 * omega * a_y / 3.0) / omega
-    else:
-        t2 = 0.0
+    t1 = seed.elastic_stage_time(V, E, R, m, Vy)
+    t2 = seed.plastic_stage_time(V, R, m, p_y, a_y, Vy)
     # Unloading time: Hertz for an elastic impact, else the quadrature above.
     if V == inf:
         tU = 0.0
     elif elastic:
-        tU = 0.4 * BETA_25_12 * ts
+        tU = 0.4 * BETA_25_12 * hertz.time_scale(V, E, R, m)
     else:
         c = Phat / A15  # 1 - beta^(3/2)
         h = -math.expm1((2.0 / 3.0) * math.log1p(-c)) if c < 1.0 else 1.0  # 1 - beta
@@ -365,7 +278,7 @@ def outcome(V, E, R, m, p_y, params):
         plastic,
         max_force,
         R,
-        1.0 - e * e,
+        seed.energy_loss(e),
         a_max,
         1.0 if a_max / R > LARGE_STRAIN_RATIO else 0.0,
         t1,
@@ -401,18 +314,29 @@ def force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
     """
     if alpha <= 0.0:
         return 0.0
-    k = 4.0 / 3.0 * E * math.sqrt(R)
     top = alpha_max if alpha_max > alpha else alpha
-    if p_y == math.inf:
-        alpha_y = math.inf
-    else:
-        ac = math.pi * p_y * R / (2.0 * E)
-        alpha_y = ac * ac / R
-    if top <= alpha_y:  # never yielded: Hertz both ways
-        return k * alpha**1.5
-    f_top = k * alpha_y**1.5 + math.pi * p_y * R * (top - alpha_y)
+    f_top = seed.loading_force(top, E, R, p_y)  # the seed's loading (eqs. 2, 6, 8)
     if top == alpha:
         return f_top
     # P* - k (alpha*^(3/2) - alpha^(3/2)), written as k alpha^(3/2) - (F_e - P*) with F_e - P* >= 0
-    f = k * alpha**1.5 - (k * top**1.5 - f_top)
+    f = hertz.force(alpha, E, R) - (hertz.force(top, E, R) - f_top)
     return f if f > 0.0 else 0.0
+
+
+@jitable
+def signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
+    """The force law before the code's clipping at zero is irrelevant here: :func:`force` (never negative)."""
+    return force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params)
+
+
+@jitable
+def ends_at_zero_force(params):
+    """True: LIGGGHTS detaches the particle where the unloading force reaches zero."""
+    return True
+
+
+def validate(params):
+    """No parameters of its own: ``params`` must be empty."""
+    if len(params):
+        raise ValueError(f"model {NAME!r} takes no parameters, got {params!r}")
+    return ()

@@ -281,3 +281,22 @@ def force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
     if alpha >= alpha_max:
         return loading_force(alpha, E, R, p_y)
     return unloading_force_from(alpha, alpha_max, E, R, p_y)
+
+
+@jitable
+def signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
+    """:func:`force` (never attractive: the seed has no adhesion)."""
+    return force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params)
+
+
+@jitable
+def ends_at_zero_force(params):
+    """True: the contact ends where the unloading force vanishes, at the plastic approach (eq. 10)."""
+    return True
+
+
+def validate(params):
+    """No parameters of its own: ``params`` must be empty."""
+    if len(params):
+        raise ValueError(f"model {NAME!r} takes no parameters, got {params!r}")
+    return ()

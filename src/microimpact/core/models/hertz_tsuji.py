@@ -1,0 +1,150 @@
+"""Hertz contact with the nonlinear damping of Tsuji et al. (1992), as LAMMPS and LIGGGHTS use it.
+
+The normal force of LAMMPS' ``pair_style granular`` ``hertz/material`` (or ``hertz``) with
+``damping tsuji`` or ``damping coeff_restitution``, and of LIGGGHTS' ``gran model hertz``:
+
+.. math::  P = \\tfrac{4}{3} E^* R^{*1/2} \\alpha^{3/2} + \\alpha_T \\left(m^* k_{nd}\\right)^{1/2} \\dot\\alpha ,
+           \\qquad k_{nd} = \\tfrac{4}{3} E^* a,\\ a = (R^* \\alpha)^{1/2}
+
+(LAMMPS ``doc/src/pair_granular.rst``, damping section: ``eta_n = alpha (m_eff k_nd)^(1/2)``), a
+damping force proportional to ``alpha^(1/4) alpha_dot``. By the scaling of Newton's equation the
+restitution coefficient does not depend on the speed; it is a function of ``alpha_T`` only. The
+codes derive ``alpha_T`` from the coefficient of restitution ``e_n`` the user enters, by formulas
+that this module states so that their *actual* ``e`` can be computed:
+
+* :func:`alpha_coeff_restitution`: LAMMPS ``damping coeff_restitution`` with Hertz,
+  ``eta_n = -2 (5/6)^(1/2) ln(e_n)/(pi^2 + ln^2 e_n)^(1/2) (3/2 k_nd m_eff)^(1/2)``, i.e.
+  ``alpha_T = 5^(1/2) (-ln e_n)/(pi^2 + ln^2 e_n)^(1/2)``; LIGGGHTS ``model hertz`` computes the
+  same damping (``gamman = -2 (5/6)^(1/2) beta (S_n m)^(1/2)``, ``S_n = 2 Y* (R delta)^(1/2)``,
+  ``beta = ln e/(ln^2 e + pi^2)^(1/2)``; ``src/normal_model_hertz.h``).
+* :func:`alpha_tsuji`: LAMMPS ``damping tsuji``,
+  ``alpha_T/2^(1/2) = 1.2728 - 4.2783 e + 11.087 e^2 - 22.348 e^3 + 27.467 e^4 - 18.022 e^5 + 4.8218 e^6``
+  (a fit by Marshall 2009, as printed in the LAMMPS documentation of 2 Sep 2026).
+
+``e`` and the contact time come from integrating the scaled equation
+``x'' = -(x^(3/2) + kappa x^(1/4) x')`` with the integrator of :mod:`.hertz_viscoelastic`
+(``kappa = alpha_T (4/3)^(1/2) (rho X^(1/2) T^2 / m*)^(1/2) ...`` reduces to the constant
+``kappa = alpha_T (4/3)^(1/2) / (4/3)^(1/2) = alpha_T``: with ``rho = 4/3 E* R*^(1/2)`` the scaled
+damping coefficient is exactly ``alpha_T``, for every speed and pair; derived here).
+
+**Parameters of this model** (``params``, in this order):
+
+``damping_ratio`` ``alpha_T`` [-], ``>= 0``
+    Tsuji's coefficient as LAMMPS defines it (``eta_n = alpha_T (m* k_nd)^(1/2)``).
+``limit_force`` [0 or 1]
+    ``1`` (default): the force is clipped at zero and the contact ends when it vanishes (LAMMPS
+    ``limit_damping``, LIGGGHTS ``limitForce on``); ``0``: it may become attractive and the contact
+    ends at zero approach (both codes' default).
+
+Fields this model does not define (NaN): ``yield_velocity``, ``normalized_velocity``,
+``unloading_radius``, ``elastic_stage_time``, ``plastic_stage_time``. ``plastic_approach`` is the
+approach where the contact ends (not a permanent deformation). ``p_y`` is not used.
+
+Validity: a numerical damping model for DEM: ``e`` is constant in speed, unlike elastic-plastic
+particles above their yield velocity.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .._jit import jitable
+from ._common import dem_outcome, nan_outcome
+from .hertz_viscoelastic import scaled_damped_hertz
+
+NAME = "hertz_tsuji"
+TITLE = "Hertz with Tsuji's nonlinear damping (LAMMPS damping tsuji/coeff_restitution, LIGGGHTS hertz)"
+PARAMETERS = (
+    ("damping_ratio", "1", "alpha_T >= 0, Tsuji's coefficient: eta_n = alpha_T (m* 4/3 E* a)^(1/2)"),
+    ("limit_force", "1", "1: force clipped at zero, contact ends when it vanishes; 0: ends at zero approach"),
+)
+DEFAULTS = (math.nan, 1.0)
+
+
+def validate(params):
+    """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
+    if len(params) != len(PARAMETERS):
+        raise ValueError(f"params must hold 2 values (damping_ratio, limit_force), got {params!r}")
+    out = []
+    for (name, _, _), x in zip(PARAMETERS, params):
+        if isinstance(x, bool):
+            raise ValueError(f"{name} must be a number, not a bool, got {x!r}")
+        out.append(float(x))
+    a, limit = out
+    if not (a >= 0.0 and math.isfinite(a)):
+        raise ValueError(f"damping_ratio must be non-negative and finite, got {a!r}")
+    if limit not in (0.0, 1.0):
+        raise ValueError(f"limit_force must be 0 or 1, got {limit!r}")
+    return tuple(out)
+
+
+@jitable
+def alpha_coeff_restitution(e):
+    """``alpha_T`` LAMMPS' ``damping coeff_restitution`` (Hertz) and LIGGGHTS' ``hertz`` use for ``e_n``."""
+    le = math.log(e)
+    return math.sqrt(5.0) * (-le) / math.sqrt(math.pi * math.pi + le * le)
+
+
+@jitable
+def code_restitution(alpha):
+    """The ``e_n`` to enter in LAMMPS (``coeff_restitution``) or LIGGGHTS (``hertz``) for ``alpha_T``:
+    the inverse of :func:`alpha_coeff_restitution`, ``-ln e_n = alpha_T pi/(5 - alpha_T^2)^(1/2)``
+    (``alpha_T < 5^(1/2)``)."""
+    if alpha >= math.sqrt(5.0):
+        return 0.0
+    return math.exp(-alpha * math.pi / math.sqrt(5.0 - alpha * alpha))
+
+
+@jitable
+def alpha_tsuji(e):
+    """``alpha_T`` of LAMMPS' ``damping tsuji`` for ``e_n`` (Marshall's polynomial times ``2^(1/2)``)."""
+    p = 1.2728 - 4.2783 * e + 11.087 * e**2 - 22.348 * e**3 + 27.467 * e**4 - 18.022 * e**5 + 4.8218 * e**6
+    return math.sqrt(2.0) * p
+
+
+@jitable
+def _valid(params):
+    if len(params) != 2:
+        return False
+    return params[0] >= 0.0 and params[0] < math.inf and (params[1] == 0.0 or params[1] == 1.0)
+
+
+@jitable
+def outcome(V, E, R, m, p_y, params):
+    """Outcome of one impact (see the module docstring; ``p_y`` unused)."""
+    if not _valid(params) or not (V >= 0.0 and V < math.inf):
+        return nan_outcome(V)
+    if V == 0.0:
+        return dem_outcome(V, 1.0, 0.0, 0.0, 0.0, R, math.inf, math.inf)
+    rho = 4.0 / 3.0 * E * math.sqrt(R)
+    T = (m / (rho * math.sqrt(V))) ** 0.4
+    X = V * T
+    # damping term alpha_T (m (4/3) E R^(1/2))^(1/2) alpha^(1/4) alpha_dot, scaled by m X / T^2:
+    kappa = params[0] * math.sqrt(m * rho) * X**0.25 * (X / T) / (m * X / (T * T))
+    e, x_max, t_max, p_max, t_end, x_end = scaled_damped_hertz(kappa, params[1] == 1.0, 0.25)
+    return dem_outcome(V, e, X * x_max, X * x_end, rho * X * math.sqrt(X) * p_max, R, T * t_max, T * (t_end - t_max))
+
+
+@jitable
+def signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
+    """``P = 4/3 E* R*^(1/2) alpha^(3/2) + alpha_T (m* 4/3 E* (R* alpha)^(1/2))^(1/2) alpha_dot`` [N]."""
+    if alpha <= 0.0:
+        return 0.0
+    a = math.sqrt(R * alpha)
+    k_nd = 4.0 / 3.0 * E * a
+    return k_nd * alpha + params[0] * math.sqrt(m * k_nd) * alpha_dot
+
+
+@jitable
+def ends_at_zero_force(params):
+    """True when the force is clipped at zero (``limit_force`` 1)."""
+    return params[1] == 1.0
+
+
+@jitable
+def force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
+    """Normal force [N]; clipped at zero when ``limit_force`` is 1."""
+    p = signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params)
+    if params[1] == 1.0 and p < 0.0:
+        return 0.0
+    return p

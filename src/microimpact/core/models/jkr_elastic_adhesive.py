@@ -1,0 +1,294 @@
+"""Elastic adhesive impact with the JKR contact law, as LAMMPS' ``pair_style granular`` ``jkr`` computes it.
+
+The force of Johnson, Kendall & Roberts (1971, Proc. R. Soc. Lond. A 324, 301) between an elastic
+sphere and a flat, written as in LAMMPS' ``doc/src/pair_granular.rst`` (normal model ``jkr``) in
+terms of the contact radius ``a``:
+
+.. math::  P = \\frac{4 E^* a^3}{3 R^*} - 2\\pi a^2 \\left(\\frac{4 \\gamma E^*}{\\pi a}\\right)^{1/2},
+           \\qquad \\alpha = \\frac{a^2}{R^*} - 2 \\left(\\frac{\\pi \\gamma a}{E^*}\\right)^{1/2},
+
+with the surface energy ``gamma`` (LAMMPS' ``cohesion``; JKR's work of adhesion is ``2 gamma``).
+As in LAMMPS (``src/GRANULAR/gran_sub_mod_normal_kernel.h``: ``gran_normal_jkr_touch``,
+``gran_normal_jkr_pulloff_distance``), the contact forms when the approach reaches zero (the force
+jumps to ``-8/3 pi gamma R*``), follows the JKR curve in loading and unloading, and breaks at the
+approach ``-delta_c``, ``delta_c = (3 pi^2/16)^(1/3) (R* gamma^2/E*^2)^(1/3)``, where the force is
+the pull-off force ``-3 pi gamma R*`` (derived here: the force minimum of the curve lies at that
+approach; LAMMPS doc: "a tensile force up to 3 pi gamma R, at which point they lose contact").
+No damping (LAMMPS' damping coefficient 0).
+
+The law is conservative along the curve, so the energy lost is the work of the tensile branch
+between zero approach and pull-off, ``W = -int_{-delta_c}^{0} P d alpha``, in closed form (the
+integrand is a polynomial in ``b = a^(1/2)``; derived here):
+
+.. math::  W = E^* R^{*4/3} \\left(\\frac{\\pi\\gamma}{E^*}\\right)^{5/3} \\left[g(c_F) - g(c_0)\\right],
+           \\quad g(c) = \\tfrac{8}{15} c^5 - \\tfrac{8}{3} c^{7/2} + 2 c^2 ,
+           \\quad c_0 = 2^{2/3},\\ c_F = (3/2)^{2/3},
+
+``g(c_F) - g(c_0) = 1.65015...``; ``e = (1 - 2 W/(m* V^2))^(1/2)``, and the particle sticks
+(``e = 0``, ``contact_time = inf``) below the critical sticking speed ``V_s = (2 W/m*)^(1/2)``.
+The maximum approach solves the energy balance (Newton's method on the polynomial in ``b``); the
+loading and unloading times are the integrals ``int d alpha / |alpha'|``, computed by 48-point
+Gauss-Legendre quadrature after the substitutions ``b = b_max - w^2`` (turning point) and
+``b = b_F + w^2`` (pull-off, near the sticking speed) that remove the square-root singularities (agreement with the integration of :func:`force` to 1e-8 is tested).
+
+**Parameters of this model** (``params``):
+
+``surface_energy`` ``gamma`` [J/m^2], ``>= 0``
+    LAMMPS' ``cohesion`` of the ``jkr`` normal model; 0 gives Hertz's elastic impact.
+
+Fields this model does not define (NaN): ``yield_velocity``, ``normalized_velocity``,
+``unloading_radius``, ``elastic_stage_time``, ``plastic_stage_time``. ``plastic_approach`` is 0
+(no permanent deformation; the contact breaks at the negative approach ``-delta_c``).
+``max_contact_radius`` is the JKR contact radius at the maximum approach. ``p_y`` is not used.
+
+Validity: elastic spheres with a short-range adhesion (JKR limit: large, soft, strongly adhesive
+particles; Tabor parameter well above 1); no plasticity, no damping.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .._jit import jitable
+from ._common import LARGE_STRAIN_RATIO, nan_outcome
+
+NAME = "jkr_elastic_adhesive"
+TITLE = "JKR elastic adhesion, contact at zero approach, pull-off at -3 pi gamma R (LAMMPS granular jkr)"
+PARAMETERS = (("surface_energy", "J/m^2", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)"),)
+DEFAULTS = (math.nan,)
+
+#: ``g(c_F) - g(c_0)``: the pull-off work in units of ``E* R*^(4/3) (pi gamma/E*)^(5/3)``.
+WORK_CONSTANT = (
+    8.0 / 15.0 * (1.5 ** (2.0 / 3.0)) ** 5
+    - 8.0 / 3.0 * (1.5 ** (2.0 / 3.0)) ** 3.5
+    + 2.0 * (1.5 ** (2.0 / 3.0)) ** 2
+    - (
+        8.0 / 15.0 * (2.0 ** (2.0 / 3.0)) ** 5
+        - 8.0 / 3.0 * (2.0 ** (2.0 / 3.0)) ** 3.5
+        + 2.0 * (2.0 ** (2.0 / 3.0)) ** 2
+    )
+)
+
+_X, _W = np.polynomial.legendre.leggauss(48)
+_GX = tuple(float(x) for x in _X)
+_GW = tuple(float(w) for w in _W)
+
+
+def validate(params):
+    """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
+    if len(params) != 1:
+        raise ValueError(f"params must hold 1 value (surface_energy), got {params!r}")
+    if isinstance(params[0], bool):
+        raise ValueError(f"surface_energy must be a number, not a bool, got {params[0]!r}")
+    g = float(params[0])
+    if not (g >= 0.0 and math.isfinite(g)):
+        raise ValueError(f"surface_energy must be non-negative and finite, got {g!r}")
+    return (g,)
+
+
+@jitable
+def pulloff_approach(E, R, gamma):
+    """``delta_c = (3 pi^2/16)^(1/3) (R* gamma^2/E*^2)^(1/3)`` [m]: the contact breaks at approach ``-delta_c``."""
+    return (3.0 * math.pi * math.pi / 16.0) ** (1.0 / 3.0) * (R * gamma * gamma / (E * E)) ** (1.0 / 3.0)
+
+
+@jitable
+def contact_radius(alpha, E, R, gamma):
+    """JKR contact radius [m] at approach ``alpha`` (LAMMPS' closed form, ``gran_normal_jkr_contact_radius``)."""
+    dR = alpha * R
+    R2 = R * R
+    dR2 = dR * dR
+    t0 = gamma * gamma * R2 * R2 * E
+    t1 = 27.0 * math.pi * math.pi * t0
+    t2 = 8.0 * dR * dR2 * E * E * E
+    t3 = 4.0 * dR2 * E
+    s1 = t0 * (t1 + 2.0 * t2)
+    if s1 < 0.0:
+        s1 = 0.0
+    t4 = (t1 + t2 + 3.0 * math.sqrt(3.0) * math.pi * math.sqrt(s1)) ** (1.0 / 3.0)
+    t5 = t3 / t4 + t4 / E
+    s2 = 2.0 * dR + t5
+    if s2 < 0.0:
+        s2 = 0.0
+    t6 = math.sqrt(s2)
+    s3 = 4.0 * dR - t5 + 6.0 * math.sqrt(6.0) * gamma * math.pi * R2 / (E * t6)
+    if s3 < 0.0:
+        s3 = 0.0
+    return (t6 + math.sqrt(s3)) / math.sqrt(6.0)
+
+
+@jitable
+def _force_b(b, E, R, s):
+    """JKR force at ``b = a^(1/2)``: ``4 E a^3/(3R) - 4 E s a^(3/2)``, ``s = (pi gamma/E)^(1/2)``."""
+    b3 = b * b * b
+    return 4.0 * E * b3 * b3 / (3.0 * R) - 4.0 * E * s * b3
+
+
+@jitable
+def _G(b, E, R, s):
+    """Antiderivative of ``P d alpha`` in ``b``: ``8E/(15R^2) b^10 - 8Es/(3R) b^7 + 2Es^2 b^4``."""
+    b2 = b * b
+    b4 = b2 * b2
+    return 8.0 * E / (15.0 * R * R) * b4 * b4 * b2 - 8.0 * E * s / (3.0 * R) * b4 * b2 * b + 2.0 * E * s * s * b4
+
+
+@jitable
+def _dG(x, y, E, R, s):
+    """``(G(x) - G(y)) / (x - y)``, free of cancellation: ``(x^n - y^n)/(x - y) = sum x^(n-1-k) y^k``."""
+    p10 = 0.0
+    p7 = 0.0
+    p4 = 0.0
+    xk = 1.0
+    for k in range(10):  # xk = x^k, y^(9-k) etc. built by division-free products
+        yk = 1.0
+        for _ in range(9 - k):
+            yk *= y
+        p10 += xk * yk
+        if k < 7:
+            yk7 = 1.0
+            for _ in range(6 - k):
+                yk7 *= y
+            p7 += xk * yk7
+        if k < 4:
+            yk4 = 1.0
+            for _ in range(3 - k):
+                yk4 *= y
+            p4 += xk * yk4
+        xk *= x
+    return 8.0 * E / (15.0 * R * R) * p10 - 8.0 * E * s / (3.0 * R) * p7 + 2.0 * E * s * s * p4
+
+
+@jitable
+def _time_to_top(b_lo, bm, E, R, m, s):
+    """``int d alpha/|alpha'|`` from ``b_lo`` to the turning point ``bm`` (substitution ``b = bm - w^2``)."""
+    W = math.sqrt(bm - b_lo)
+    total = 0.0
+    for i in range(48):
+        w = 0.5 * W * (_GX[i] + 1.0)
+        b = bm - w * w
+        q = _dG(bm, b, E, R, s)  # (G(bm) - G(b)) / (bm - b) > 0
+        total += _GW[i] * 2.0 * (4.0 * b * b * b / R - 2.0 * s) / math.sqrt(2.0 * q / m)
+    return 0.5 * W * total
+
+
+@jitable
+def _time_tensile(bF, b0, excess, E, R, m, s):
+    """``int d alpha/|alpha'|`` over the tensile branch ``bF <= b <= b0``, where the kinetic energy is
+    ``excess + G(bF) - G(b)`` (``excess = K - W``, the rebound energy); substitution ``b = bF + w^2``
+    keeps the integrand finite as ``excess -> 0`` (the sticking limit)."""
+    Wd = math.sqrt(b0 - bF)
+    total = 0.0
+    for i in range(48):
+        w = 0.5 * Wd * (_GX[i] + 1.0)
+        b = bF + w * w
+        ke = excess - w * w * _dG(b, bF, E, R, s)  # G(bF) - G(b) = -(b - bF) dG(b, bF) >= 0
+        total += _GW[i] * 2.0 * w * (4.0 * b * b * b / R - 2.0 * s) / math.sqrt(2.0 * ke / m)
+    return 0.5 * Wd * total
+
+
+@jitable
+def outcome(V, E, R, m, p_y, params):
+    """Outcome of one impact (see the module docstring; ``p_y`` unused)."""
+    if len(params) != 1:
+        return nan_outcome(V)
+    gamma = params[0]
+    if not (gamma >= 0.0 and gamma < math.inf and V >= 0.0 and V < math.inf):
+        return nan_outcome(V)
+    n = math.nan
+    s = math.sqrt(math.pi * gamma / E)
+    K = 0.5 * m * V * V
+    if gamma == 0.0:
+        # Hertz: b0 = 0, no pull-off
+        if V == 0.0:
+            return (V, n, n, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, n, 0.0, 0.0, 0.0, n, n, math.inf, math.inf, math.inf)
+        am = (15.0 * K / (8.0 * E * math.sqrt(R))) ** 0.4
+        bm = math.sqrt(math.sqrt(R * am))
+        t = _time_to_top(0.0, bm, E, R, m, 0.0)
+        pm = 4.0 / 3.0 * E * math.sqrt(R) * am**1.5
+        a_c = math.sqrt(R * am)
+        big = 1.0 if a_c / R > LARGE_STRAIN_RATIO else 0.0
+        return (V, n, n, 1.0, 1.0, V, am, 0.0, pm, n, 0.0, a_c, big, n, n, t, t, 2.0 * t)
+    b0 = math.sqrt((2.0 * R * s) ** (2.0 / 3.0))
+    bF = math.sqrt((1.5 * R * s) ** (2.0 / 3.0))
+    G0 = _G(b0, E, R, s)
+    W = _G(bF, E, R, s) - G0
+    # maximum approach: G(bm) - G(b0) = K, Newton from above (G increasing for b > b_c)
+    bm = b0
+    while _G(bm, E, R, s) - G0 < K:
+        bm *= 1.5
+    for _ in range(200):
+        f = _G(bm, E, R, s) - G0 - K
+        d = _force_b(bm, E, R, s) * (4.0 * bm * bm * bm / R - 2.0 * s)  # dG/db = P dalpha/db
+        step = f / d
+        bm -= step
+        if abs(step) <= 1e-16 * bm:
+            break
+    if bm < b0:
+        bm = b0
+    a_max = bm**4 / R - 2.0 * s * bm
+    p_max = _force_b(bm, E, R, s)
+    t_load = _time_to_top(b0, bm, E, R, m, s) if bm > b0 else 0.0
+    if K <= W:
+        e = 0.0
+        t_un = math.inf
+    else:
+        e = math.sqrt(1.0 - W / K)
+        t_un = t_load + _time_tensile(bF, b0, K - W, E, R, m, s)
+    a_c = bm * bm
+    big = 1.0 if a_c / R > LARGE_STRAIN_RATIO else 0.0
+    return (
+        V,
+        n,
+        n,
+        0.0,
+        e,
+        e * V,
+        a_max,
+        0.0,
+        p_max,
+        n,
+        1.0 - e * e,
+        a_c,
+        big,
+        n,
+        n,
+        t_load,
+        t_un,
+        t_load + t_un,
+    )
+
+
+@jitable
+def signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
+    """JKR force [N] at approach ``alpha >= -delta_c`` (contact radius from LAMMPS' closed form)."""
+    gamma = params[0]
+    if gamma == 0.0:
+        a = math.sqrt(R * alpha) if alpha > 0.0 else 0.0
+        return 4.0 * E * a * a * a / (3.0 * R)
+    a = contact_radius(alpha, E, R, gamma)
+    return 4.0 * E * a * a * a / (3.0 * R) - 2.0 * math.pi * a * a * math.sqrt(4.0 * gamma * E / (math.pi * a))
+
+
+@jitable
+def ends_at_zero_force(params):
+    """False: the contact ends at the approach :func:`separation_approach`, not at zero force."""
+    return False
+
+
+@jitable
+def separation_approach(E, R, m, p_y, params):
+    """Approach [m] at which the contact breaks on unloading: ``-delta_c``."""
+    return -pulloff_approach(E, R, params[0])
+
+
+@jitable
+def force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
+    """Normal force [N]: the JKR curve while in contact (from zero approach in loading down to
+    ``-delta_c`` in unloading), zero outside."""
+    if alpha_max <= 0.0 and alpha < 0.0:
+        return 0.0
+    if alpha < -pulloff_approach(E, R, params[0]):
+        return 0.0
+    return signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params)
