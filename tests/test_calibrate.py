@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 
 import microimpact as mi
-from microimpact._kernels import impact_scalar
 from microimpact.calibrate import DEM_MODELS, calibrate, calibrate_all
 from microimpact.core.models import hertz_viscoelastic as hv
 from microimpact.core.models import linear_spring_dashpot as lin
@@ -267,3 +266,11 @@ def test_code_lines_tsuji():
     assert float(next(s for s in cal.lammps().splitlines() if s.startswith("pair_coeff")).split()[5]) == pytest.approx(
         cal.target_restitution[0], abs=1e-9
     )
+
+
+def impact_scalar(V, E, R, m, p_y):
+    """The seed's outcome as a dict (its scalar core)."""
+    from microimpact.core.models import thornton_ning_2016
+    from microimpact.core.quantities import OUTCOME_FIELDS
+
+    return dict(zip(OUTCOME_FIELDS, thornton_ning_2016.outcome(V, E, R, m, p_y, ())))
