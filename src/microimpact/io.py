@@ -69,6 +69,7 @@ __all__ = [
     "MemoryBudgetError",
     "progress_bar",
     "MEMORY_ENV",
+    "MEMORY_FRACTION",
 ]
 
 #: Environment variable overriding the memory budget: bytes (``2e9``), or with a unit (``4GB``, ``512MiB``).
@@ -465,7 +466,7 @@ def write_csv(path, columns, comments=(), *, progress=False):
         ``(name, unit, values)``; all of equal length. Bools are written 0/1,
         floats in their shortest exact form, text quoted when it holds a comma.
     comments : sequence of str, optional
-        Lines written after the header, each prefixed by ``# `` (one line each;
+        Lines written after the header, each prefixed by ``#`` and a space (one line each;
         a line break inside is refused).
     progress : bool, optional
         Show a progress bar (:func:`progress_bar`) while writing the rows.
