@@ -268,8 +268,13 @@ def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newli
     if target.is_symlink():
         target = Path(os.path.realpath(target))
     if _special(target):
-        with open(target, mode, **kw) as fh:
-            yield fh
+        try:
+            with open(target, mode, **kw) as fh:
+                yield fh
+        except OSError as exc:
+            if exc.filename is None:  # a write or flush error: name the file
+                exc.filename = os.fspath(target)
+            raise
         return
     check_output_path(target)
     try:
@@ -285,9 +290,11 @@ def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newli
         os.chmod(tmp, perm)
         with _signals_deferred():
             os.replace(tmp, target)
-    except BaseException:
+    except BaseException as exc:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
+        if isinstance(exc, OSError) and exc.filename is None:  # e.g. ENOSPC from write(): name the target
+            exc.filename = os.fspath(target)
         raise
 
 
@@ -397,6 +404,18 @@ def atomic_directory(path, owned=("*",)):
         shutil.rmtree(tmp, ignore_errors=True)
 
 
+@contextlib.contextmanager
+def _naming(fh):
+    """Give an OSError raised while writing to an open file the file's name (``<stdout>`` for stdout)."""
+    try:
+        yield
+    except OSError as exc:
+        if exc.filename is None and not isinstance(exc, BrokenPipeError):
+            name = getattr(fh, "name", None)
+            exc.filename = "<standard output>" if fh is sys.stdout or name == "<stdout>" else name
+        raise
+
+
 # ----------------------------------------------------------------------------- CSV
 def _check_text(kind: str, text: str) -> str:
     text = str(text)
@@ -497,7 +516,8 @@ def write_csv(path, columns, comments=(), *, progress=False):
                 bar.update(min(step, n - start))
 
     if hasattr(path, "write"):
-        emit(path)
+        with _naming(path):
+            emit(path)
         return None
     with atomic_write(path) as fh:
         emit(fh)
@@ -548,11 +568,13 @@ def write_json(obj, path=None, *, indent: int = 2):
     """
     text = json.dumps(json_safe(obj), indent=indent, allow_nan=False) + "\n"
     if path is None or (isinstance(path, str) and path == "-"):
-        sys.stdout.write(text)
-        sys.stdout.flush()
+        with _naming(sys.stdout):
+            sys.stdout.write(text)
+            sys.stdout.flush()
         return None
     if hasattr(path, "write"):
-        path.write(text)
+        with _naming(path):
+            path.write(text)
         return None
     with atomic_write(path) as fh:
         fh.write(text)
@@ -722,10 +744,12 @@ def check_memory(nbytes: float, what: str, hint: str = "") -> None:
     """
     budget = memory_budget()
     if nbytes > budget:
-        source = f"{MEMORY_ENV}" if os.environ.get(MEMORY_ENV) else f"half the available memory; set {MEMORY_ENV}"
+        source = (
+            f"set by {MEMORY_ENV}" if os.environ.get(MEMORY_ENV) else f"half the available memory; {MEMORY_ENV} sets it"
+        )
         raise MemoryBudgetError(
             f"{what} would need about {_human(nbytes)} of memory, more than the budget of {_human(budget)} "
-            f"({source} to change it)" + (f"; {hint}" if hint else "")
+            f"({source})" + (f"; {hint}" if hint else "")
         )
 
 

@@ -125,16 +125,32 @@ def _silence_stdout() -> None:
         os.dup2(devnull, sys.stdout.fileno())
 
 
-def _stdout_failed() -> bool:
-    """True when flushing stdout fails (then stdout is silenced for the interpreter's exit)."""
-    try:
-        sys.stdout.flush()
-        return False
-    except OSError:
-        _silence_stdout()
-        return True
-    except (ValueError, AttributeError):
-        return False
+class _NamedStdout:
+    """Standard output whose write errors (a full disk, a closed pipe) name it in the message."""
+
+    def __init__(self, stream):
+        self._stream = stream
+
+    def _call(self, name, *a):
+        try:
+            return getattr(self._stream, name)(*a)
+        except OSError as exc:
+            if exc.filename is None and not isinstance(exc, BrokenPipeError):
+                exc.filename = "<standard output>"
+                _silence_stdout()
+            raise
+
+    def write(self, text):
+        return self._call("write", text)
+
+    def writelines(self, lines):
+        return self._call("writelines", lines)
+
+    def flush(self):
+        return self._call("flush")
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
 
 
 def main(argv=None) -> int:
@@ -149,15 +165,15 @@ def main(argv=None) -> int:
         return 2
     warnings.formatwarning = _short_warning
     prefix = f"microimpact {args.command}"
+    stdout = sys.stdout
     try:
         with _interrupts_raise():
+            sys.stdout = _NamedStdout(stdout)
             try:
                 rc = args.func(args)
                 sys.stdout.flush()
-            except OSError as exc:
-                if exc.filename is None and not isinstance(exc, BrokenPipeError) and _stdout_failed():
-                    exc.filename = "<standard output>"
-                raise
+            finally:
+                sys.stdout = stdout
     except KeyboardInterrupt as exc:
         signum = getattr(exc, "signum", signal.SIGINT)
         name = "SIGTERM" if signum == signal.SIGTERM else "Ctrl-C"
