@@ -195,7 +195,10 @@ def _size_option(args) -> str:
 
 
 def _check_mass(radius, density, option, value):
-    m = 4.0 / 3.0 * math.pi * radius**3 * density
+    try:
+        m = 4.0 / 3.0 * math.pi * radius**3 * density
+    except OverflowError:
+        m = math.inf
     if not (m > 0 and math.isfinite(m)):
         raise ValueError(
             f"{option} {value:g} m is outside what double precision can model: the particle mass "

@@ -86,7 +86,10 @@ def run(args) -> int:
     if diameters is not None:
         rho = pair.density if pair.density is not None else float("nan")
         for d in diameters:
-            m = 4.0 / 3.0 * math.pi * (0.5 * float(d)) ** 3 * rho
+            try:
+                m = 4.0 / 3.0 * math.pi * (0.5 * float(d)) ** 3 * rho
+            except OverflowError:
+                m = math.inf
             if not (m > 0 and math.isfinite(m)):
                 raise ValueError(
                     f"--diameters {float(d):g} m is outside what double precision can model: the particle mass "
