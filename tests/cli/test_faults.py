@@ -706,3 +706,21 @@ def test_random_arguments_never_traceback(work, argv):
         assert lines or not argv, argv
         if not any(a in ("--help",) for a in argv) and argv:
             assert lines[-1].startswith(("microimpact", "usage:")), (argv, text)
+
+
+def test_project_readers_read_the_one_layout(tmp_path):
+    from microimpact.fitting import load_restitution_csv
+    from microimpact.paper import read_table
+
+    path = mio.write_csv(
+        tmp_path / "m.csv",
+        [("velocity", "m/s", [5.0, 20.0, 50.0]), ("restitution", "1", [1.0, 0.86, 0.72])],
+        comments=["measured, with a comment line after the header"],
+    )
+    lines = path.read_text().splitlines()
+    assert lines[0] == "velocity [m/s],restitution [1]" and lines[1].startswith("# ")
+    V, e, sigma = load_restitution_csv(path)
+    assert V.tolist() == [5.0, 20.0, 50.0] and e.tolist() == [1.0, 0.86, 0.72] and sigma is None
+    assert read_table(path)["restitution"].tolist() == [1.0, 0.86, 0.72]
+    data = np.genfromtxt(path, delimiter=",", names=True)
+    assert data[data.dtype.names[0]].tolist() == [5.0, 20.0, 50.0]  # numpy names it velocity_ms
