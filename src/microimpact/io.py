@@ -367,7 +367,7 @@ def atomic_directory(path, owned=("*",)):
     pathlib.Path
         The temporary directory to write into.
     """
-    target = Path(path)
+    target = Path(os.path.abspath(path))  # "." and "dir/.." name their real parent
     check_output_path(target, directory=True)
     if target.is_dir():
         for entry in target.iterdir():
