@@ -49,9 +49,7 @@ def test_numpy_backend_always_available():
 @pytest.mark.parametrize("backend", BACKENDS)
 def test_restitution_edge_values(backend):
     Vy = 7.5
-    V = np.array(
-        [0.0, 1e-300, 1.0, Vy * (1 - 1e-16), Vy, Vy * (1 + 1e-15), 2 * Vy, 50.0, 1e6, 1e9, 1e150, 1e300]
-    )
+    V = np.array([0.0, 1e-300, 1.0, Vy * (1 - 1e-16), Vy, Vy * (1 + 1e-15), 2 * Vy, 50.0, 1e6, 1e9, 1e150, 1e300])
     e = restitution_fast(V, Vy, backend=backend)
     ref = ref_e(V, Vy)
     assert_rel(e, ref, 1e-14)
