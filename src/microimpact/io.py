@@ -469,6 +469,12 @@ def _fmt_cell(x) -> str:
 
 def _csv_rows(columns, n):
     cols = [np.atleast_1d(np.asarray(c)) for _, _, c in columns]
+    if all(c.dtype.kind in "biuf" for c in cols):
+        # numbers only: Python floats' repr is the shortest exact form ("nan", "inf" as _fmt_cell writes them)
+        lists = [(c.astype(np.int64) if c.dtype.kind == "b" else c).tolist() for c in cols]
+        for row in zip(*lists):
+            yield ",".join(map(repr, row))
+        return
     for i in range(n):
         yield ",".join(_fmt_cell(c[i].item() if hasattr(c[i], "item") else c[i]) for c in cols)
 
