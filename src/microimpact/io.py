@@ -389,7 +389,7 @@ def atomic_directory(path, owned=("*",)):
                 tmp = None
             elif _renameat2_exchange(tmp, target):
                 pass  # tmp now holds the old output
-            else:  # pragma: no cover - exercised only where renameat2 is missing
+            else:  # renameat2 missing: two renames (tested by forcing this branch)
                 aside = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".old", dir=target.parent))
                 os.rmdir(aside)
                 os.rename(target, aside)

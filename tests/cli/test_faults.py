@@ -724,3 +724,14 @@ def test_project_readers_read_the_one_layout(tmp_path):
     assert read_table(path)["restitution"].tolist() == [1.0, 0.86, 0.72]
     data = np.genfromtxt(path, delimiter=",", names=True)
     assert data[data.dtype.names[0]].tolist() == [5.0, 20.0, 50.0]  # numpy names it velocity_ms
+
+
+def test_atomic_directory_fallback_without_renameat2(tmp_path, monkeypatch):
+    # where the atomic exchange is unavailable: the old output is renamed aside, the new one renamed in
+    monkeypatch.setattr(mio, "_renameat2_exchange", lambda a, b: False)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "a.txt").write_text("old")
+    with mio.atomic_directory(out, owned=("*.txt",)) as tmp:
+        (tmp / "a.txt").write_text("new")
+    assert (out / "a.txt").read_text() == "new" and no_temp_files(tmp_path) == []
