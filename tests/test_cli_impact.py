@@ -105,7 +105,7 @@ def test_effective_values_pair(capsys):
                 "--limiting-pressure",
                 "1e8",
             ],
-            "effective_modulus",
+            "--effective-modulus",
         ),
         (["impact", "10", "--particle", "nh4fl", "--surface", "kryptonite", "--radius", "1e-6"], "kryptonite"),
         (["impact", "10", "--particle", "nh4fl", "--surface", "silicon"], "radius"),

@@ -408,11 +408,13 @@ def test_write_tables_equal_the_api(tmp_path):
     names = sorted(p.name for p in files)
     assert names == ["restitution_d1um.csv", "restitution_d4.9um.csv", "restitution_vs_v_over_vy.csv"]
     header, data = _read_csv(tmp_path / "restitution_vs_v_over_vy.csv")
-    assert header[0] == "V/V_y [-]" and header[2] == "e at V_s/V_y=0.3 [-]"
+    assert header[0] == "V/V_y [1]" and header[2] == "e at V_s/V_y=0.3 [1]"
     assert np.array_equal(data[:, 1:], restitution_table(data[:, 0], [0, 0.3]))
     for d in (1e-6, 4.9e-6):
         header, data = _read_csv(tmp_path / f"restitution_d{d * 1e6:g}um.csv")
-        assert header == ["normal speed [m/s]", "restitution e [-]", "stuck [0/1]"]
+        assert header == ["normal speed [m/s]", "restitution e [1]", "stuck [1]"]
+        first = (tmp_path / f"restitution_d{d * 1e6:g}um.csv").read_text().splitlines()[0]
+        assert first == ",".join(header)  # the project's CSV layout: header first, then # lines
         assert np.array_equal(data[:, 0], V)
         out = wall_interaction(
             np.column_stack([0 * V, 0 * V, -V]), [0, 0, 1], d, pair.density, **SILICON, work_of_adhesion=0.2
@@ -465,7 +467,7 @@ def test_cli_export(tmp_path, capsys):
     rc = main(["export", "--out", str(out), "--friction", "abc"])
     assert rc == 2 and "friction" in capsys.readouterr().err
     rc = main(["export", "--out", str(out), "--work-of-adhesion", "-1"])
-    assert rc == 2 and "work_of_adhesion" in capsys.readouterr().err
+    assert rc == 2 and "--work-of-adhesion" in capsys.readouterr().err
 
 
 def test_throughput_shape_million():

@@ -148,15 +148,19 @@ def test_times_continuous_at_yield(pair):
 
 
 def test_edge_speeds():
-    out = SILICON.impact([0.0, np.inf], warn=False)
+    with np.errstate(all="ignore"):  # 1e300 m/s overflows intermediate powers; the limits are right
+        out = SILICON.impact([0.0, 1e300], warn=False)
     assert np.all(
         np.isinf([out.elastic_stage_time[0], out.loading_time[0], out.unloading_time[0], out.contact_time[0]])
     )
     assert out.plastic_stage_time[0] == 0.0
-    assert out.elastic_stage_time[1] == 0.0 and out.unloading_time[1] == 0.0
-    assert out.plastic_stage_time[1] == pytest.approx(SILICON.ning_loading_time(), rel=1e-15)
-    el = SILICON.elastic_equivalent().impact([0.0, 50.0, np.inf], warn=False)
-    assert np.isinf(el.contact_time[0]) and el.contact_time[2] == 0.0
+    assert out.elastic_stage_time[1] < 1e-60 and out.unloading_time[1] < 1e-60
+    assert out.plastic_stage_time[1] == pytest.approx(SILICON.ning_loading_time(), rel=1e-12)
+    with np.errstate(all="ignore"):
+        el = SILICON.elastic_equivalent().impact([0.0, 50.0, 1e300], warn=False)
+    assert np.isinf(el.contact_time[0]) and el.contact_time[2] < 1e-60
+    with pytest.raises(ValueError, match="velocity"):
+        SILICON.impact([np.inf])
     assert np.all(el.plastic_stage_time == 0.0)
 
 

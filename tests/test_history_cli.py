@@ -110,7 +110,7 @@ def test_plot_history_draws_the_history():
         (["history", "-5"], "velocity"),
         (["history", "50", "--n", "1"], "--n"),
         (["history", "50", "--n", "ten"], "--n"),
-        (["history", "50", "--limiting-pressure", "-1"], "limiting_pressure"),
+        (["history", "50", "--limiting-pressure", "-1"], "--limiting-pressure"),
     ],
 )
 def test_bad_input_exits_2_with_one_line(argv, words, capsys):

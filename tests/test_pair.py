@@ -216,7 +216,7 @@ def test_result_to_dict_round_trip():
 
 def test_pair_restitution_fast_path_equals_full_result():
     pair = mi.ContactPair.paper_case("mica")
-    V = np.concatenate([[0.0, pair.yield_velocity, np.inf], np.logspace(-2, 4, 500)])
+    V = np.concatenate([[0.0, pair.yield_velocity, 1e300], np.logspace(-2, 4, 500)])
     fast = pair.restitution(V)
     full = pair.impact(V, warn=False).restitution
     np.testing.assert_allclose(fast, full, rtol=1e-14, atol=0)

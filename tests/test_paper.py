@@ -57,7 +57,8 @@ def test_csv_header_names_units(run):
     assert "#   velocity_m_s [m/s]: impact speed V" in text
     assert "#   contact_time_s [s]:" in text
     header = [ln for ln in text.splitlines() if not ln.startswith("#")][0]
-    assert header.split(",")[0] == "velocity_m_s"
+    assert text.splitlines()[0] == header  # the project's CSV layout: header (with units) first
+    assert header.split(",")[0] == "velocity_m_s [m/s]"
 
 
 def test_fig02_csv_is_restitution_of_the_paper_cases(run):
@@ -250,9 +251,8 @@ def test_cli_end_to_end_with_measurements(tmp_path, capsys):
     assert rc == 0
     cap = capsys.readouterr()
     assert cap.out.strip() == str(out / "report.html")
-    progress = [ln for ln in cap.err.splitlines() if ln.startswith("[")]
-    assert [ln.split()[1] for ln in progress] == [f"fig{i:02d}" for i in range(2, 11)] + ["comparing"]
-    assert all(ln.split(" ... ")[1].startswith("done") for ln in progress)
+    # stderr is not a terminal here: no progress bar (tqdm draws one on a terminal), only the summary
+    assert not [ln for ln in cap.err.splitlines() if ln.startswith("[") or "%|" in ln]
     assert "paper numbers:" in cap.err
     assert (out / "fig02.svg").exists() and not (out / "fig02.pdf").exists()
     t = P.read_table(out / "fig02.csv")

@@ -3,6 +3,14 @@
 Every check raises :class:`ValueError` whose message names the parameter and
 the offending value, so that a user (and the CLI, which prints the message on
 one line) can see at once what was wrong.
+
+What counts as a number: Python and numpy integers and floats, arrays of them,
+and objects numpy converts to a float array (``Fraction``, ``Decimal``).
+Refused, with the parameter named: ``None`` ("got None"), booleans (``True`` is
+not 1 m), complex numbers (even with a zero imaginary part: the model is real),
+masked arrays with masked entries (the mask would be ignored), text, and ragged
+sequences. With ``scalar=True`` a check also refuses anything but a single
+number and returns a Python ``float``.
 """
 
 from __future__ import annotations
@@ -10,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = [
+    "check_number",
     "check_positive",
     "check_poisson",
     "check_velocity",
@@ -23,18 +32,70 @@ def _first_bad(arr: np.ndarray, bad: np.ndarray):
     return float(x)
 
 
+def _describe(value) -> str:
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
 def _as_float_array(name: str, value) -> np.ndarray:
+    if value is None:
+        raise ValueError(f"{name} must be a number, got None")
+    if isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} must be a number, got the boolean {value!r} (booleans are not numbers)")
+    if isinstance(value, (str, bytes)):
+        raise ValueError(f"{name} must be a number, got the text {_describe(value)}")
+    if np.ma.isMaskedArray(value):
+        if np.ma.is_masked(value):
+            raise ValueError(
+                f"{name} is a masked array with {int(np.ma.count_masked(value))} masked value(s): "
+                "fill or drop them first (the mask would be ignored)"
+            )
+        value = np.ma.getdata(value)
     try:
-        arr = np.asarray(value, dtype=float)
+        raw = np.asarray(value)
     except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number or an array of numbers, got {value!r}") from None
-    return arr
+        raise ValueError(f"{name} must be a number or an array of numbers, got {_describe(value)}") from None
+    kind = raw.dtype.kind
+    if kind == "b":
+        raise ValueError(f"{name} must be numbers, got booleans {_describe(value)} (booleans are not numbers)")
+    if kind == "c":
+        raise ValueError(f"{name} must be real, got the complex value(s) {_describe(value)}")
+    if kind in "USV":
+        raise ValueError(f"{name} must be a number or an array of numbers, got {_describe(value)}")
+    if kind == "O":
+        for x in raw.flat:
+            if x is None or isinstance(x, (bool, np.bool_, str, bytes, complex, np.complexfloating)):
+                what = "None" if x is None else _describe(x)
+                raise ValueError(f"{name} must be a number or an array of numbers, got {what} in {_describe(value)}")
+    if kind in "mM":
+        raise ValueError(f"{name} must be a number, got the date/time {_describe(value)}")
+    try:
+        return raw.astype(float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number or an array of numbers, got {_describe(value)}") from None
 
 
-def check_positive(name: str, value, *, allow_inf: bool = False) -> np.ndarray:
+def _scalar(name: str, arr: np.ndarray, value):
+    if arr.ndim != 0:
+        if arr.size == 1:
+            return float(arr.reshape(()))
+        raise ValueError(
+            f"{name} must be a single number, got {arr.size} values of shape {arr.shape}: {_describe(value)}"
+        )
+    return float(arr)
+
+
+def check_number(name: str, value, *, scalar: bool = False):
+    """``value`` as a float array (or float with ``scalar=True``), refusing the non-numbers above (NaN passes)."""
+    arr = _as_float_array(name, value)
+    return _scalar(name, arr, value) if scalar else arr
+
+
+def check_positive(name: str, value, *, allow_inf: bool = False, scalar: bool = False):
     """``value`` as a float array; raise ``ValueError`` unless all > 0 and finite.
 
     ``allow_inf`` admits ``+inf`` (an infinite radius or mass is a flat, fixed wall).
+    ``scalar=True`` requires a single number and returns a ``float``.
     """
     arr = _as_float_array(name, value)
     bad = ~(arr > 0) | (np.isinf(arr) if not allow_inf else np.isnan(arr))
@@ -44,30 +105,41 @@ def check_positive(name: str, value, *, allow_inf: bool = False) -> np.ndarray:
             if not allow_inf
             else f"{name} must be positive, got {_first_bad(arr, bad)!r}"
         )
-    return arr
+    return _scalar(name, arr, value) if scalar else arr
 
 
-def check_nonnegative(name: str, value) -> np.ndarray:
+def check_nonnegative(name: str, value, *, scalar: bool = False):
     """``value`` as a float array; raise unless all >= 0 and not NaN (``inf`` allowed)."""
     arr = _as_float_array(name, value)
     bad = ~(arr >= 0)
     if np.any(bad):
         raise ValueError(f"{name} must be non-negative and not NaN, got {_first_bad(arr, bad)!r}")
-    return arr
+    return _scalar(name, arr, value) if scalar else arr
 
 
-def check_poisson(name: str, value) -> np.ndarray:
+def check_poisson(name: str, value, *, scalar: bool = False):
     """Poisson ratio: raise unless every value lies in (-1, 0.5]."""
     arr = _as_float_array(name, value)
     bad = ~((arr > -1.0) & (arr <= 0.5))
     if np.any(bad):
         raise ValueError(f"{name} must lie in (-1, 0.5], got {_first_bad(arr, bad)!r}")
-    return arr
+    return _scalar(name, arr, value) if scalar else arr
 
 
-def check_velocity(name: str, value) -> np.ndarray:
-    """Impact speed: non-negative, not NaN; ``+inf`` is allowed (its limit is defined)."""
-    return check_nonnegative(name, value)
+def check_velocity(name: str, value, *, scalar: bool = False):
+    """Impact speed: finite and non-negative.
+
+    NaN and infinities are refused: an infinite speed has no outcome (the
+    closed form's limit gives ``e = 0`` with an infinite rebound speed, which
+    contradicts ``V_r = e V``), so it is an error rather than a result.
+    """
+    arr = _as_float_array(name, value)
+    bad = ~(arr >= 0) | np.isinf(arr)
+    if np.any(bad):
+        x = _first_bad(arr, bad)
+        why = "non-negative and not NaN" if not x > 0 else "finite (an infinite impact speed has no outcome)"
+        raise ValueError(f"{name} must be {why}, got {x!r}")
+    return _scalar(name, arr, value) if scalar else arr
 
 
 def check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure):

@@ -66,13 +66,26 @@ def _slug(text):
     return "_".join(p for p in keep.split("_") if p) or "pair"
 
 
-def _write_csv(path, comments, header, rows):
-    with open(path, "w", encoding="utf-8", newline="") as fh:
-        for c in comments:
-            fh.write(f"# {c}\n")
-        fh.write(",".join(header) + "\n")
-        for row in rows:
-            fh.write(",".join(_fmt_num(float(x)) for x in row) + "\n")
+def _write_csv(path, comments, header, columns):
+    """One table in the project's CSV layout (:mod:`microimpact.io`), written atomically."""
+    from .io import write_csv
+
+    write_csv(path, [(name, unit, col) for (name, unit), col in zip(header, columns)], comments)
+
+
+def _comment_text(text) -> str:
+    """``text`` made safe inside a C block comment and on one line of a CSV comment.
+
+    Control characters and line breaks become spaces, anything outside printable
+    ASCII becomes ``?``, and the comment delimiters ``*/`` and ``/*`` are broken
+    apart (``* /``, ``/ *``), so a label cannot end the comment and inject code.
+    """
+    out = "".join(
+        c if 32 <= ord(c) < 127 else (" " if ord(c) < 32 or c in "\u2028\u2029\x85" else "?") for c in str(text)
+    )
+    while "*/" in out or "/*" in out:
+        out = out.replace("*/", "* /").replace("/*", "/ *")
+    return out
 
 
 def _sized_pair(pair, diameter):
@@ -106,8 +119,13 @@ def write_tables(
     * ``restitution_vs_v_over_vy.csv``: ``e`` against ``V/V_y`` with one column
       per ``V_s/V_y`` value (:func:`restitution_table`); valid for any pair.
     * ``restitution_<pair>_d<diameter>um.csv`` for each pair and diameter:
-      normal impact speed [m/s], ``e`` [-] and the stick flag (0/1), with the
+      normal impact speed [m/s], ``e`` [1] and the stick flag (0/1), with the
       pair's ``V_y`` and the size's ``V_s`` in the comments.
+
+    Layout: the project's CSV layout (:mod:`microimpact.io`): the header
+    ``name [unit]`` on the first line, then ``#`` comment lines, then the rows.
+    Each file is written to a temporary name and renamed into place when
+    complete; a label reaches the comments only made safe (one line, printable).
 
     Parameters
     ----------
@@ -134,7 +152,6 @@ def write_tables(
     from .pair import ContactPair
 
     out_dir = Path(directory)
-    out_dir.mkdir(parents=True, exist_ok=True)
     pairs = [pairs] if isinstance(pairs, ContactPair) else list(pairs)
     if not pairs:
         raise ValueError("pairs: give at least one ContactPair")
@@ -142,6 +159,13 @@ def write_tables(
     v = DEFAULT_V_OVER_VY if v_over_vy is None else np.atleast_1d(check_nonnegative("v_over_vy", v_over_vy))
     s = np.atleast_1d(check_nonnegative("vs_over_vy_values", vs_over_vy_values)).reshape(-1)
     V = DEFAULT_SPEEDS if velocities is None else np.atleast_1d(check_nonnegative("velocities", velocities))
+    multi = len(pairs) > 1
+    jobs = []  # every size checked before any file is written
+    for i, pair in enumerate(pairs):
+        sizes = [2.0 * pair.effective_radius] if diameters is None else list(np.atleast_1d(diameters))
+        tag = f"{_slug(pair.label or f'pair{i}')}_" if multi else ""
+        jobs += [(pair, tag, d, _sized_pair(pair, d)) for d in sizes]
+    out_dir.mkdir(parents=True, exist_ok=True)
 
     written = []
     path = out_dir / "restitution_vs_v_over_vy.csv"
@@ -154,35 +178,30 @@ def write_tables(
             "e = 0 (stick) when e_p V <= V_s",
             "V: normal impact speed, V_y: yield velocity (eq. 28), V_s: sticking velocity",
         ],
-        ["V/V_y [-]"] + [f"e at V_s/V_y={_fmt_num(x)} [-]" for x in s],
-        np.column_stack([v, table]),
+        [("V/V_y", "1")] + [(f"e at V_s/V_y={_fmt_num(x)}", "1") for x in s],
+        [v, *np.asarray(table).T],
     )
     written.append(path)
 
-    multi = len(pairs) > 1
-    for i, pair in enumerate(pairs):
-        sizes = [2.0 * pair.effective_radius] if diameters is None else list(np.atleast_1d(diameters))
-        tag = f"{_slug(pair.label or f'pair{i}')}_" if multi else ""
-        for d in sizes:
-            p = _sized_pair(pair, d)
-            Vy = p.yield_velocity
-            Vs = float(sticking_velocity(G, p.effective_modulus, p.effective_radius, p.effective_mass))
-            e = adhesive_restitution(V, Vy, Vs)
-            stuck = (Vs > 0.0) & (e == 0.0)
-            path = out_dir / f"restitution_{tag}d{float(d) * 1e6:g}um.csv"
-            _write_csv(
-                path,
-                [
-                    f"microimpact: normal restitution of {pair.label or 'a sphere'} on a flat, "
-                    f"diameter {float(d):.6g} m",
-                    f"E* = {p.effective_modulus:.6g} Pa, p_y = {p.limiting_pressure:.6g} Pa, "
-                    f"density = {pair.density:.6g} kg/m^3, work of adhesion G = {G:.6g} J/m^2",
-                    f"yield velocity V_y = {Vy:.10g} m/s, sticking velocity V_s = {Vs:.10g} m/s",
-                ],
-                ["normal speed [m/s]", "restitution e [-]", "stuck [0/1]"],
-                np.column_stack([V, e, stuck.astype(float)]),
-            )
-            written.append(path)
+    for pair, tag, d, p in jobs:
+        Vy = p.yield_velocity
+        Vs = float(sticking_velocity(G, p.effective_modulus, p.effective_radius, p.effective_mass))
+        e = adhesive_restitution(V, Vy, Vs)
+        stuck = (Vs > 0.0) & (e == 0.0)
+        path = out_dir / f"restitution_{tag}d{float(d) * 1e6:g}um.csv"
+        _write_csv(
+            path,
+            [
+                f"microimpact: normal restitution of {_comment_text(pair.label or 'a sphere')} on a flat, "
+                f"diameter {float(d):.6g} m",
+                f"E* = {p.effective_modulus:.6g} Pa, p_y = {p.limiting_pressure:.6g} Pa, "
+                f"density = {pair.density:.6g} kg/m^3, work of adhesion G = {G:.6g} J/m^2",
+                f"yield velocity V_y = {Vy:.10g} m/s, sticking velocity V_s = {Vs:.10g} m/s",
+            ],
+            [("normal speed", "m/s"), ("restitution e", "1"), ("stuck", "1")],
+            [V, e, np.broadcast_to(stuck, np.shape(V)).astype(np.int8)],
+        )
+        written.append(path)
     return written
 
 
@@ -437,7 +456,7 @@ def generate_c_source(
     mu = float(check_nonnegative("friction", friction))
     if math.isinf(G) or math.isinf(mu):
         raise ValueError("work_of_adhesion and friction must be finite")
-    label = f"{pair.label}; " if pair is not None and pair.label else ""
+    label = f"{_comment_text(pair.label)}; " if pair is not None and pair.label else ""
     desc = f"{label}E* = {E:.6g} Pa, p_y = {p_y:.6g} Pa, G = {G:.6g} J/m^2, mu = {mu:.6g}"
     return _C_TEMPLATE.format(
         version=__version__,
@@ -477,9 +496,13 @@ def write_c_source(path, pair=None, **kwargs):
     """
     from pathlib import Path
 
+    from .io import atomic_write
+
     path = Path(path)
     if path.is_dir():
         path = path / "microimpact_wall.c"
+    text = generate_c_source(pair, **kwargs)  # every input checked before anything is created
     path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(generate_c_source(pair, **kwargs), encoding="utf-8")
+    with atomic_write(path) as fh:
+        fh.write(text)
     return path

@@ -707,29 +707,28 @@ class ImpactHistory:
         """Hertz force along the loading stages, the seed's Fig. 7 comparison [N]: :func:`hertz_force_along`."""
         return hertz_force_along(self)
 
-    def to_csv(self, path_or_buffer) -> None:
+    def to_csv(self, path_or_buffer, *, progress=False) -> None:
         """Write the history as CSV: a header row with units, ``#`` lines with the scalars, then the rows.
 
-        ``path_or_buffer`` is a file name or an open text file. The first line names the
-        columns with their units (``time [s],approach [m],...``); the ``#`` lines that
-        follow give the impact's scalars (``# name = value unit``). Read it back with
+        ``path_or_buffer`` is a file name (written through a temporary file renamed into
+        place when complete, :func:`microimpact.io.write_csv`) or an open text file. The
+        first line names the columns with their units (``time [s],approach [m],...``);
+        the ``#`` lines that follow give the impact's scalars (``# name = value unit``);
+        floats are written in their shortest exact form. Read it back with
         ``numpy.genfromtxt(f, delimiter=",", names=True)``, ``numpy.loadtxt(f,
         delimiter=",", skiprows=1)`` or ``pandas.read_csv(f, comment="#")``.
+        ``progress=True`` shows a progress bar while the rows are written.
         """
-        lines = [",".join(f"{name} [{unit}]" for name, (unit, _) in HISTORY_COLUMNS.items())]
-        lines.append(f"# microimpact impact history ({self.method}; seed eqs. 17-26)")
+        from .io import write_csv
+
+        comments = [f"microimpact impact history ({self.method}; seed eqs. 17-26)"]
         for name, (unit, desc) in HISTORY_SCALARS.items():
-            lines.append(f"# {name} = {getattr(self, name):.17g} {unit}  ({desc})")
-        lines.append("# stage: " + "; ".join(f"{k} = {v}" for k, v in STAGE_NAMES.items()))
-        cols = [getattr(self, name) for name in HISTORY_COLUMNS]
-        for row in zip(*cols):
-            lines.append(",".join([*(f"{x:.17g}" for x in row[:-1]), str(int(row[-1]))]))
-        text = "\n".join(lines) + "\n"
-        if hasattr(path_or_buffer, "write"):
-            path_or_buffer.write(text)
-        else:
-            with open(path_or_buffer, "w", encoding="utf-8", newline="") as f:
-                f.write(text)
+            comments.append(f"{name} = {getattr(self, name):.17g} {unit}  ({desc})")
+        comments.append("stage: " + "; ".join(f"{k} = {v}" for k, v in STAGE_NAMES.items()))
+        columns = [(name, unit, getattr(self, name)) for name, (unit, _) in HISTORY_COLUMNS.items()]
+        stage = columns[-1]
+        columns[-1] = (stage[0], stage[1], np.asarray(stage[2]).astype(np.int64))
+        write_csv(path_or_buffer, columns, comments, progress=progress)
 
 
 # ============================================================================ Newton's equation, numerically

@@ -20,7 +20,6 @@ import html
 import io
 import math
 import os
-import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -569,10 +568,14 @@ def _fmt_cell(x):
 
 
 def write_table(path, table: dict, title: str = "", columns: dict | None = None) -> Path:
-    """Write a dict of columns as CSV: ``#`` lines naming each column's unit, a header row, the rows.
+    """Write a dict of columns as CSV in the project's layout (:mod:`microimpact.io`).
 
-    Floats are written with Python's shortest exact representation, so reading
-    the file back (:func:`read_table`) gives the same numbers bit for bit.
+    The first line is the header, each column named with its unit
+    (``velocity_m_s [m/s]``; text columns bare); then ``#`` lines: the title,
+    the provenance and one line per column with its unit and description; then
+    the rows. Floats are written with Python's shortest exact representation, so
+    reading the file back (:func:`read_table`) gives the same numbers bit for
+    bit. The file is written to a temporary name and renamed into place.
 
     Parameters
     ----------
@@ -581,10 +584,10 @@ def write_table(path, table: dict, title: str = "", columns: dict | None = None)
     table : dict of str to array_like
         Columns of equal length, by name; bools are written as 0/1.
     title : str, optional
-        First comment line of the file.
+        First comment line of the file (one line).
     columns : dict of str to (str, str), optional
-        Column name -> (unit, description) for the ``#`` header lines; default
-        :data:`microimpact.figures.paper.COLUMNS`.
+        Column name -> (unit, description) for the header and the ``#`` lines;
+        default :data:`microimpact.figures.paper.COLUMNS`. A unit ``"-"`` marks text.
 
     Returns
     -------
@@ -600,24 +603,23 @@ def write_table(path, table: dict, title: str = "", columns: dict | None = None)
     >>> back["velocity_m_s"].tolist(), back["restitution"].tolist()
     ([5.0, 20.0], [1.0, 0.8836])
     """
+    from .io import write_csv
+
     columns = figs.COLUMNS if columns is None else columns
-    path = Path(path)
     keys = list(table)
-    n = len(np.atleast_1d(table[keys[0]])) if keys else 0
-    lines = []
+    comments = []
     if title:
-        lines.append(f"# {title}")
-    lines.append(f"# microimpact {__version__}; seed: {_SEED}")
-    lines.append("# columns (SI units; a suffix names the unit, no suffix: dimensionless or text):")
+        comments.append(str(title))
+    comments.append(f"microimpact {__version__}; seed: {_SEED}")
+    comments.append("columns (SI units; a suffix names the unit, no suffix: dimensionless or text):")
     for k in keys:
         unit, desc = columns.get(k, ("", ""))
-        lines.append(f"#   {k} [{unit}]: {desc}")
-    lines.append(",".join(keys))
-    cols = [np.atleast_1d(np.asarray(table[k])) for k in keys]
-    for i in range(n):
-        lines.append(",".join(_fmt_cell(c[i].item() if hasattr(c[i], "item") else c[i]) for c in cols))
-    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
-    return path
+        comments.append(f"  {k} [{unit}]: {desc}")
+    cols = []
+    for k in keys:
+        unit = columns.get(k, ("", ""))[0]
+        cols.append((k, "" if unit in ("-", "unit") else unit, np.atleast_1d(np.asarray(table[k]))))
+    return write_csv(path, cols, comments)
 
 
 def read_table(path) -> dict:
@@ -626,27 +628,31 @@ def read_table(path) -> dict:
     Parameters
     ----------
     path : str or os.PathLike
-        The file; ``#`` lines are skipped.
+        The file; ``#`` lines are skipped, and the ``[unit]`` of each header name
+        is dropped from the key (files of the older layout, header after the
+        ``#`` lines, read the same).
 
     Returns
     -------
     dict of str to ndarray
         One array per column, in file order: float where every cell is numeric,
-        otherwise ``object`` (strings). Units are those of the ``#`` header lines
+        otherwise ``object`` (strings). Units are those of the header
         (SI; see :data:`microimpact.figures.paper.COLUMNS`).
     """
     import csv
+    import re
 
     with open(path, encoding="utf-8") as fh:
         rows = [r for r in csv.reader(line for line in fh if not line.startswith("#"))]
     header, body = rows[0], rows[1:]
     out = {}
     for j, k in enumerate(header):
+        key = re.sub(r"\s*\[[^\]]*\]$", "", k)
         cells = [r[j] for r in body]
         try:
-            out[k] = np.array([float(c) for c in cells])
+            out[key] = np.array([float(c) for c in cells])
         except ValueError:
-            out[k] = np.array(cells, dtype=object)
+            out[key] = np.array(cells, dtype=object)
     return out
 
 
@@ -836,13 +842,6 @@ class PaperReport:
 
 
 def _progress_fn(progress):
-    if progress is True:
-
-        def emit(msg, end="\n"):
-            sys.stderr.write(msg + end)
-            sys.stderr.flush()
-
-        return emit, True
     if callable(progress):
         return (lambda msg, end="\n": progress(msg) if end == "\n" else None), False
     return (lambda msg, end="\n": None), False
@@ -873,7 +872,15 @@ def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progre
     formats : sequence of str
         Image formats among ``png``, ``pdf``, ``svg``, ``eps`` (the HTML report always embeds PNG).
     progress : bool or callable
-        ``True``: one line per figure on stderr; a callable receives those lines; ``False``: quiet.
+        ``True``: a progress bar on stderr (:func:`microimpact.io.progress_bar`); a callable
+        receives one line per figure (``"[3/9] fig04 ... done (0.41 s)"``); ``False``: quiet.
+
+    Notes
+    -----
+    The output appears whole or not at all: it is built in a temporary directory
+    beside ``out_dir`` and swapped into place when complete
+    (:func:`microimpact.io.atomic_directory`); an existing ``out_dir`` is replaced
+    only when it holds nothing but files of an earlier run.
 
     Returns
     -------
@@ -888,81 +895,97 @@ def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progre
         raise ValueError(f"formats must be among {', '.join(_FORMATS)}, got {', '.join(formats) or 'none'}")
     data = _normalize_data(data)
     emit, inline = _progress_fn(progress)
+    from .io import atomic_directory, atomic_write, check_output_path, progress_bar
+
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    check_output_path(out, directory=True)
     report = PaperReport(out_dir=out)
     from .figures import style as _style
 
     plt = _style.pyplot()
     pngs = {}
     n = len(FIGURES)
-    for i, (stem, title, _caption) in enumerate(FIGURES, start=1):
+    owned = ["fig[0-9][0-9].*", "comparison.csv", "report.md", "report.html"]
+    bar = progress_bar(n + 1, "paper", unit="step", disable=progress is not True)
+    # Built in a temporary directory beside out_dir and swapped into place whole (microimpact.io).
+    with bar, atomic_directory(out, owned=owned) as tmp:
+        for i, (stem, title, _caption) in enumerate(FIGURES, start=1):
+            t1 = time.perf_counter()
+            head = f"[{i}/{n}] {stem} {title} ..."
+            if inline:
+                emit(head, end="")
+            bar.set_description(f"paper {stem}")
+            table, draw = _MAKERS[stem](data)
+            write_table(tmp / f"{stem}.csv", table, title=f"Fig. {int(stem[3:])}: {title}")
+            report.tables[stem] = out / f"{stem}.csv"
+            with _style.style():
+                ax = draw(table)
+                fig = (np.ravel(ax)[0]).figure
+                try:
+                    buf = io.BytesIO()
+                    fig.savefig(buf, format="png", dpi=_style.DPI)
+                    pngs[stem] = buf.getvalue()
+                    files = []
+                    for fmt in formats:
+                        with atomic_write(tmp / f"{stem}.{fmt}", "wb") as fh:
+                            if fmt == "png":
+                                fh.write(pngs[stem])
+                            else:
+                                meta = {"pdf": {"CreationDate": None}, "svg": {"Date": None}}.get(fmt, {})
+                                fig.savefig(fh, format=fmt, metadata=meta or None)
+                        files.append(out / f"{stem}.{fmt}")
+                finally:
+                    plt.close(fig)
+            report.figures[stem] = files
+            bar.update(1)
+            tail = f" done ({time.perf_counter() - t1:.2f} s)"
+            emit(tail if inline else head + tail)
         t1 = time.perf_counter()
-        head = f"[{i}/{n}] {stem} {title} ..."
+        head = f"[report] comparing {len(PAPER_QUOTES)} quoted numbers and {len(PAPER_STATEMENTS)} statements ..."
         if inline:
             emit(head, end="")
-        table, draw = _MAKERS[stem](data)
-        report.tables[stem] = write_table(out / f"{stem}.csv", table, title=f"Fig. {int(stem[3:])}: {title}")
-        with _style.style():
-            ax = draw(table)
-            fig = (np.ravel(ax)[0]).figure
-            buf = io.BytesIO()
-            fig.savefig(buf, format="png", dpi=_style.DPI)
-            pngs[stem] = buf.getvalue()
-            files = []
-            for fmt in formats:
-                path = out / f"{stem}.{fmt}"
-                if fmt == "png":
-                    path.write_bytes(pngs[stem])
-                else:
-                    meta = {"pdf": {"CreationDate": None}, "svg": {"Date": None}}.get(fmt, {})
-                    fig.savefig(path, format=fmt, metadata=meta or None)
-                files.append(path)
-            plt.close(fig)
-        report.figures[stem] = files
-        tail = f" done ({time.perf_counter() - t1:.2f} s)"
-        emit(tail if inline else head + tail)
-    t1 = time.perf_counter()
-    head = f"[report] comparing {len(PAPER_QUOTES)} quoted numbers and {len(PAPER_STATEMENTS)} statements ..."
-    if inline:
-        emit(head, end="")
-    report.comparison = compare_with_paper()
-    report.statements = check_statements()
-    report.comparison_csv = write_table(
-        out / "comparison.csv",
-        {
-            k: np.array([r[k] for r in report.comparison], dtype=object)
-            for k in (
-                "name",
-                "quantity",
-                "where",
-                "unit",
-                "quoted",
-                "computed",
-                "relative_difference",
-                "agrees",
-                "note",
-            )
-        },
-        title="The seed's quoted numbers (Section 3) against the model now",
-        columns={
-            "name": ("-", "identifier"),
-            "quantity": ("-", "what is compared"),
-            "where": ("-", "place in the paper"),
-            "unit": ("-", "unit of quoted and computed"),
-            "quoted": ("unit", "value printed in the paper"),
-            "computed": ("unit", "value computed now"),
-            "relative_difference": ("1", "(computed - quoted) / quoted"),
-            "agrees": ("1", f"1 if |relative_difference| <= {TOLERANCE}"),
-            "note": ("-", "explanation"),
-        },
-    )
-    report.elapsed = time.perf_counter() - t0
-    blocks = _report_blocks(report, data, formats)
-    report.markdown = out / "report.md"
-    report.markdown.write_text(_to_markdown(blocks, report), encoding="utf-8")
-    report.html = out / "report.html"
-    report.html.write_text(_to_html(blocks, pngs), encoding="utf-8")
+        bar.set_description("paper report")
+        report.comparison = compare_with_paper()
+        report.statements = check_statements()
+        write_table(
+            tmp / "comparison.csv",
+            {
+                k: np.array([r[k] for r in report.comparison], dtype=object)
+                for k in (
+                    "name",
+                    "quantity",
+                    "where",
+                    "unit",
+                    "quoted",
+                    "computed",
+                    "relative_difference",
+                    "agrees",
+                    "note",
+                )
+            },
+            title="The seed's quoted numbers (Section 3) against the model now",
+            columns={
+                "name": ("-", "identifier"),
+                "quantity": ("-", "what is compared"),
+                "where": ("-", "place in the paper"),
+                "unit": ("-", "unit of quoted and computed"),
+                "quoted": ("unit", "value printed in the paper"),
+                "computed": ("unit", "value computed now"),
+                "relative_difference": ("1", "(computed - quoted) / quoted"),
+                "agrees": ("1", f"1 if |relative_difference| <= {TOLERANCE}"),
+                "note": ("-", "explanation"),
+            },
+        )
+        report.comparison_csv = out / "comparison.csv"
+        report.elapsed = time.perf_counter() - t0
+        report.markdown = out / "report.md"
+        report.html = out / "report.html"
+        blocks = _report_blocks(report, data, formats)
+        with atomic_write(tmp / "report.md") as fh:
+            fh.write(_to_markdown(blocks, report))
+        with atomic_write(tmp / "report.html") as fh:
+            fh.write(_to_html(blocks, pngs))
+        bar.update(1)
     report.elapsed = time.perf_counter() - t0
     tail = f" done ({time.perf_counter() - t1:.2f} s)"
     emit(tail if inline else head + tail)

@@ -29,6 +29,7 @@ from . import impact
 from ._optional import require
 from ._validation import check_pair, check_poisson, check_positive, check_velocity
 from .core import models, quantities
+from .io import atomic_write, check_memory, progress_bar, write_netcdf
 from .pair import DEFAULT_POISSON, DEFAULT_SURFACE_MODULUS, RESULT_FIELDS, ContactPair
 
 __all__ = [
@@ -92,6 +93,10 @@ SWEEP_VARIABLES: dict[str, tuple[str, str]] = {
 
 #: Points per block when ``chunks="auto"`` (about 40 MB of results and temporaries per block).
 _AUTO_BLOCK_POINTS = 1 << 17
+#: Peak memory per evaluated point [bytes]: the ~20 stacked result fields and the kernel's temporaries.
+_BYTES_PER_POINT = 600
+#: Points per slab written to CSV: bounds the memory of :func:`sweep_to_csv` (about 200 MB).
+_CSV_SLAB_POINTS = 1 << 18
 
 
 # --------------------------------------------------------------------------- kernel
@@ -379,8 +384,17 @@ def sweep(
                 UserWarning,
                 stacklevel=2,
             )
+    npoints = math.prod(len(coords[d]) for d in dims)
     if lazy:
         block = _normalize_chunks(chunks, dims, tuple(len(coords[d]) for d in dims))
+        points = math.prod(max(block[d]) if isinstance(block[d], tuple) else block[d] for d in dims)
+        check_memory(points * _BYTES_PER_POINT, f"a sweep block of {points} points", "give smaller chunks")
+    else:
+        check_memory(
+            npoints * _BYTES_PER_POINT,
+            f"a sweep of {npoints} points without chunks",
+            "give chunks= (or --chunks) to evaluate lazily in blocks",
+        )
 
     data = {}
     for group, fields, gdims in groups:
@@ -462,7 +476,8 @@ def sweep_to_netcdf(ds, path, *, engine=None, progress=False):
         A sweep from :func:`sweep`, eager or lazy (dask-backed); the units of its
         variables (SI) are kept in their ``units`` attributes.
     path : str or os.PathLike
-        File to write (overwritten).
+        File to write: written to a temporary file beside it and renamed into
+        place when complete, so an interrupted write leaves the previous file.
     engine : str, optional
         xarray's NetCDF back end (``"netcdf4"`` or ``"scipy"``); default as above.
     progress : bool, optional
@@ -473,26 +488,14 @@ def sweep_to_netcdf(ds, path, *, engine=None, progress=False):
     pathlib.Path
         The file written.
     """
-    import pathlib
-
-    path = pathlib.Path(path)
     engine = _netcdf_engine(engine)
     out = ds.copy()
     for name, var in out.data_vars.items():
         if var.dtype == bool:
             out[name].attrs.setdefault("flag_values", np.array([0, 1], dtype=np.int8))
             out[name].attrs.setdefault("flag_meanings", "false true")
-    if not out.chunks:
-        out.to_netcdf(path, engine=engine)
-        return path
-    delayed = out.to_netcdf(path, engine=engine, compute=False)
-    if progress:
-        diagnostics = require("dask.diagnostics", "sweep progress bars")
-        with diagnostics.ProgressBar(out=sys.stderr):
-            delayed.compute()
-    else:
-        delayed.compute()
-    return path
+    # a temporary file beside path, renamed into place only when every block is written (microimpact.io)
+    return write_netcdf(out, path, engine=engine, progress=progress)
 
 
 def _csv_header(ds, columns):
@@ -507,10 +510,14 @@ def sweep_to_csv(ds, path, *, progress=False, rows_per_block=None):
     """Write a sweep as a long CSV table, one row per point, block by block.
 
     Columns: each swept input, then each data variable (broadcast over the
-    swept inputs), named ``name [unit]``; floats with 17 significant digits (they
-    read back exactly); booleans as 0/1. Rows run over the last dimension
-    fastest. A lazy sweep is computed one slab (a block of the first
-    dimension) at a time; ``progress=True`` draws a bar on stderr.
+    swept inputs), named ``name [unit]`` (the project's CSV layout,
+    :mod:`microimpact.io`, with no comment lines); floats in their shortest
+    exact form (they read back exactly); booleans as 0/1. Rows run over the
+    last dimension fastest. A lazy sweep is computed one block of the first
+    dimension at a time (split further when a block would exceed about 2.6e5
+    points), so memory stays bounded; ``progress=True`` draws a bar on stderr
+    (:func:`microimpact.io.progress_bar`). The file is written to a temporary
+    name beside ``path`` and renamed into place when complete.
 
     Parameters
     ----------
@@ -538,46 +545,74 @@ def sweep_to_csv(ds, path, *, progress=False, rows_per_block=None):
     variables = list(ds.data_vars)
     columns = dims + variables
     header = _csv_header(ds, columns)
-    with open(path, "w", newline="") as fh:
+    slabs = list(_slabs(ds, dims, rows_per_block))
+    with atomic_write(path) as fh:
         if not dims:
             sub = ds.compute()
             df = pd.DataFrame({c: [_csv_value(sub[c].values)] for c in columns})
             df.columns = header
             df.to_csv(fh, index=False)
             return path
-        first = dims[0]
-        n = ds.sizes[first]
-        if ds.chunks:
-            sizes = ds.chunks[first]
-        else:
-            per_row = max(1, int(np.prod([ds.sizes[d] for d in dims[1:]])))
-            step = rows_per_block or max(1, _AUTO_BLOCK_POINTS // per_row)
-            sizes = [min(step, n - i) for i in range(0, n, step)]
-        start = 0
-        for k, size in enumerate(sizes):
-            sub = ds.isel({first: slice(start, start + size)}).compute()
-            start += size
-            sub = sub.reset_coords(drop=True)
-            df = sub.to_dataframe(dim_order=dims).reset_index()[columns]
-            for c in variables:
-                if df[c].dtype == bool:
-                    df[c] = df[c].astype(np.int8)
-            df.columns = header
-            df.to_csv(fh, index=False, header=(k == 0))
-            if progress:
-                _bar(k + 1, len(sizes))
-    if progress:
-        sys.stderr.write("\n")
+        with progress_bar(len(slabs), "sweep to CSV", unit="block", disable=not progress) as bar:
+            for k, (outer, inner) in enumerate(slabs):
+                part = ds.isel(outer).compute()  # one block of the first dimension at a time
+                for sel in inner:
+                    sub = part.isel(sel).reset_coords(drop=True)
+                    df = sub.to_dataframe(dim_order=dims).reset_index()[columns]
+                    for c in variables:
+                        if df[c].dtype == bool:
+                            df[c] = df[c].astype(np.int8)
+                    df.columns = header
+                    df.to_csv(fh, index=False, header=(k == 0 and sel is inner[0]))
+                bar.update(1)
     return path
+
+
+def _row_major_pieces(shape, max_points):
+    """Index tuples (slices) covering ``shape`` in row-major order, each at most ``max_points`` points."""
+    if not shape:
+        yield ()
+        return
+    inner = math.prod(shape[1:])
+    if inner <= max_points:
+        step = max(1, max_points // max(inner, 1))
+        for i in range(0, shape[0], step):
+            yield (slice(i, min(i + step, shape[0])),)
+    else:
+        for i in range(shape[0]):
+            for rest in _row_major_pieces(shape[1:], max_points):
+                yield (slice(i, i + 1), *rest)
+
+
+def _slabs(ds, dims, rows_per_block=None):
+    """``(outer, [inner, ...])``: the blocks of the first dimension computed at once, and the pieces
+    written from each, in row-major order, each piece at most :data:`_CSV_SLAB_POINTS` points."""
+    if not dims:
+        return
+    first = dims[0]
+    n = ds.sizes[first]
+    per_row = max(1, math.prod(ds.sizes[d] for d in dims[1:]))
+    if ds.chunks and first in ds.chunks:
+        sizes = list(ds.chunks[first])
+    else:
+        step = rows_per_block or max(1, _CSV_SLAB_POINTS // per_row)
+        sizes = [min(step, n - i) for i in range(0, n, step)]
+    start = 0
+    for size in sizes:
+        if size * per_row <= _CSV_SLAB_POINTS or not ds.chunks:
+            # the computed block fits (or the data are already in memory): pieces of it
+            shape = (size,) + tuple(ds.sizes[d] for d in dims[1:])
+            pieces = [dict(zip(dims, p)) for p in _row_major_pieces(shape, max(_CSV_SLAB_POINTS, per_row))]
+            yield {first: slice(start, start + size)}, pieces
+        else:  # a block too large to hold: compute and write it piece by piece
+            shape = (size,) + tuple(ds.sizes[d] for d in dims[1:])
+            for p in _row_major_pieces(shape, _CSV_SLAB_POINTS):
+                sel = dict(zip(dims, p))
+                sel[first] = slice(start + sel[first].start, start + sel[first].stop)
+                yield sel, [{}]
+        start += size
 
 
 def _csv_value(x):
     x = np.asarray(x)
     return int(x) if x.dtype == bool else x[()]
-
-
-def _bar(done, total, width=40):
-    frac = done / total
-    fill = int(round(width * frac))
-    sys.stderr.write(f"\r[{'#' * fill}{' ' * (width - fill)}] {100 * frac:5.1f}% ({done}/{total} blocks)")
-    sys.stderr.flush()

@@ -1,15 +1,54 @@
-"""Arguments shared by the commands: how to name a contact pair and a set of speeds."""
+"""Arguments shared by the commands: how to name a contact pair and a set of speeds, and the
+checks every command makes on its options and output paths before it computes anything."""
 
 from __future__ import annotations
 
 import argparse
+import math
+import sys
 
 import numpy as np
 
+from .._validation import check_positive
+from ..io import check_figure_path, check_input_file, check_memory, check_output_path
 from ..materials import PAPER_CASES, list_materials
 from ..pair import ContactPair
 
-__all__ = ["add_pair_arguments", "pair_from_args", "parse_values", "parse_float"]
+__all__ = [
+    "add_pair_arguments",
+    "pair_from_args",
+    "check_pair_options",
+    "parse_values",
+    "parse_float",
+    "refuse_together",
+    "check_outputs",
+    "check_input_file",
+    "show_progress",
+]
+
+#: Options of :func:`add_pair_arguments`: dest -> option as typed.
+PAIR_OPTIONS = {
+    "case": "--case",
+    "particle": "--particle",
+    "surface": "--surface",
+    "radius": "--radius",
+    "diameter": "--diameter",
+    "density": "--density",
+    "effective_modulus": "--effective-modulus",
+    "limiting_pressure": "--limiting-pressure",
+    "yield_strength": "--yield-strength",
+    "k": "--k",
+}
+
+
+def show_progress(args=None) -> bool:
+    """True when a progress bar should be drawn: stderr is a terminal and neither --quiet nor --no-progress."""
+    if args is not None and (getattr(args, "quiet", False) or getattr(args, "no_progress", False)):
+        return False
+    try:
+        return sys.stderr.isatty()
+    except (AttributeError, ValueError):
+        return False
 
 
 def parse_float(text: str, name: str = "value") -> float:
@@ -20,9 +59,15 @@ def parse_float(text: str, name: str = "value") -> float:
         raise ValueError(f"{name} must be a number, got {text!r}") from None
 
 
-def parse_values(texts, name: str = "velocity") -> np.ndarray:
-    """Numbers and ranges: ``50``, ``30,50,70``, ``1:120:500`` (start:stop:count, inclusive)."""
-    out = []
+def parse_values(texts, name: str = "velocity", *, bytes_per_value: float = 8.0, unique: bool = False) -> np.ndarray:
+    """Numbers and ranges: ``50``, ``30,50,70``, ``1:120:500`` (start:stop:count, inclusive).
+
+    ``bytes_per_value`` is the memory the command needs per value; the total is
+    checked against :func:`microimpact.io.memory_budget` before any array is made.
+    ``unique=True`` refuses a value given twice (naming it).
+    """
+    parts = []
+    total = 0
     for text in texts if isinstance(texts, (list, tuple)) else [texts]:
         for part in str(text).split(","):
             part = part.strip()
@@ -39,12 +84,58 @@ def parse_values(texts, name: str = "velocity") -> np.ndarray:
                     raise ValueError(f"{name} range count must be an integer, got {bits[2]!r}") from None
                 if count < 1:
                     raise ValueError(f"{name} range count must be >= 1, got {count}")
-                out.extend(np.linspace(start, stop, count))
+                if not (math.isfinite(start) and math.isfinite(stop)):
+                    raise ValueError(f"{name} range ends must be finite, got {part!r}")
+                parts.append((start, stop, count))
+                total += count
             else:
-                out.append(parse_float(part, name))
-    if not out:
+                parts.append(parse_float(part, name))
+                total += 1
+    if not parts:
         raise ValueError(f"{name}: no values given")
-    return np.asarray(out, dtype=float)
+    check_memory(total * bytes_per_value, f"{name} with {total} values", "give fewer values")
+    out = np.empty(total)
+    i = 0
+    for p in parts:
+        if isinstance(p, tuple):
+            out[i : i + p[2]] = np.linspace(*p)
+            i += p[2]
+        else:
+            out[i] = p
+            i += 1
+    if unique and out.size > 1:
+        s = np.sort(out)
+        dup = s[1:][s[1:] == s[:-1]]
+        if dup.size:
+            raise ValueError(f"{name} has the value {dup[0]:g} more than once (a sweep's values must be distinct)")
+    return out
+
+
+def refuse_together(args, *groups) -> None:
+    """Raise a ValueError naming both options when options of two ``groups`` are both given.
+
+    Each group is ``(dest, ...)``; option names are taken from :data:`PAIR_OPTIONS`
+    or spelled from the dest.
+    """
+    given = [[d for d in g if getattr(args, d, None) not in (None, False)] for g in groups]
+    for i in range(len(given)):
+        for j in range(i + 1, len(given)):
+            if given[i] and given[j]:
+                a, b = (PAIR_OPTIONS.get(x, "--" + x.replace("_", "-")) for x in (given[i][0], given[j][0]))
+                raise ValueError(f"{a} and {b} cannot be used together ({b} would be ignored)")
+
+
+def check_outputs(files=(), figures=(), directories=()) -> None:
+    """Check output paths before computing: parents exist and are directories; nothing is created."""
+    for path in files:
+        if path is not None and str(path) != "-":
+            check_output_path(path)
+    for path in figures:
+        if path is not None:
+            check_figure_path(path)
+    for path in directories:
+        if path is not None:
+            check_output_path(path, directory=True)
 
 
 def add_pair_arguments(parser: argparse.ArgumentParser) -> None:
@@ -53,7 +144,8 @@ def add_pair_arguments(parser: argparse.ArgumentParser) -> None:
         "contact pair",
         "Either --case, or --particle/--surface with --diameter or --radius, or effective values "
         "(--effective-modulus, --density, --radius/--diameter, --limiting-pressure). "
-        "Default: the seed's NH4Fl-on-silicon case.",
+        "Default: the seed's NH4Fl-on-silicon case. --yield-strength and --k give p_y = k Y "
+        "(with a paper case alone, --k multiplies the case's yield strength).",
     )
     g.add_argument("--case", choices=sorted(PAPER_CASES), help="one of the seed paper's cases")
     g.add_argument("--particle", metavar="MATERIAL", help=f"particle material ({', '.join(list_materials())})")
@@ -67,6 +159,29 @@ def add_pair_arguments(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--k", type=float, help="p_y / Y (default 2.2, the middle of the seed's 2.1-2.3)")
 
 
+def check_pair_options(args) -> None:
+    """Check the pair options alone, before anything is computed or written.
+
+    Every number must be positive and finite (``--limiting-pressure inf``: an
+    elastic pair); options that would be ignored or that conflict are refused,
+    naming both.
+    """
+    for dest in ("radius", "diameter", "density", "effective_modulus", "yield_strength", "k"):
+        value = getattr(args, dest, None)
+        if value is not None:
+            check_positive(PAIR_OPTIONS[dest], value)
+    if getattr(args, "limiting_pressure", None) is not None:
+        check_positive("--limiting-pressure", args.limiting_pressure, allow_inf=True)
+    refuse_together(args, ("radius",), ("diameter",))
+    refuse_together(args, ("case",), ("particle", "surface", "effective_modulus"))
+    refuse_together(args, ("particle", "surface"), ("effective_modulus", "density"))
+    refuse_together(args, ("limiting_pressure",), ("yield_strength", "k"))
+    if (args.particle or args.surface) and not (args.particle and args.surface):
+        raise ValueError("give both --particle and --surface")
+    if args.effective_modulus is not None and args.k is not None and args.yield_strength is None:
+        raise ValueError("--k needs --yield-strength with --effective-modulus (p_y = k Y); or give --limiting-pressure")
+
+
 def _radius(args):
     if args.radius is not None and args.diameter is not None:
         raise ValueError("give --radius or --diameter, not both")
@@ -75,14 +190,33 @@ def _radius(args):
     return args.radius
 
 
+def _size_option(args) -> str:
+    return "--diameter" if args.diameter is not None else "--radius"
+
+
+def _check_mass(radius, density, option, value):
+    try:
+        m = 4.0 / 3.0 * math.pi * radius**3 * density
+    except OverflowError:
+        m = math.inf
+    if not (m > 0 and math.isfinite(m)):
+        raise ValueError(
+            f"{option} {value:g} m is outside what double precision can model: the particle mass "
+            f"4/3 pi R^3 rho = {m:g} kg"
+        )
+
+
 def pair_from_args(args) -> ContactPair:
-    """Build the :class:`ContactPair` the options describe."""
+    """Build the :class:`ContactPair` the options describe (after :func:`check_pair_options`)."""
+    check_pair_options(args)
     radius = _radius(args)
+    size_value = args.diameter if args.diameter is not None else args.radius
     if args.particle or args.surface:
-        if not (args.particle and args.surface):
-            raise ValueError("give both --particle and --surface")
         if radius is None:
             raise ValueError("--radius or --diameter is needed with --particle/--surface")
+        from ..materials import get_material
+
+        _check_mass(radius, get_material(args.particle).density, _size_option(args), size_value)
         return ContactPair.from_materials(
             args.particle,
             args.surface,
@@ -94,6 +228,9 @@ def pair_from_args(args) -> ContactPair:
     if args.effective_modulus is not None:
         if radius is None or args.density is None:
             raise ValueError("--effective-modulus needs --radius (or --diameter) and --density")
+        if args.limiting_pressure is None and args.yield_strength is None:
+            raise ValueError("--effective-modulus needs --limiting-pressure or --yield-strength")
+        _check_mass(radius, args.density, _size_option(args), size_value)
         return ContactPair.sphere_on_flat(
             radius,
             args.density,
@@ -102,13 +239,31 @@ def pair_from_args(args) -> ContactPair:
             yield_strength=args.yield_strength,
             k=args.k,
         )
-    pair = ContactPair.paper_case(args.case or "silicon")
+    case = args.case or "silicon"
+    pair = ContactPair.paper_case(case)
+    changed = []
     # Single overrides on top of a paper case.
     if radius is not None or args.density is not None:
+        rho = pair.density if args.density is None else args.density
+        r = pair.effective_radius if radius is None else radius
+        if radius is not None:
+            _check_mass(r, rho, _size_option(args), size_value)
+        else:
+            _check_mass(r, rho, "--density", args.density)
         pair = pair.resized(radius=radius, density=args.density)
+        if radius is not None:
+            changed.append(f"R = {radius:.6g} m")
+        if args.density is not None:
+            changed.append(f"density {args.density:.6g} kg/m^3")
     changes = {}
     if args.limiting_pressure is not None:
         changes["limiting_pressure"] = args.limiting_pressure
-    elif args.yield_strength is not None:
-        changes["limiting_pressure"] = (args.k or 2.2) * args.yield_strength
+        changed.append(f"p_y = {args.limiting_pressure:.6g} Pa")
+    elif args.yield_strength is not None or args.k is not None:
+        Y = args.yield_strength if args.yield_strength is not None else PAPER_CASES[case]["yield_strength"]
+        k = args.k if args.k is not None else 2.2
+        changes["limiting_pressure"] = ContactPair._limiting_pressure(None, k, Y)
+        changed.append(f"p_y = {k:g} x {Y:.6g} Pa")
+    if changed:
+        changes["label"] = f"{pair.label}, with {', '.join(changed)}"
     return pair.replace(**changes) if changes else pair

@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-import json
 import sys
 
 from .._optional import require
 from ..fitting import FREE_PARAMETERS, LOSSES, fit_restitution, load_restitution_csv, plot_fit
+from ..io import save_figure, write_json
 from ..materials import PAPER_CASES, get_material
-from ._common import add_pair_arguments, pair_from_args, parse_float
+from ._common import add_pair_arguments, check_input_file, check_outputs, pair_from_args, parse_float
 
 
 def register(sub) -> None:
@@ -87,11 +87,15 @@ def plot_fig2(fit, data, path) -> None:
     unit = f" {info['unit']}" if info["unit"] else ""
     label = f"fit, {info['tex']} = {value * info['scale']:.4g}{unit}"
     ax = plot_restitution({label: fit.pair}, {data.source or "data": (data.velocity, data.restitution)})
-    ax.figure.savefig(path, dpi=200)
-    plt.close(ax.figure)
+    try:
+        save_figure(ax.figure, path, dpi=200)
+    finally:
+        plt.close(ax.figure)
 
 
 def run(args) -> int:
+    check_input_file(args.data, "data")  # errors name the file (missing, a directory, binary)
+    check_outputs(figures=[args.plot, args.fig2])  # before fitting: nothing computed for an unwritable path
     free = [s.strip() for s in args.free.split(",") if s.strip()]
     data = load_restitution_csv(args.data)
     velocity, restitution, sigma = data
@@ -115,8 +119,10 @@ def run(args) -> int:
         plt = require("matplotlib.pyplot", "--plot")
         ax, _ = plot_fit(fit, velocity, restitution)
         ax.set_title(f"{data.source}: {fit.pair.label}", fontsize="medium")
-        ax.figure.savefig(args.plot, dpi=200)
-        plt.close(ax.figure)
+        try:
+            save_figure(ax.figure, args.plot, dpi=200)
+        finally:
+            plt.close(ax.figure)
     if args.fig2:
         plot_fig2(fit, data, args.fig2)
     if args.json:
@@ -125,8 +131,7 @@ def run(args) -> int:
             doc["plot"] = args.plot
         if args.fig2:
             doc["fig2"] = args.fig2
-        json.dump(doc, sys.stdout, indent=2, allow_nan=True)
-        sys.stdout.write("\n")
+        write_json(doc)  # NaN/inf -> null: always valid JSON
     else:
         print(f"data: {args.data} ({fit.n_points} points{', with sigma' if sigma is not None else ''})")
         print(fit.pair.describe())

@@ -2,11 +2,16 @@
 
 from __future__ import annotations
 
+import math
 import sys
+import warnings
+from pathlib import Path
 
 import numpy as np
 
-from ._common import add_pair_arguments, pair_from_args, parse_float
+from .._validation import check_velocity
+from ..io import check_memory
+from ._common import add_pair_arguments, check_outputs, pair_from_args, parse_float, show_progress
 
 
 def register(sub) -> None:
@@ -40,6 +45,9 @@ def register(sub) -> None:
         default="closed",
         help="closed form (default) or numerical integration of Newton's equation (cross-check)",
     )
+    p.add_argument(
+        "--quiet", "-q", action="store_true", help="no progress bar (shown for long histories on a terminal)"
+    )
     p.set_defaults(func=run)
 
 
@@ -53,24 +61,59 @@ def _count(text: str) -> int:
     return n
 
 
+#: Memory per history point [bytes]: five float64 columns, the stage evaluation's temporaries
+#: (about 25 arrays of the same length) and the plot's copies.
+BYTES_PER_POINT = 400
+
+
+def _history(pair, V, n, method):
+    """The history, refusing speeds where double precision under- or overflows (no numpy warnings leak)."""
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
+        warnings.simplefilter("ignore", RuntimeWarning)
+        history = pair.history(V, n=n, method=method)
+    cols = [history.time, history.approach, history.approach_velocity, history.force]
+    scalars = [history.contact_time, history.max_force, history.rebound_velocity, history.max_approach]
+    finite = all(bool(np.all(np.isfinite(c))) for c in cols) and all(math.isfinite(x) for x in scalars)
+    if not finite or not history.contact_time > 0 or not history.max_approach > 0:
+        raise ValueError(
+            f"velocity {V:g} m/s is outside the range a time history can be computed in double precision "
+            "(the approach, force or times under- or overflow); give a speed between about 1e-30 and 1e30 m/s"
+        )
+    return history
+
+
 def run(args) -> int:
     V = parse_float(args.velocity, "velocity")
+    check_velocity("velocity", V)
+    if not V > 0:
+        raise ValueError(f"velocity must be positive for a history (no contact at 0), got {V!r}")
     n = _count(args.n)
+    if args.hertz and not args.plot:
+        raise ValueError("--hertz draws into the plot: give --plot FILE.png with it")
+    out = None if args.out == "-" else args.out
+    check_outputs(files=[out], figures=[args.plot])
+    if out is not None and args.plot is not None and Path(out).resolve() == Path(args.plot).resolve():
+        raise ValueError(f"--out and --plot name the same file {args.out!r}")
+    check_memory(n * BYTES_PER_POINT, f"--n {n}", "give a smaller --n")
     pair = pair_from_args(args)
-    history = pair.history(V, n=n, method=args.method)
+    history = _history(pair, V, n, args.method)
     if args.plot:
         from ..figures.history import plot_history
+        from ..io import save_figure
 
         axes = plot_history(history, show_hertz=args.hertz)
         fig = axes[0].figure
-        fig.savefig(args.plot, dpi=300)
         import matplotlib.pyplot as plt
 
-        plt.close(fig)
-    if args.out == "-":
-        history.to_csv(sys.stdout)
+        try:
+            save_figure(fig, args.plot, dpi=300)
+        finally:
+            plt.close(fig)
+    progress = show_progress(args) and n >= 1_000_000
+    if out is None:
+        history.to_csv(sys.stdout, progress=progress)
     else:
-        history.to_csv(args.out)
+        history.to_csv(out, progress=progress)
         print(
             f"wrote {len(history)} points ({args.method}) to {args.out}: t_c = {history.contact_time * 1e9:.5g} ns, "
             f"P* = {history.max_force:.5g} N, V_r = {history.rebound_velocity:.5g} m/s"

@@ -2,15 +2,19 @@
 
 from __future__ import annotations
 
-import json
 import math
 import sys
 import warnings
 
 import numpy as np
 
+from .._validation import check_velocity
+from ..io import write_json
 from ..pair import RESULT_FIELDS, LargeStrainWarning
 from ._common import add_pair_arguments, pair_from_args, parse_values
+
+#: Memory per speed [bytes]: 18 result arrays with their temporaries, and the JSON or table text.
+BYTES_PER_SPEED = 2000
 
 # (attribute, header, scale to the shown unit, format)
 COLUMNS = [
@@ -67,8 +71,9 @@ def format_table(result) -> str:
 
 
 def run(args) -> int:
+    V = parse_values(args.velocities, "velocity", bytes_per_value=BYTES_PER_SPEED)
+    check_velocity("velocity", V)
     pair = pair_from_args(args)
-    V = parse_values(args.velocities, "velocity")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", LargeStrainWarning)
         result = pair.impact(V)
@@ -88,8 +93,7 @@ def run(args) -> int:
             "units": {k: u for k, (u, _) in RESULT_FIELDS.items()},
             "results": data,
         }
-        json.dump(doc, sys.stdout, indent=2, allow_nan=True)
-        sys.stdout.write("\n")
+        write_json(doc)  # NaN/inf -> null: always valid JSON
     else:
         print(pair.describe())
         print()

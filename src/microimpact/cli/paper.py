@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import sys
 
+from ._common import check_input_file, check_outputs, show_progress
+
 
 def register(sub) -> None:
     p = sub.add_parser(
@@ -13,7 +15,13 @@ def register(sub) -> None:
         "and a report (report.md, self-contained report.html) setting every number the paper quotes in "
         "Section 3 beside the value computed now.",
     )
-    p.add_argument("--out", default=None, metavar="DIR", help="output directory (default: ./microimpact-paper)")
+    p.add_argument(
+        "--out",
+        default=None,
+        metavar="DIR",
+        help="output directory (default: ./microimpact-paper), written whole: built beside it and swapped into "
+        "place when complete; an existing DIR may hold only an earlier run's files",
+    )
     p.add_argument(
         "--data",
         action="append",
@@ -28,7 +36,7 @@ def register(sub) -> None:
         metavar="LIST",
         help="image formats, comma separated, among png, pdf, svg, eps (default: png,pdf)",
     )
-    p.add_argument("--quiet", action="store_true", help="no progress lines")
+    p.add_argument("--quiet", "-q", action="store_true", help="no progress bar and no summary")
     p.set_defaults(func=run)
 
 
@@ -46,11 +54,16 @@ def parse_data(items) -> dict:
 def run(args) -> int:
     from ..paper import DEFAULT_OUT_DIR, reproduce
 
+    out = args.out or DEFAULT_OUT_DIR
+    check_outputs(directories=[out])
+    data = parse_data(args.data)
+    for name, path in data.items():
+        check_input_file(path, f"--data {name}")
     report = reproduce(
-        args.out or DEFAULT_OUT_DIR,
-        data=parse_data(args.data),
+        out,
+        data=data,
         formats=[f for f in args.formats.split(",") if f.strip()],
-        progress=not args.quiet,
+        progress=show_progress(args),
     )
     if not args.quiet:
         print(report.summary(), file=sys.stderr)

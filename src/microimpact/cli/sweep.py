@@ -9,17 +9,19 @@ bounded by the disk, not the memory.
 
 from __future__ import annotations
 
+import argparse
 import pathlib
 import re
 import sys
 
 import numpy as np
 
+from .._validation import check_positive
 from ..core import quantities
 from ..materials import PAPER_CASES, list_materials
 from ..pair import ContactPair
 from ..sweep import SWEEP_DIMENSIONS
-from ._common import parse_float, parse_values
+from ._common import check_outputs, parse_float, parse_values, show_progress
 
 # option dest -> (unit, help); the dest is the sweep() keyword.
 SWEEP_OPTIONS = quantities.table(SWEEP_DIMENSIONS)
@@ -44,6 +46,7 @@ def register(sub) -> None:
             "--" + dest.replace("_", "-"),
             dest=dest,
             nargs="+",
+            action=_Once,
             metavar="VALUES",
             required=dest == "velocity",
             help=f"{text} [{unit}]",
@@ -61,15 +64,41 @@ def register(sub) -> None:
     o.add_argument(
         "--chunks", metavar="N", help="block size along each swept dimension (default: about 130 000 points per block)"
     )
-    o.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+    o.add_argument(
+        "--no-progress",
+        "--quiet",
+        "-q",
+        action="store_true",
+        help="no progress bar (drawn only when stderr is a terminal)",
+    )
     p.set_defaults(func=run)
+
+
+class _Once(argparse.Action):
+    """Store the values of a swept option; a second use of the option is an error (no silent last-wins)."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        if getattr(namespace, self.dest, None) is not None:
+            raise argparse.ArgumentError(self, "given more than once; give all its values in one option")
+        setattr(namespace, self.dest, values)
 
 
 def _base_pair(args, values):
     if args.case and (args.particle or args.surface):
-        raise ValueError("give --case or --particle/--surface, not both")
+        raise ValueError("--case and --particle/--surface cannot be used together (one names the base pair)")
     k = parse_float(args.k, "--k") if args.k is not None else None
     Y = parse_float(args.yield_strength, "--yield-strength") if args.yield_strength is not None else None
+    if k is not None:
+        check_positive("--k", k)
+    if Y is not None:
+        check_positive("--yield-strength", Y)
+    if "limiting_pressure" in values and (k is not None or Y is not None):
+        raise ValueError(
+            f"--limiting-pressure and {'--k' if k is not None else '--yield-strength'} cannot be used together "
+            "(p_y is given directly)"
+        )
+    if (args.particle or args.surface) and "effective_modulus" in values:
+        raise ValueError("--particle/--surface and --effective-modulus cannot be used together")
     if args.particle or args.surface:
         if not (args.particle and args.surface):
             raise ValueError("give both --particle and --surface")
@@ -127,19 +156,25 @@ def run(args) -> int:
     kind = out.suffix.lower()
     if kind not in (".nc", ".csv"):
         raise ValueError(f"--out must end in .nc (NetCDF) or .csv, got {args.out!r}")
+    check_outputs(files=[out])
+    chunks = _chunks(args.chunks)
     values = {}
     for dest in SWEEP_OPTIONS:
         texts = getattr(args, dest)
         if texts is None:
             continue
-        v = parse_values(texts, "--" + dest.replace("_", "-"))
+        v = parse_values(texts, "--" + dest.replace("_", "-"), unique=True)
         # velocity always becomes a dimension; other inputs only when two or more values are given
         values[dest] = v if (v.size > 1 or dest == "velocity") else float(v[0])
+    npoints = int(np.prod([np.size(v) for v in values.values()]))
+    if kind == ".csv":  # about 20 numbers of about 22 characters per row
+        _check_disk(out, npoints * 520)
+    else:
+        _check_disk(out, npoints * 8 * 22)
     pair = _base_pair(args, values)
-    ds = sweep(**values, base=pair, chunks=_chunks(args.chunks))
-    progress = not args.no_progress
-    npoints = int(np.prod(list(ds.sizes.values()))) if ds.sizes else 1
-    if progress:
+    ds = sweep(**values, base=pair, chunks=chunks)
+    progress = show_progress(args)
+    if not args.no_progress:
         dims = " x ".join(f"{d} {n}" for d, n in ds.sizes.items())
         print(f"sweep: {npoints} points ({dims}), {len(ds.data_vars)} variables -> {out}", file=sys.stderr)
     if kind == ".nc":
@@ -155,3 +190,21 @@ def run(args) -> int:
         )
     print(f"wrote {out}")
     return 0
+
+
+def _check_disk(out, nbytes) -> None:
+    """Refuse up front when the file would not fit on its disk (the estimate is printed)."""
+    import errno
+    import os
+    import shutil
+
+    try:
+        free = shutil.disk_usage(out.parent if str(out.parent) else ".").free
+    except OSError:
+        return
+    if nbytes > free:
+        raise OSError(
+            errno.ENOSPC,
+            f"the sweep would write about {nbytes / 1e9:.3g} GB, more than the {free / 1e9:.3g} GB free there",
+            os.fspath(out),
+        )

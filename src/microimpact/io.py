@@ -1,0 +1,793 @@
+"""Writing results: the one module through which microimpact writes every file.
+
+Every file goes to a temporary name beside its target (same directory, so the
+final :func:`os.replace` is a rename within one file system), is flushed and
+``fsync``-ed, and is renamed into place only when complete. An exception of any
+kind while writing -- including :class:`KeyboardInterrupt` (Ctrl-C, and SIGTERM
+in the command line, which raises it too) and :class:`SystemExit` -- removes the
+temporary file and leaves whatever was at the target before untouched.
+
+* :func:`atomic_write` -- one file (a context manager yielding the open file).
+* :func:`atomic_directory` -- an output made of several files (``microimpact
+  paper``, ``microimpact export``): built in a temporary directory beside the
+  target and swapped into place whole (see its notes for how).
+* :func:`write_csv`, :func:`write_json`, :func:`write_netcdf`,
+  :func:`save_figure` -- the writers every command uses.
+* :func:`csv_header` -- the project's one CSV layout.
+* :func:`check_output_path` -- the checks a command makes on an output path
+  before it computes anything.
+* :func:`memory_budget`, :func:`check_memory` -- refusing sizes that would not
+  fit in memory, before allocating them.
+* :func:`progress_bar` -- the one progress-bar style (:mod:`tqdm`).
+
+CSV layout (all CSV files microimpact writes)
+---------------------------------------------
+Line 1 is the header: column names, comma separated, each followed by its unit
+in brackets, ``name [unit]`` (SI; ``[1]`` for dimensionless quantities and
+flags, as CF/UDUNITS write it). Then zero or more comment lines starting with
+``#`` (title, provenance, scalars, column descriptions), then one row per
+record: floats in their shortest exact form (they read back bit for bit),
+booleans as ``0``/``1``, non-finite values as ``nan``/``inf``/``-inf``. The
+header comes first so that every common reader takes it:
+``numpy.genfromtxt(f, delimiter=",", names=True)``,
+``pandas.read_csv(f, comment="#")``, :func:`csv.DictReader` over the lines not
+starting with ``#``, :func:`microimpact.paper.read_table` and
+:func:`microimpact.fitting.load_restitution_csv`.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import errno
+import fnmatch
+import json
+import math
+import os
+import shutil
+import signal
+import stat
+import sys
+import tempfile
+import threading
+from pathlib import Path
+
+import numpy as np
+
+__all__ = [
+    "atomic_write",
+    "atomic_directory",
+    "check_output_path",
+    "check_input_file",
+    "csv_header",
+    "write_csv",
+    "write_json",
+    "json_safe",
+    "write_netcdf",
+    "save_figure",
+    "memory_budget",
+    "check_memory",
+    "MemoryBudgetError",
+    "progress_bar",
+    "MEMORY_ENV",
+    "MEMORY_FRACTION",
+]
+
+#: Environment variable overriding the memory budget: bytes (``2e9``), or with a unit (``4GB``, ``512MiB``).
+MEMORY_ENV = "MICROIMPACT_MAX_MEMORY"
+#: Fraction of the available memory a single array allocation may use by default.
+MEMORY_FRACTION = 0.5
+
+
+# ----------------------------------------------------------------------------- signals
+@contextlib.contextmanager
+def _signals_deferred():
+    """Hold SIGINT/SIGTERM during a few system calls that must not be split (a rename pair).
+
+    A signal arriving inside is remembered and delivered (its old handler called)
+    when the block ends. Only in the main thread; elsewhere a no-op.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    pending = []
+    old = {}
+
+    def hold(signum, frame):
+        pending.append((signum, frame))
+
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        try:
+            old[sig] = signal.signal(sig, hold)
+        except (ValueError, OSError):  # pragma: no cover - not settable here
+            pass
+    try:
+        yield
+    finally:
+        for sig, handler in old.items():
+            signal.signal(sig, handler)
+        for signum, frame in pending[:1]:
+            handler = old.get(signum)
+            if callable(handler):
+                handler(signum, frame)
+            elif handler == signal.SIG_DFL:
+                if signum == signal.SIGINT:
+                    raise KeyboardInterrupt
+                signal.raise_signal(signum)  # pragma: no cover
+
+
+# ----------------------------------------------------------------------------- paths
+def _oserror(err, message, path):
+    return _OSERRORS.get(err, OSError)(err, message, os.fspath(path))
+
+
+_OSERRORS = {
+    errno.ENOENT: FileNotFoundError,
+    errno.EISDIR: IsADirectoryError,
+    errno.ENOTDIR: NotADirectoryError,
+    errno.EEXIST: FileExistsError,
+    errno.EACCES: PermissionError,
+}
+
+
+def check_output_path(path, *, directory: bool = False) -> Path:
+    """Check, before anything is computed, that ``path`` can be written.
+
+    The parent must exist and be a directory; a file target must not be an
+    existing directory, a directory target (``directory=True``) must not be an
+    existing file. Nothing is created.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The output file (or directory).
+    directory : bool, optional
+        ``path`` names a directory to be written whole (:func:`atomic_directory`).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    OSError
+        :class:`FileNotFoundError`, :class:`NotADirectoryError` or
+        :class:`IsADirectoryError` with the offending path as ``filename``.
+    """
+    target = Path(path)
+    if str(path) == "":
+        raise FileNotFoundError(errno.ENOENT, "empty file name", "")
+    parent = target.parent
+    if not parent.exists():
+        raise _oserror(errno.ENOENT, "directory does not exist", parent)
+    if not parent.is_dir():
+        raise _oserror(errno.ENOTDIR, "not a directory", parent)
+    if directory:
+        if target.exists() and not target.is_dir():
+            raise _oserror(errno.ENOTDIR, "exists and is not a directory", target)
+    elif target.is_dir():
+        raise _oserror(errno.EISDIR, "is a directory", target)
+    if not os.access(parent, os.W_OK | os.X_OK) and not _special(target):
+        raise _oserror(errno.EACCES, "directory is not writable", parent)
+    return target
+
+
+def check_input_file(path, what: str = "file") -> Path:
+    """Check that ``path`` is an existing, readable file of UTF-8 text; the error names the file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+    what : str, optional
+        What it is, for the message (e.g. ``"data"``).
+
+    Raises
+    ------
+    OSError
+        When missing, a directory or unreadable (``filename`` set).
+    ValueError
+        When it is not UTF-8 text (binary), naming the file and the byte offset.
+    """
+    p = Path(path)
+    if not p.exists():
+        raise _oserror(errno.ENOENT, f"{what} file not found", p)
+    if p.is_dir():
+        raise _oserror(errno.EISDIR, f"{what} is a directory, not a file", p)
+    import codecs
+
+    decoder = codecs.getincrementaldecoder("utf-8")()
+    offset = 0
+    with open(p, "rb") as fh:
+        while True:
+            block = fh.read(1 << 20)
+            try:
+                text = decoder.decode(block, final=not block)
+            except UnicodeDecodeError as exc:
+                raise ValueError(
+                    f"{p}: not a text file (UTF-8): byte 0x{exc.object[exc.start]:02x} at offset {offset + exc.start}"
+                ) from None
+            if "\x00" in text:
+                raise ValueError(f"{p}: not a text file (NUL byte near offset {offset + text.index(chr(0))})")
+            if not block:
+                break
+            offset += len(block)
+    return p
+
+
+def _special(path) -> bool:
+    """True when ``path`` exists and is not a regular file or directory (a device, a pipe)."""
+    try:
+        mode = os.stat(path).st_mode
+    except OSError:
+        return False
+    return not (stat.S_ISREG(mode) or stat.S_ISDIR(mode))
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def _umask_mode() -> int:
+    return 0o666 & ~_umask()
+
+
+@contextlib.contextmanager
+def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newline: str | None = ""):
+    """Open a temporary file beside ``path``; rename it to ``path`` when the block succeeds.
+
+    The temporary file is ``.<name>.<random>.tmp`` in the target's directory
+    (created with :func:`tempfile.mkstemp`, so the name is unique). On success it
+    is flushed, ``fsync``-ed, given the target's permissions (an existing
+    target's, else ``0666`` less the umask) and renamed over the target with
+    :func:`os.replace` (atomic on POSIX; SIGINT/SIGTERM are held for that call).
+    On any exception, including :class:`KeyboardInterrupt` and
+    :class:`SystemExit`, the temporary file is removed and the target is left as
+    it was. A target that is a device or a pipe (``/dev/null``, ``/dev/full``) is
+    written directly: it cannot be replaced.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to write.
+    mode : str, optional
+        ``"w"`` (text, default) or ``"wb"``.
+    encoding, newline : str, optional
+        For text mode (default UTF-8, no newline translation).
+
+    Yields
+    ------
+    file object
+    """
+    if mode not in ("w", "wb"):
+        raise ValueError(f"mode must be 'w' or 'wb', got {mode!r}")
+    kw = {} if "b" in mode else {"encoding": encoding, "newline": newline}
+    target = Path(path)
+    if target.is_symlink():
+        target = Path(os.path.realpath(target))
+    if _special(target):
+        try:
+            with open(target, mode, **kw) as fh:
+                yield fh
+        except OSError as exc:
+            if exc.filename is None:  # a write or flush error: name the file
+                exc.filename = os.fspath(target)
+            raise
+        return
+    check_output_path(target)
+    try:
+        perm = stat.S_IMODE(os.stat(target).st_mode)
+    except OSError:
+        perm = _umask_mode()
+    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+    try:
+        with os.fdopen(fd, mode, **kw) as fh:
+            yield fh
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.chmod(tmp, perm)
+        with _signals_deferred():
+            os.replace(tmp, target)
+    except BaseException as exc:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        if isinstance(exc, OSError) and exc.filename is None:  # e.g. ENOSPC from write(): name the target
+            exc.filename = os.fspath(target)
+        raise
+
+
+def _renameat2_exchange(a, b) -> bool:
+    """Swap two paths atomically (Linux ``renameat2(RENAME_EXCHANGE)``); False when unsupported."""
+    if not sys.platform.startswith("linux"):
+        return False
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        fn = libc.renameat2
+    except (OSError, AttributeError):  # pragma: no cover - old libc
+        return False
+    AT_FDCWD, RENAME_EXCHANGE = -100, 2
+    fn.argtypes = [ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_uint]
+    rc = fn(AT_FDCWD, os.fsencode(a), AT_FDCWD, os.fsencode(b), RENAME_EXCHANGE)
+    if rc == 0:
+        return True
+    err = ctypes.get_errno()
+    if err in (errno.ENOSYS, errno.EINVAL, errno.EOPNOTSUPP):  # pragma: no cover - kernel / file system
+        return False
+    raise OSError(err, os.strerror(err), os.fspath(b))
+
+
+def _fsync_dir(path) -> None:
+    with contextlib.suppress(OSError):
+        fd = os.open(path, os.O_RDONLY)
+        try:
+            os.fsync(fd)
+        finally:
+            os.close(fd)
+
+
+@contextlib.contextmanager
+def atomic_directory(path, owned=("*",)):
+    """Build a directory of outputs beside ``path`` and swap it into place whole.
+
+    The block receives a fresh temporary directory ``.<name>.<random>.tmp``
+    beside the target and writes every file into it. When the block succeeds:
+
+    * no target yet: the temporary directory is renamed to it (atomic);
+    * a target directory exists: on Linux the two are exchanged in one system
+      call (``renameat2(RENAME_EXCHANGE)``, atomic: at every instant the path
+      holds either the complete old output or the complete new one), and the old
+      one, now at the temporary name, is deleted. Where that call is not
+      available the old directory is first renamed aside
+      (``.<name>.<random>.old``) and the new one renamed in; between these two
+      renames -- the one non-atomic moment, microseconds long, with SIGINT and
+      SIGTERM held -- the path does not exist, and the old output is whole at the
+      aside name until it is deleted.
+
+    On any exception (including :class:`KeyboardInterrupt`) the temporary
+    directory is deleted and the target is left as it was.
+
+    To protect the user's files, an existing non-empty target is replaced only
+    when every entry in it is a regular file whose name matches one of the
+    ``owned`` patterns (the names this output writes); otherwise a
+    :class:`FileExistsError` names the first foreign entry.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The output directory.
+    owned : sequence of str, optional
+        :mod:`fnmatch` patterns of the file names this output consists of.
+
+    Yields
+    ------
+    pathlib.Path
+        The temporary directory to write into.
+    """
+    target = Path(os.path.abspath(path))  # "." and "dir/.." name their real parent
+    check_output_path(target, directory=True)
+    if target.is_dir():
+        for entry in target.iterdir():
+            if not (entry.is_file() and any(fnmatch.fnmatch(entry.name, p) for p in owned)):
+                raise FileExistsError(
+                    errno.EEXIST,
+                    f"the output directory holds {entry.name!r}, which microimpact would not write there; "
+                    "give a new or empty directory (the whole directory is replaced)",
+                    os.fspath(target),
+                )
+    tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent))
+    try:
+        yield tmp
+        tmp.chmod(0o777 & ~_umask())
+        _fsync_dir(tmp)
+        with _signals_deferred():
+            if not target.exists():
+                os.rename(tmp, target)
+                tmp = None
+            elif _renameat2_exchange(tmp, target):
+                pass  # tmp now holds the old output
+            else:  # renameat2 missing: two renames (tested by forcing this branch)
+                aside = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".old", dir=target.parent))
+                os.rmdir(aside)
+                os.rename(target, aside)
+                os.rename(tmp, target)
+                tmp = aside
+        _fsync_dir(target.parent)
+    except BaseException:
+        if tmp is not None:
+            shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    if tmp is not None:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+@contextlib.contextmanager
+def _naming(fh):
+    """Give an OSError raised while writing to an open file the file's name (``<stdout>`` for stdout)."""
+    try:
+        yield
+    except OSError as exc:
+        if exc.filename is None and not isinstance(exc, BrokenPipeError):
+            name = getattr(fh, "name", None)
+            exc.filename = "<standard output>" if fh is sys.stdout or name == "<stdout>" else name
+        raise
+
+
+# ----------------------------------------------------------------------------- CSV
+def _check_text(kind: str, text: str) -> str:
+    text = str(text)
+    bad = [c for c in text if c in "\r\n\x00" or (ord(c) < 32 and c != "\t")]
+    if bad:
+        raise ValueError(f"{kind} must be one line of text without control characters, got {text!r}")
+    return text
+
+
+def csv_header(columns) -> str:
+    """The header line ``name [unit],...`` of the project's CSV layout.
+
+    Parameters
+    ----------
+    columns : sequence of (str, str)
+        ``(name, unit)`` pairs; ``unit`` ``"1"`` for dimensionless.
+
+    Raises
+    ------
+    ValueError
+        If a name or unit holds a comma, a quote, a bracket or a line break
+        (they would change the meaning of the header).
+    """
+    parts = []
+    for name, unit in columns:
+        for kind, text in (("column name", name), ("unit", unit)):
+            _check_text(kind, text)
+            if any(c in str(text) for c in ',"[]'):
+                raise ValueError(f"{kind} must not contain a comma, quote or bracket, got {text!r}")
+        parts.append(f"{name} [{unit}]" if unit != "" else str(name))
+    return ",".join(parts)
+
+
+def _fmt_cell(x) -> str:
+    if isinstance(x, (bool, np.bool_)):
+        return "1" if x else "0"
+    if isinstance(x, (int, np.integer)):
+        return str(int(x))
+    if isinstance(x, (float, np.floating)):
+        x = float(x)
+        if math.isnan(x):
+            return "nan"
+        if math.isinf(x):
+            return "inf" if x > 0 else "-inf"
+        return repr(x)  # shortest exact round trip
+    s = str(x)
+    if "\n" in s or "\r" in s:
+        s = s.replace("\r", " ").replace("\n", " ")
+    return '"' + s.replace('"', '""') + '"' if ("," in s or '"' in s) else s
+
+
+def _csv_rows(columns, n):
+    cols = [np.atleast_1d(np.asarray(c)) for _, _, c in columns]
+    if all(c.dtype.kind in "biuf" for c in cols):
+        # numbers only: Python floats' repr is the shortest exact form ("nan", "inf" as _fmt_cell writes them)
+        lists = [(c.astype(np.int64) if c.dtype.kind == "b" else c).tolist() for c in cols]
+        for row in zip(*lists):
+            yield ",".join(map(repr, row))
+        return
+    for i in range(n):
+        yield ",".join(_fmt_cell(c[i].item() if hasattr(c[i], "item") else c[i]) for c in cols)
+
+
+def write_csv(path, columns, comments=(), *, progress=False):
+    """Write columns as CSV in the project's layout (header with units, ``#`` lines, rows).
+
+    Parameters
+    ----------
+    path : str, os.PathLike or file object
+        File to write (atomically, :func:`atomic_write`), or an open text file
+        (e.g. :data:`sys.stdout`), written to directly.
+    columns : sequence of (str, str, array_like)
+        ``(name, unit, values)``; all of equal length. Bools are written 0/1,
+        floats in their shortest exact form, text quoted when it holds a comma.
+    comments : sequence of str, optional
+        Lines written after the header, each prefixed by ``#`` and a space (one line each;
+        a line break inside is refused).
+    progress : bool, optional
+        Show a progress bar (:func:`progress_bar`) while writing the rows.
+
+    Returns
+    -------
+    pathlib.Path or None
+        The file written (None for a file object).
+    """
+    columns = list(columns)
+    header = csv_header([(name, unit) for name, unit, _ in columns])
+    comments = [_check_text("comment", c) for c in comments]
+    n = len(np.atleast_1d(columns[0][2])) if columns else 0
+    for name, _, c in columns:
+        if len(np.atleast_1d(c)) != n:
+            raise ValueError(f"column {name!r} has {len(np.atleast_1d(c))} values, the first has {n}")
+
+    def emit(fh):
+        fh.write(header + "\n")
+        for c in comments:
+            fh.write(f"# {c}\n" if c else "#\n")
+        step = 65536
+        with progress_bar(n, "writing CSV", unit="rows", disable=not progress) as bar:
+            for start in range(0, n, step):
+                sub = [(a, b, np.atleast_1d(np.asarray(c))[start : start + step]) for a, b, c in columns]
+                block = "\n".join(_csv_rows(sub, min(step, n - start)))
+                fh.write(block + "\n")
+                bar.update(min(step, n - start))
+
+    if hasattr(path, "write"):
+        with _naming(path):
+            emit(path)
+        return None
+    with atomic_write(path) as fh:
+        emit(fh)
+    return Path(path)
+
+
+# ----------------------------------------------------------------------------- JSON
+def json_safe(obj):
+    """``obj`` with every non-finite float replaced by ``None`` (JSON ``null``) and numpy types as Python ones.
+
+    JSON has no NaN or infinity (RFC 8259, section 6); writing them as ``null``
+    keeps every document valid JSON. Arrays become lists, numpy scalars Python
+    numbers, paths strings.
+    """
+    if isinstance(obj, dict):
+        return {str(k): json_safe(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [json_safe(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return json_safe(obj.tolist())
+    if isinstance(obj, (bool, np.bool_)):
+        return bool(obj)
+    if isinstance(obj, (int, np.integer)):
+        return int(obj)
+    if isinstance(obj, (float, np.floating)):
+        x = float(obj)
+        return x if math.isfinite(x) else None
+    if isinstance(obj, os.PathLike):
+        return os.fspath(obj)
+    return obj
+
+
+def write_json(obj, path=None, *, indent: int = 2):
+    """Write ``obj`` as valid JSON: to ``path`` (atomically), to an open file, or to stdout.
+
+    NaN and infinities, which JSON cannot represent, are written as ``null``
+    (:func:`json_safe`); ``allow_nan=False`` guarantees no ``NaN``/``Infinity``
+    token is ever produced.
+
+    Parameters
+    ----------
+    obj : dict, list, ...
+        JSON-able data (numpy arrays and scalars allowed).
+    path : str, os.PathLike, file object or None
+        Destination; ``None`` or ``"-"``: :data:`sys.stdout`.
+    indent : int, optional
+        Indentation (default 2).
+    """
+    text = json.dumps(json_safe(obj), indent=indent, allow_nan=False) + "\n"
+    if path is None or (isinstance(path, str) and path == "-"):
+        with _naming(sys.stdout):
+            sys.stdout.write(text)
+            sys.stdout.flush()
+        return None
+    if hasattr(path, "write"):
+        with _naming(path):
+            path.write(text)
+        return None
+    with atomic_write(path) as fh:
+        fh.write(text)
+    return Path(path)
+
+
+# ----------------------------------------------------------------------------- NetCDF and figures
+def write_netcdf(ds, path, *, engine=None, progress=False):
+    """Write an :class:`xarray.Dataset` to NetCDF through a temporary file beside ``path``.
+
+    A dask-backed dataset is computed and written block by block (bounded
+    memory); with ``progress=True`` under :class:`dask.diagnostics.ProgressBar`.
+    The temporary file is renamed to ``path`` only when the write completed.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+    path : str or os.PathLike
+    engine : str, optional
+        xarray's back end (``"netcdf4"``, ``"scipy"``).
+    progress : bool, optional
+        Progress bar on stderr while a lazy dataset is written.
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    target = Path(path)
+    check_output_path(target)
+    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+    os.close(fd)
+    try:
+        try:
+            perm = stat.S_IMODE(os.stat(target).st_mode)
+        except OSError:
+            perm = _umask_mode()
+        if not ds.chunks:
+            ds.to_netcdf(tmp, engine=engine)
+        else:
+            delayed = ds.to_netcdf(tmp, engine=engine, compute=False)
+            if progress:
+                from ._optional import require
+
+                diagnostics = require("dask.diagnostics", "progress bars")
+                with diagnostics.ProgressBar(out=sys.stderr):
+                    delayed.compute()
+            else:
+                delayed.compute()
+        with open(tmp, "rb+") as fh:
+            os.fsync(fh.fileno())
+        os.chmod(tmp, perm)
+        with _signals_deferred():
+            os.replace(tmp, target)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+    return target
+
+
+def save_figure(fig, path, **kwargs):
+    """``fig.savefig(path, **kwargs)`` through a temporary file beside ``path`` (format from the suffix).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+    path : str or os.PathLike
+        The image file; its suffix names the format unless ``format=`` is given.
+    **kwargs
+        Passed to :meth:`~matplotlib.figure.Figure.savefig`.
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    target = Path(path)
+    fmt = kwargs.pop("format", None) or target.suffix.lstrip(".").lower() or None
+    if fmt is None:
+        raise ValueError(f"figure file needs a suffix naming its format (.png, .pdf, .svg), got {os.fspath(path)!r}")
+    supported = fig.canvas.get_supported_filetypes()
+    if fmt not in supported:
+        raise ValueError(
+            f"cannot write a figure as {fmt!r} ({os.fspath(path)}): use one of {', '.join(sorted(supported))}"
+        )
+    with atomic_write(target, "wb") as fh:
+        fig.savefig(fh, format=fmt, **kwargs)
+    return target
+
+
+def check_figure_path(path) -> Path:
+    """Check before computing that a figure can be written to ``path`` (its format and its directory)."""
+    target = check_output_path(path)
+    fmt = target.suffix.lstrip(".").lower()
+    known = ("png", "pdf", "svg", "svgz", "eps", "ps", "jpg", "jpeg", "tif", "tiff", "webp", "pgf", "raw", "rgba")
+    if fmt not in known:
+        raise ValueError(f"figure file must end in .png, .pdf or .svg (or {', '.join(known[4:])}), got {str(path)!r}")
+    return target
+
+
+# ----------------------------------------------------------------------------- memory
+def _parse_bytes(text: str) -> float:
+    s = str(text).strip().lower().replace(" ", "")
+    units = {"kib": 2**10, "mib": 2**20, "gib": 2**30, "tib": 2**40, "kb": 1e3, "mb": 1e6, "gb": 1e9, "tb": 1e12}
+    for u, f in units.items():
+        if s.endswith(u):
+            return float(s[: -len(u)]) * f
+    if s.endswith("b"):
+        s = s[:-1]
+    return float(s)
+
+
+def _available_memory() -> float:
+    try:
+        with open("/proc/meminfo") as fh:
+            for line in fh:
+                if line.startswith("MemAvailable:"):
+                    return float(line.split()[1]) * 1024.0
+    except OSError:  # pragma: no cover - not Linux
+        pass
+    try:  # pragma: no cover - not Linux
+        return float(os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
+    except (ValueError, OSError, AttributeError):  # pragma: no cover
+        return 4e9
+
+
+def memory_budget() -> float:
+    """Bytes one command may allocate for its arrays.
+
+    ``MICROIMPACT_MAX_MEMORY`` if set (bytes, or with a unit: ``4GB``,
+    ``512MiB``); otherwise :data:`MEMORY_FRACTION` (half) of the memory the
+    system reports available (``MemAvailable`` in ``/proc/meminfo``).
+    """
+    env = os.environ.get(MEMORY_ENV)
+    if env:
+        try:
+            value = _parse_bytes(env)
+        except ValueError:
+            raise ValueError(f"{MEMORY_ENV} must be a number of bytes (e.g. 2e9 or 4GB), got {env!r}") from None
+        if not (value > 0 and math.isfinite(value)):
+            raise ValueError(f"{MEMORY_ENV} must be a positive number of bytes, got {env!r}")
+        return value
+    return MEMORY_FRACTION * _available_memory()
+
+
+class MemoryBudgetError(ValueError):
+    """A requested size would need more memory than :func:`memory_budget` allows."""
+
+
+def _human(nbytes: float) -> str:
+    for unit, f in (("TB", 1e12), ("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
+        if nbytes >= f:
+            return f"{nbytes / f:.3g} {unit}"
+    return f"{nbytes:.0f} B"
+
+
+def check_memory(nbytes: float, what: str, hint: str = "") -> None:
+    """Raise :class:`MemoryBudgetError` when ``nbytes`` exceeds :func:`memory_budget`.
+
+    Parameters
+    ----------
+    nbytes : float
+        Estimated peak bytes of the operation.
+    what : str
+        What is being sized, naming the option (e.g. ``"--n 100000000"``).
+    hint : str, optional
+        How to proceed (e.g. "use --chunks").
+    """
+    budget = memory_budget()
+    if nbytes > budget:
+        source = (
+            f"set by {MEMORY_ENV}" if os.environ.get(MEMORY_ENV) else f"half the available memory; {MEMORY_ENV} sets it"
+        )
+        raise MemoryBudgetError(
+            f"{what} would need about {_human(nbytes)} of memory, more than the budget of {_human(budget)} "
+            f"({source})" + (f"; {hint}" if hint else "")
+        )
+
+
+# ----------------------------------------------------------------------------- progress
+class _NoBar:
+    def update(self, n=1):
+        pass
+
+    def set_description(self, *args, **kwargs):
+        pass
+
+    def close(self):
+        pass
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        return False
+
+
+def progress_bar(total, desc: str = "", *, unit: str = "it", disable: bool = False):
+    """The project's one progress bar: :class:`tqdm.tqdm` on stderr.
+
+    Quiet (a no-op object with the same ``update``/``close``) when ``disable``
+    is true or tqdm is not installed. Callers in the command line pass
+    ``disable=not stderr_is_terminal or quiet``.
+    """
+    if disable:
+        return _NoBar()
+    try:
+        from tqdm.auto import tqdm
+    except ImportError:  # pragma: no cover - tqdm is a dependency
+        return _NoBar()
+    return tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, leave=False, dynamic_ncols=True)
