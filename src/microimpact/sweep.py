@@ -20,6 +20,7 @@ xarray and dask are optional: ``pip install 'microimpact[sweep]'``.
 
 from __future__ import annotations
 
+import math
 import sys
 import warnings
 
