@@ -910,7 +910,10 @@ class FitResult:
             return self._model.restitution(self._u, velocity)
         V = np.asarray(velocity, dtype=float)
         mid = self._model.outcome(self._u, V)
-        if len(self.params) == 1:
+        if not self.params:  # nothing fitted: no band
+            lo, hi = dict(mid), dict(mid)
+            method = "no free parameter"
+        elif len(self.params) == 1:
             ends = [self._model.outcome(u, V) for u in self._end_us()]
             lo = {q: np.minimum(mid[q], np.minimum(ends[0][q], ends[1][q])) for q in _QUANTITIES}
             hi = {q: np.maximum(mid[q], np.maximum(ends[0][q], ends[1][q])) for q in _QUANTITIES}
