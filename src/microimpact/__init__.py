@@ -14,29 +14,74 @@ time histories.
 36.24
 """
 
-from . import contact, coupling, deposition, dynamics, fitting, impact, materials, sweep
-from .adhesion import adhesive_restitution, sticking_velocity, work_of_adhesion
-from .dynamics import (
-    ImpactHistory,
-    contact_times,
-    deresiewicz_contact_time,
-    impact_history,
-    integrate_impact,
-    ning_loading_time,
-)
-from .fitting import FitResult, fit_restitution, load_restitution_csv
-from .impact import (
-    impact_outcome,
-    restitution_coefficient,
-    thornton_ning_restitution,
-    yield_velocity,
-    yield_velocity_sphere_on_flat,
-)
+import importlib as _importlib
+
+from . import materials, models
+from .core.models import available as _available  # noqa: F401  (the registry loads with the package)
 from .materials import MATERIALS, Material, effective_mass, effective_modulus, effective_radius, get_material
 from .pair import ContactPair, ImpactResult, LargeStrainWarning
-from .wall import WallInteraction, wall_interaction
 
-__version__ = "0.1.0"
+# Everything else loads on first use (PEP 562), so that ``import microimpact`` and one impact on
+# the command line import neither scipy, nor xarray, nor matplotlib, nor the deposition example.
+_LAZY = {
+    "yield_velocity": "impact",
+    "yield_velocity_sphere_on_flat": "impact",
+    "impact_outcome": "impact",
+    "restitution_coefficient": "impact",
+    "thornton_ning_restitution": "impact",
+    "contact_times": "dynamics",
+    "deresiewicz_contact_time": "dynamics",
+    "ning_loading_time": "dynamics",
+    "ImpactHistory": "dynamics",
+    "impact_history": "dynamics",
+    "integrate_impact": "dynamics",
+    "FitResult": "fitting",
+    "fit_restitution": "fitting",
+    "load_restitution_csv": "fitting",
+    "WallInteraction": "wall",
+    "wall_interaction": "wall",
+    "sticking_velocity": "adhesion",
+    "adhesive_restitution": "adhesion",
+    "work_of_adhesion": "adhesion",
+}
+_SUBMODULES = {
+    "contact",
+    "coupling",
+    "deposition",
+    "impact",
+    "dynamics",
+    "fitting",
+    "sweep",
+    "adhesion",
+    "wall",
+    "cexport",
+    "paper",
+    "figures",
+    "core",
+}
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        value = getattr(_importlib.import_module(f".{_LAZY[name]}", __name__), name)
+    elif name in _SUBMODULES:
+        value = _importlib.import_module(f".{name}", __name__)
+    elif name == "__version__":
+        from importlib.metadata import PackageNotFoundError, version
+
+        try:
+            value = version("microimpact")
+        except PackageNotFoundError:  # pragma: no cover - running from a source tree without install
+            value = "0+unknown"
+    else:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY) | _SUBMODULES | {"__version__"})
+
 
 __all__ = [
     "ContactPair",
@@ -75,5 +120,6 @@ __all__ = [
     "materials",
     "fitting",
     "sweep",
+    "models",
     "__version__",
 ]

@@ -68,3 +68,13 @@ def check_poisson(name: str, value) -> np.ndarray:
 def check_velocity(name: str, value) -> np.ndarray:
     """Impact speed: non-negative, not NaN; ``+inf`` is allowed (its limit is defined)."""
     return check_nonnegative(name, value)
+
+
+def check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure):
+    """``E*``, ``R*``, ``m*`` (positive, finite) and ``p_y`` (positive, ``inf`` allowed) as float arrays."""
+    return (
+        check_positive("effective_modulus", effective_modulus),
+        check_positive("effective_radius", effective_radius),
+        check_positive("effective_mass", effective_mass),
+        check_positive("limiting_pressure", limiting_pressure, allow_inf=True),
+    )

@@ -78,7 +78,7 @@ def _write_csv(path, comments, header, rows):
 def _sized_pair(pair, diameter):
     if pair.density is None:
         raise ValueError("the pair needs a particle density to be rescaled to other diameters")
-    return pair.resized(radius=0.5 * float(check_positive("diameter", diameter)))
+    return pair.vary(diameter=float(check_positive("diameter", diameter)))
 
 
 #: Default grid of :func:`write_tables`: ``V/V_y`` from 0 to 100.
@@ -290,6 +290,7 @@ double microimpact_yield_velocity(double p_y, double E, double r, double m)
 /* Thornton & Ning (1998) sticking velocity [m/s]; G is the work of adhesion. */
 double microimpact_sticking_velocity(double G, double E, double r, double m)
 {{
+    if (!(G > 0.0)) return 0.0;   /* no adhesion: skip four powers */
     return sqrt(MICROIMPACT_STICKING_CONSTANT / m) * pow(pow(G, 5.0) * pow(r, 4.0) / pow(E, 2.0), 1.0 / 6.0);
 }}
 
@@ -322,7 +323,7 @@ int microimpact_wall_interaction(const double v_in[3], const double n_in[3], con
     V = -vn;
 
     r = 0.5 * diameter;
-    m = 4.0 / 3.0 * MICROIMPACT_PI * pow(r, 3.0) * density;
+    m = 4.0 / 3.0 * MICROIMPACT_PI * (r * r * r) * density;
     V_y = microimpact_yield_velocity(params->limiting_pressure, params->effective_modulus, r, m);
     V_s = microimpact_sticking_velocity(params->work_of_adhesion, params->effective_modulus, r, m);
 

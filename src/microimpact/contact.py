@@ -19,6 +19,22 @@ from __future__ import annotations
 import numpy as np
 
 from ._validation import check_nonnegative, check_positive
+from .core import hertz as _hertz
+from .core.arrays import evaluate
+from .core.models import thornton_ning_2016 as _seed
+
+
+def _E(x):
+    return check_positive("effective_modulus", x)
+
+
+def _R(x):
+    return check_positive("effective_radius", x)
+
+
+def _py(x):
+    return check_positive("limiting_pressure", x, allow_inf=True)
+
 
 __all__ = [
     "hertz_force",
@@ -61,8 +77,7 @@ def hertz_force(alpha, effective_modulus, effective_radius):
     >>> float(hertz_force(1e-8, 1.31e9, 2.45e-6))  # doctest: +ELLIPSIS
     2.73...e-06
     """
-    alpha = check_nonnegative("alpha", alpha)
-    return 4.0 / 3.0 * effective_modulus * np.sqrt(effective_radius) * alpha**1.5
+    return evaluate(_hertz.force, check_nonnegative("alpha", alpha), _E(effective_modulus), _R(effective_radius))[0]
 
 
 def hertz_contact_radius(alpha, effective_radius):
@@ -90,8 +105,7 @@ def hertz_contact_radius(alpha, effective_radius):
     >>> round(float(hertz_contact_radius(1e-8, 2.45e-6)) * 1e9, 1)  # nm
     156.5
     """
-    alpha = check_nonnegative("alpha", alpha)
-    return np.sqrt(effective_radius * alpha)
+    return evaluate(_hertz.contact_radius, check_nonnegative("alpha", alpha), _R(effective_radius))[0]
 
 
 def hertz_central_pressure(alpha, effective_modulus, effective_radius):
@@ -126,8 +140,9 @@ def hertz_central_pressure(alpha, effective_modulus, effective_radius):
     >>> round(float(hertz_central_pressure(a_y, 1.31e9, 2.45e-6)) / 1e6, 6)  # MPa
     156.0
     """
-    a = hertz_contact_radius(alpha, effective_radius)
-    return 2.0 * effective_modulus * a / (np.pi * effective_radius)
+    return evaluate(
+        _hertz.central_pressure, check_nonnegative("alpha", alpha), _E(effective_modulus), _R(effective_radius)
+    )[0]
 
 
 def yield_contact_radius(limiting_pressure, effective_modulus, effective_radius):
@@ -152,10 +167,7 @@ def yield_contact_radius(limiting_pressure, effective_modulus, effective_radius)
     ValueError
         If an argument is not positive (``p_y`` may be ``inf``).
     """
-    p_y = check_positive("limiting_pressure", limiting_pressure, allow_inf=True)
-    E = check_positive("effective_modulus", effective_modulus)
-    R = check_positive("effective_radius", effective_radius)
-    return np.pi * p_y * R / (2.0 * E)
+    return evaluate(_seed.yield_contact_radius, _py(limiting_pressure), _E(effective_modulus), _R(effective_radius))[0]
 
 
 def yield_approach(limiting_pressure, effective_modulus, effective_radius):
@@ -185,8 +197,7 @@ def yield_approach(limiting_pressure, effective_modulus, effective_radius):
     >>> round(float(yield_approach(156e6, 1.31e9, 2.45e-6)) * 1e9, 2)  # nm, silicon case
     85.73
     """
-    a_y = yield_contact_radius(limiting_pressure, effective_modulus, effective_radius)
-    return a_y**2 / np.asarray(effective_radius, dtype=float)
+    return evaluate(_seed.yield_approach, _py(limiting_pressure), _E(effective_modulus), _R(effective_radius))[0]
 
 
 def yield_force(limiting_pressure, effective_modulus, effective_radius):
@@ -216,8 +227,8 @@ def yield_force(limiting_pressure, effective_modulus, effective_radius):
     >>> round(float(yield_force(156e6, 1.31e9, 2.45e-6)) * 1e6, 3)  # uN, silicon case
     68.622
     """
-    alpha_y = yield_approach(limiting_pressure, effective_modulus, effective_radius)
-    return 4.0 / 3.0 * effective_modulus * np.sqrt(effective_radius) * alpha_y**1.5
+    E, R = _E(effective_modulus), _R(effective_radius)
+    return evaluate(_hertz.force, evaluate(_seed.yield_approach, _py(limiting_pressure), E, R)[0], E, R)[0]
 
 
 def plastic_loading_force(alpha, effective_modulus, effective_radius, limiting_pressure):
@@ -247,10 +258,13 @@ def plastic_loading_force(alpha, effective_modulus, effective_radius, limiting_p
     ValueError
         If ``alpha`` is negative or a pair property is not positive.
     """
-    alpha = check_nonnegative("alpha", alpha)
-    alpha_y = yield_approach(limiting_pressure, effective_modulus, effective_radius)
-    P_y = yield_force(limiting_pressure, effective_modulus, effective_radius)
-    return P_y + np.pi * limiting_pressure * effective_radius * (alpha - alpha_y)
+    return evaluate(
+        _seed.plastic_loading_force,
+        check_nonnegative("alpha", alpha),
+        _E(effective_modulus),
+        _R(effective_radius),
+        _py(limiting_pressure),
+    )[0]
 
 
 def loading_force(alpha, effective_modulus, effective_radius, limiting_pressure):
@@ -287,12 +301,13 @@ def loading_force(alpha, effective_modulus, effective_radius, limiting_pressure)
     >>> round(float(loading_force(2 * a_y, 1.31e9, 2.45e-6, 156e6) / P_y), 12)
     2.5
     """
-    alpha = check_nonnegative("alpha", alpha)
-    alpha_y = yield_approach(limiting_pressure, effective_modulus, effective_radius)
-    elastic = hertz_force(alpha, effective_modulus, effective_radius)
-    with np.errstate(invalid="ignore"):
-        plastic = plastic_loading_force(alpha, effective_modulus, effective_radius, limiting_pressure)
-    return np.where(alpha <= alpha_y, elastic, plastic)
+    return evaluate(
+        _seed.loading_force,
+        check_nonnegative("alpha", alpha),
+        _E(effective_modulus),
+        _R(effective_radius),
+        _py(limiting_pressure),
+    )[0]
 
 
 def equivalent_elastic_force(max_approach, effective_modulus, effective_radius):
@@ -340,11 +355,13 @@ def unloading_radius(max_approach, max_force, effective_modulus, effective_radiu
     ndarray
         Unloading radius ``R_p`` [m].
     """
-    F_e = equivalent_elastic_force(max_approach, effective_modulus, effective_radius)
-    R = np.asarray(effective_radius, dtype=float)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        ratio = np.where(np.asarray(max_force) > 0, F_e / max_force, 1.0)
-    return R * ratio
+    return evaluate(
+        _seed.unloading_radius,
+        check_nonnegative("max_approach", max_approach),
+        check_nonnegative("max_force", max_force),
+        _E(effective_modulus),
+        _R(effective_radius),
+    )[0]
 
 
 def plastic_approach(max_approach, max_force, effective_modulus, effective_radius):
@@ -366,11 +383,13 @@ def plastic_approach(max_approach, max_force, effective_modulus, effective_radiu
     ndarray
         Plastic approach ``alpha_p`` [m], >= 0 (0 for an elastic contact, ``P* = F_e``).
     """
-    alpha_m = np.asarray(max_approach, dtype=float)
-    F_e = equivalent_elastic_force(alpha_m, effective_modulus, effective_radius)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        frac = np.where(F_e > 0, np.asarray(max_force) / F_e, 1.0)
-    return np.maximum(alpha_m * (1.0 - frac), 0.0)
+    return evaluate(
+        _seed.plastic_approach,
+        check_nonnegative("max_approach", max_approach),
+        check_nonnegative("max_force", max_force),
+        _E(effective_modulus),
+        _R(effective_radius),
+    )[0]
 
 
 def unloading_force(alpha, plastic_approach, unloading_radius, effective_modulus):
@@ -394,9 +413,13 @@ def unloading_force(alpha, plastic_approach, unloading_radius, effective_modulus
     ndarray
         Unloading force ``P`` [N], >= 0.
     """
-    alpha = np.asarray(alpha, dtype=float)
-    d = np.maximum(alpha - plastic_approach, 0.0)
-    return 4.0 / 3.0 * effective_modulus * np.sqrt(unloading_radius) * d**1.5
+    return evaluate(
+        _seed.unloading_force,
+        np.asarray(alpha, dtype=float),
+        np.asarray(plastic_approach, dtype=float),
+        check_positive("unloading_radius", unloading_radius),
+        _E(effective_modulus),
+    )[0]
 
 
 def contact_force(alpha, effective_modulus, effective_radius, limiting_pressure, max_approach=None):
@@ -441,10 +464,14 @@ def contact_force(alpha, effective_modulus, effective_radius, limiting_pressure,
     """
     if max_approach is None:
         return loading_force(alpha, effective_modulus, effective_radius, limiting_pressure)
-    P_max = loading_force(max_approach, effective_modulus, effective_radius, limiting_pressure)
-    R_p = unloading_radius(max_approach, P_max, effective_modulus, effective_radius)
-    a_p = plastic_approach(max_approach, P_max, effective_modulus, effective_radius)
-    return unloading_force(alpha, a_p, R_p, effective_modulus)
+    return evaluate(
+        _seed.unloading_force_from,
+        check_nonnegative("alpha", alpha),
+        check_nonnegative("max_approach", max_approach),
+        _E(effective_modulus),
+        _R(effective_radius),
+        _py(limiting_pressure),
+    )[0]
 
 
 def normalized_loading_force(alpha_hat):
@@ -472,8 +499,7 @@ def normalized_loading_force(alpha_hat):
     >>> normalized_loading_force([0.25, 1.0, 3.0]).tolist()
     [0.125, 1.0, 4.0]
     """
-    a = check_nonnegative("alpha_hat", alpha_hat)
-    return np.where(a <= 1.0, a**1.5, (3.0 * a - 1.0) / 2.0)
+    return evaluate(_seed.normalized_loading_force, check_nonnegative("alpha_hat", alpha_hat))[0]
 
 
 def normalized_unloading_force(alpha_hat, max_alpha_hat):
@@ -494,9 +520,8 @@ def normalized_unloading_force(alpha_hat, max_alpha_hat):
     ndarray
         Normalised unloading force ``P/P_y`` [-], 0 below the plastic approach.
     """
-    a = np.asarray(alpha_hat, dtype=float)
-    am = np.asarray(max_alpha_hat, dtype=float)
-    Pm = normalized_loading_force(am)
-    rp = am**1.5 / Pm
-    ap = am - Pm / np.sqrt(am)
-    return np.sqrt(rp) * np.maximum(a - ap, 0.0) ** 1.5
+    return evaluate(
+        _seed.normalized_unloading_force,
+        np.asarray(alpha_hat, dtype=float),
+        check_positive("max_alpha_hat", max_alpha_hat),
+    )[0]

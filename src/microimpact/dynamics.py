@@ -26,11 +26,15 @@ from __future__ import annotations
 from dataclasses import dataclass, fields
 
 import numpy as np
-from scipy import special
 
 from . import contact
-from ._validation import check_positive, check_velocity
-from .impact import _check_pair, elastic_max_approach, impact_outcome, yield_velocity
+from ._validation import check_nonnegative, check_pair, check_positive, check_velocity
+from .core import hertz, quantities
+from .core import special as _special
+from .core.arrays import evaluate
+from .core.models import thornton_ning_2016 as _seed
+from .core.special import BETA_25_12, HERTZ_TIME_CONSTANT
+from .impact import elastic_max_approach, impact_outcome, outcome_arrays, yield_velocity
 
 __all__ = [
     "BETA_25_12",
@@ -52,12 +56,6 @@ __all__ = [
     "ImpactHistory",
     "integrate_impact",
 ]
-
-#: Complete beta function ``B(2/5, 1/2) = 3.67909...``, the Hertz time integral.
-BETA_25_12 = float(special.beta(0.4, 0.5))
-#: Exact constant of Hertz's contact time, ``(4/5) B(2/5,1/2) (15/16)^(2/5) = 2.868``
-#: (the seed's eq. 30 prints it as 2.87).
-HERTZ_TIME_CONSTANT = 0.8 * BETA_25_12 * (15.0 / 16.0) ** 0.4
 
 
 def incomplete_beta(u, a=0.4, b=0.5):
@@ -83,15 +81,12 @@ def incomplete_beta(u, a=0.4, b=0.5):
     >>> bool(np.isclose(incomplete_beta(1.0), BETA_25_12))
     True
     """
-    return special.betainc(a, b, u) * special.beta(a, b)
-
-
-def _time_scale(velocity, effective_modulus, effective_radius, effective_mass):
-    """``alpha_m / V = (15 m*/(16 E* R*^(1/2)))^(2/5) V^(-1/5)`` [s]; ``inf`` at ``V = 0``, 0 at ``inf``."""
-    with np.errstate(divide="ignore"):
-        return (15.0 * effective_mass / (16.0 * effective_modulus * np.sqrt(effective_radius))) ** 0.4 * (
-            velocity ** (-0.2)
-        )
+    u = check_nonnegative("u", u)
+    if np.any(u > 1.0):
+        raise ValueError(f"u must lie in [0, 1], got {float(np.max(u))!r}")
+    a = check_positive("a", a)
+    b = check_positive("b", b)
+    return evaluate(_special.incomplete_beta, u, a, b)[0]
 
 
 def hertz_contact_time(velocity, effective_modulus, effective_radius, effective_mass):
@@ -129,8 +124,8 @@ def hertz_contact_time(velocity, effective_modulus, effective_radius, effective_
     0.03347
     """
     V = check_velocity("velocity", velocity)
-    E, R, m, _ = _check_pair(effective_modulus, effective_radius, effective_mass, 1.0)
-    return 0.8 * BETA_25_12 * _time_scale(V, E, R, m)
+    E, R, m, _ = check_pair(effective_modulus, effective_radius, effective_mass, np.inf)
+    return evaluate(hertz.contact_time, V, E, R, m)[0]
 
 
 def deresiewicz_contact_time(velocity, effective_modulus, effective_radius, effective_mass, constant=2.87):
@@ -169,7 +164,7 @@ def deresiewicz_contact_time(velocity, effective_modulus, effective_radius, effe
     0.03349
     """
     V = check_velocity("velocity", velocity)
-    E, R, m, _ = _check_pair(effective_modulus, effective_radius, effective_mass, 1.0)
+    E, R, m, _ = check_pair(effective_modulus, effective_radius, effective_mass, 1.0)
     with np.errstate(divide="ignore"):
         return constant * (m**2 / (R * E**2 * V)) ** 0.2
 
@@ -202,7 +197,7 @@ def plastic_frequency(limiting_pressure, effective_radius, effective_mass):
     p_y = check_positive("limiting_pressure", limiting_pressure, allow_inf=True)
     R = check_positive("effective_radius", effective_radius)
     m = check_positive("effective_mass", effective_mass)
-    return np.sqrt(np.pi * p_y * R / m)
+    return evaluate(_seed.plastic_frequency, p_y, R, m)[0]
 
 
 def ning_loading_time(limiting_pressure, effective_radius, effective_mass):
@@ -276,17 +271,9 @@ def elastic_stage_time(velocity, effective_modulus, effective_radius, effective_
     >>> bool(np.isclose(2 * t1, hertz_contact_time(5.0, 1.31e9, 2.45e-6, m)))
     True
     """
-    V = check_velocity("velocity", velocity)
-    E, R, m, p_y = _check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
-    return _elastic_stage_time(V, E, R, m, yield_velocity(p_y, E, R, m))
-
-
-def _elastic_stage_time(V, E, R, m, Vy):
-    """``t1`` for checked arrays and their yield velocity ``V_y`` (eq. 20)."""
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        u = np.where(V > Vy, (Vy / V) ** 2, 1.0)
-    t = 0.4 * _time_scale(V, E, R, m) * incomplete_beta(u)
-    return np.where(np.isinf(V), 0.0, t)
+    return contact_times(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)[
+        "elastic_stage_time"
+    ]
 
 
 def plastic_stage_time(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure):
@@ -327,22 +314,9 @@ def plastic_stage_time(velocity, effective_modulus, effective_radius, effective_
     >>> round(float(plastic_stage_time(20.0, 1.31e9, 2.45e-6, m, 156e6)) * 1e6, 5)  # us
     0.01012
     """
-    V = check_velocity("velocity", velocity)
-    E, R, m, p_y = _check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
-    return _plastic_stage_time(V, E, R, m, p_y, yield_velocity(p_y, E, R, m))
-
-
-def _plastic_stage_time(V, E, R, m, p_y, Vy):
-    """``t2`` for checked arrays and their yield velocity ``V_y`` (eq. 23)."""
-    plastic = V > Vy
-    p_fin = np.where(plastic, p_y, 1.0)  # finite wherever it is used
-    omega = plastic_frequency(p_fin, R, m)
-    a_y = (np.pi * p_fin / (2.0 * E)) ** 2 * R
-    with np.errstate(invalid="ignore", over="ignore"):
-        v1 = np.sqrt(np.maximum(np.where(plastic, V**2 - Vy**2, 1.0), 0.0))
-        # pi/2 - atan2(c, v1) written as atan2(v1, c): no cancellation just above V_y.
-        t = np.arctan2(v1, 2.0 * omega * a_y / 3.0) / omega
-    return np.where(plastic, t, 0.0)
+    return contact_times(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)[
+        "plastic_stage_time"
+    ]
 
 
 def unloading_time(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure):
@@ -373,17 +347,9 @@ def unloading_time(velocity, effective_modulus, effective_radius, effective_mass
     ValueError
         If ``velocity`` is negative or a pair property is not positive.
     """
-    out = impact_outcome(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)
-    return _unloading_time_from(out, effective_modulus, effective_radius, effective_mass)
-
-
-def _unloading_time_from(out, E, R, m):
-    V = out["velocity"]
-    with np.errstate(invalid="ignore", divide="ignore"):
-        t_pl = 0.4 * BETA_25_12 * (out["max_approach"] - out["plastic_approach"]) / out["rebound_velocity"]
-        t_el = 0.4 * BETA_25_12 * _time_scale(V, E, R, m)
-    t = np.where(out["elastic"], t_el, t_pl)
-    return np.where(np.isinf(V), 0.0, t)
+    return contact_times(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)[
+        "unloading_time"
+    ]
 
 
 def contact_times(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure, outcome=None):
@@ -407,47 +373,16 @@ def contact_times(velocity, effective_modulus, effective_radius, effective_mass,
         is ``inf`` (the elastic limit ``t ~ V^(-1/5)``); at ``V = inf``,
         ``t1 = t_U = 0`` and ``t2`` is Ning's time (eq. 31).
     """
-    if outcome is None:
-        outcome = impact_outcome(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)
-    # The outcome was computed from these same inputs, which it checked: reuse its V and V_y.
-    E = np.asarray(effective_modulus, dtype=float)
-    R = np.asarray(effective_radius, dtype=float)
-    m = np.asarray(effective_mass, dtype=float)
-    p_y = np.asarray(limiting_pressure, dtype=float)
-    V, Vy = outcome["velocity"], outcome["yield_velocity"]
-    t1 = _elastic_stage_time(V, E, R, m, Vy)
-    t2 = _plastic_stage_time(V, E, R, m, p_y, Vy)
-    tU = _unloading_time_from(outcome, E, R, m)
-    tL = t1 + t2
-    return {
-        "elastic_stage_time": t1,
-        "plastic_stage_time": t2,
-        "loading_time": tL,
-        "unloading_time": tU,
-        "contact_time": tL + tU,
-    }
+    if outcome is None or "contact_time" not in outcome:
+        V = check_velocity("velocity", velocity)
+        E, R, m, p_y = check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
+        outcome = outcome_arrays(_seed, V, E, R, m, p_y, ())
+    return {name: outcome[name] for name in TIME_FIELDS}
 
 
-# ============================================================================ time histories
-#
-# One impact, from first contact (t = 0) to separation (t = t_c), in closed form
-# (seed eqs. 17-26; docs/theory.rst, section "Contact times in closed form"):
-#
-# * stage 1, Hertz loading, ``0 <= t <= t1``: with ``T_m = (2/5) B(2/5,1/2) alpha_m / V``
-#   the time a purely elastic impact takes to reach ``alpha_m``, the fraction
-#   ``x = t / T_m = I_u(2/5, 1/2)`` gives ``u = (alpha/alpha_m)^(5/2)`` by inverting the
-#   regularised incomplete beta function; ``dalpha/dt = V (1 - u)^(1/2)`` (eq. 17),
-#   ``P = 4/3 E* R*^(1/2) alpha^(3/2)`` (eq. 2).
-# * stage 2, plastic loading, ``t1 < t <= t_L``: a harmonic oscillation about ``alpha_y/3``,
-#   ``alpha = alpha_y/3 + (alpha* - alpha_y/3) cos(omega (t_L - t))`` (eqs. 18-23),
-#   ``P = pi p_y R* (alpha - alpha_y/3)`` (eq. 8).
-# * stage 3, elastic unloading, ``t_L < t <= t_c``: the time reverse of a Hertz impact
-#   at speed ``V_r`` with radius ``R_p`` and approach ``alpha - alpha_p`` (eqs. 24-26):
-#   ``(t_c - t)/t_U = I_u(2/5, 1/2)``, ``u = ((alpha - alpha_p)/(alpha* - alpha_p))^(5/2)``,
-#   ``dalpha/dt = -V_r (1 - u)^(1/2)``, ``P = P* u^(3/5)`` (eq. 10).
-#
-# Where ``x > 1/2`` the complement ``1 - u = I^-1_{1-x}(1/2, 2/5)`` is inverted instead, so
-# that the velocity near the maximum approach keeps its full relative precision.
+#: The contact times of an impact (seed eqs. 20, 23, 32, 26, 33), in the order of the outcome.
+TIME_FIELDS = ("elastic_stage_time", "plastic_stage_time", "loading_time", "unloading_time", "contact_time")
+
 
 #: Stage codes of a history.
 STAGE_NAMES = {
@@ -457,33 +392,29 @@ STAGE_NAMES = {
     3: "elastic unloading (eq. 10)",
 }
 
-#: Columns of a history, with units and a short description (CSV headers, CLI).
-HISTORY_COLUMNS: dict[str, tuple[str, str]] = {
-    "time": ("s", "time since first contact t"),
-    "approach": ("m", "approach alpha (negative: a gap, no contact)"),
-    "approach_velocity": ("m/s", "approach velocity dalpha/dt (positive while approaching)"),
-    "force": ("N", "contact force P"),
-    "stage": ("1", "0 no contact, 1 Hertz loading, 2 plastic loading, 3 elastic unloading"),
-}
+#: Columns of a history: name -> (unit, description), from the one table of quantities.
+HISTORY_COLUMNS: dict[str, tuple[str, str]] = quantities.table(quantities.HISTORY_FIELDS)
 
-#: Scalars of a history, with units and a short description.
-HISTORY_SCALARS: dict[str, tuple[str, str]] = {
-    "velocity": ("m/s", "impact speed V"),
-    "rebound_velocity": ("m/s", "rebound speed V_r"),
-    "max_approach": ("m", "maximum approach alpha*"),
-    "plastic_approach": ("m", "plastic approach alpha_p"),
-    "max_force": ("N", "maximum force P*"),
-    "elastic_stage_time": ("s", "stage 1 duration t1"),
-    "plastic_stage_time": ("s", "stage 2 duration t2"),
-    "loading_time": ("s", "loading time t_L = t1 + t2"),
-    "unloading_time": ("s", "unloading time t_U"),
-    "contact_time": ("s", "contact time t_c = t_L + t_U"),
-    "yield_velocity": ("m/s", "yield velocity V_y"),
-    "effective_modulus": ("Pa", "effective modulus E*"),
-    "effective_radius": ("m", "effective radius R*"),
-    "effective_mass": ("kg", "effective mass m*"),
-    "limiting_pressure": ("Pa", "limiting contact pressure p_y"),
-}
+#: Scalars of a history: name -> (unit, description), from the one table of quantities.
+HISTORY_SCALARS: dict[str, tuple[str, str]] = quantities.table(
+    (
+        "velocity",
+        "rebound_velocity",
+        "max_approach",
+        "plastic_approach",
+        "max_force",
+        "elastic_stage_time",
+        "plastic_stage_time",
+        "loading_time",
+        "unloading_time",
+        "contact_time",
+        "yield_velocity",
+        "effective_modulus",
+        "effective_radius",
+        "effective_mass",
+        "limiting_pressure",
+    )
+)
 
 
 def _scalar_pair(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure):
@@ -497,7 +428,7 @@ def _scalar_pair(velocity, effective_modulus, effective_radius, effective_mass, 
     V = float(check_velocity("velocity", out[0]))
     if not (0.0 < V < np.inf):
         raise ValueError(f"velocity must be positive and finite for a history, got {V!r}")
-    E, R, m, p_y = (float(x) for x in _check_pair(*out[1:]))
+    E, R, m, p_y = (float(x) for x in check_pair(*out[1:]))
     return V, E, R, m, p_y
 
 
@@ -528,6 +459,8 @@ def _stage_of(t, t1, t_L, t_c):
 
 def _hertz_fraction(x, xc):
     """``u = I^-1_x(2/5, 1/2)`` and ``1 - u``, given ``x`` and its complement ``xc = 1 - x`` (both exact)."""
+    from scipy import special  # imported here: ``import microimpact`` and one impact need no scipy
+
     x = np.clip(x, 0.0, 1.0)
     xc = np.clip(xc, 0.0, 1.0)
     low = x <= 0.5
@@ -619,7 +552,7 @@ def impact_history(
         u, w = _hertz_fraction(t[s1] / T_m, 1.0 - t[s1] / T_m)
     approach[s1] = alpha_m * u**0.4
     vel[s1] = V * np.sqrt(w)
-    force[s1] = 4.0 / 3.0 * E * np.sqrt(R) * alpha_m**1.5 * u**0.6
+    force[s1] = hertz.force(alpha_m, E, R) * u**0.6  # P = P_m (alpha/alpha_m)^(3/2)
 
     # Stage 2: plastic loading, harmonic about alpha_y/3 (eqs. 8, 18-23).
     s2 = stage == 2

@@ -22,8 +22,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validation import check_positive, check_velocity
-from .contact import hertz_force, yield_approach, yield_force
+from ._validation import check_pair, check_positive, check_velocity
+from .core import hertz
+from .core.arrays import evaluate
+from .core.constants import LARGE_STRAIN_RATIO
+from .core.models import thornton_ning_2016 as _seed
+from .core.quantities import OUTCOME_FIELDS
 
 __all__ = [
     "LARGE_STRAIN_RATIO",
@@ -40,19 +44,6 @@ __all__ = [
     "energy_loss_fraction",
     "impact_outcome",
 ]
-
-#: Contact radius over effective radius above which the small-strain assumption of
-#: Hertz's theory is no longer good; results beyond it are flagged, not refused.
-LARGE_STRAIN_RATIO = 0.3
-
-
-def _check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure):
-    return (
-        check_positive("effective_modulus", effective_modulus),
-        check_positive("effective_radius", effective_radius),
-        check_positive("effective_mass", effective_mass),
-        check_positive("limiting_pressure", limiting_pressure, allow_inf=True),
-    )
 
 
 def yield_velocity(limiting_pressure, effective_modulus, effective_radius, effective_mass):
@@ -91,10 +82,8 @@ def yield_velocity(limiting_pressure, effective_modulus, effective_radius, effec
     >>> round(float(yield_velocity(156e6, 1.31e9, 2.45e-6, m)), 3)
     7.523
     """
-    E, R, m, p_y = _check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
-    a_y = yield_approach(p_y, E, R)
-    P_y = yield_force(p_y, E, R)
-    return np.sqrt(0.8 * P_y * a_y / m)
+    E, R, m, p_y = check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
+    return evaluate(_seed.yield_point, E, R, m, p_y, nout=3)[2]
 
 
 def yield_velocity_sphere_on_flat(limiting_pressure, effective_modulus, density):
@@ -124,7 +113,7 @@ def yield_velocity_sphere_on_flat(limiting_pressure, effective_modulus, density)
     p_y = check_positive("limiting_pressure", limiting_pressure, allow_inf=True)
     E = check_positive("effective_modulus", effective_modulus)
     rho = check_positive("density", density)
-    return np.sqrt(np.pi**4 / 40.0) * np.sqrt(p_y**5 / (E**4 * rho))
+    return evaluate(_seed.yield_velocity_sphere_on_flat, p_y, E, rho)[0]
 
 
 def elastic_max_approach(velocity, effective_modulus, effective_radius, effective_mass):
@@ -167,39 +156,10 @@ def elastic_max_approach(velocity, effective_modulus, effective_radius, effectiv
     1.0
     """
     V = check_velocity("velocity", velocity)
-    return (15.0 * effective_mass * V**2 / (16.0 * effective_modulus * np.sqrt(effective_radius))) ** 0.4
-
-
-def _plastic_v(v):
-    """``v`` clipped to >= 1 so the plastic formulas stay real where the impact is elastic."""
-    return np.maximum(v, 1.0)
-
-
-def _q(vp):
-    """``q = s/v = ((24 - 4/v^2)/5)^(1/2)``: written so that ``s = v q`` cannot overflow before ``v`` does."""
-    return np.sqrt((24.0 - 4.0 / vp**2) / 5.0)
-
-
-def _normalized_speed(V, Vy):
-    """``v = V/V_y`` for checked arrays; an infinite ``V_y`` (``p_y = inf``) gives 0 (elastic), even at ``V = inf``."""
-    with np.errstate(invalid="ignore"):
-        return np.where(np.isinf(Vy), 0.0, V / np.where(np.isinf(Vy), 1.0, Vy))
-
-
-def _restitution_of_v(v):
-    """Eq. 27 for a checked ``v`` (no validation: the hot path of the public functions)."""
-    vp = _plastic_v(v)
-    q = _q(vp)
-    with np.errstate(invalid="ignore"):
-        # e = P^*/(alpha^*^(1/4) v) with P^* = v q / 2: the v cancels.
-        e = 0.5 * q / np.sqrt(np.sqrt((1.0 + vp * q) / 3.0))
-    e = np.where(v <= 1.0, 1.0, e)
-    return np.where(np.isinf(v), 0.0, e)
-
-
-def _restitution(V, Vy):
-    """Eq. 27 for checked speeds ``V`` and yield velocities ``V_y`` (used by :mod:`microimpact.coupling`)."""
-    return _restitution_of_v(_normalized_speed(V, Vy))
+    E = check_positive("effective_modulus", effective_modulus)
+    R = check_positive("effective_radius", effective_radius)
+    m = check_positive("effective_mass", effective_mass)
+    return evaluate(hertz.max_approach, V, E, R, m)[0]
 
 
 def normalized_max_approach(v):
@@ -228,10 +188,7 @@ def normalized_max_approach(v):
     >>> normalized_max_approach([1.0, 2.0]).round(6).tolist()
     [1.0, 1.763174]
     """
-    v = check_velocity("v", v)
-    vp = _plastic_v(v)
-    s = vp * _q(vp)
-    return np.where(v <= 1.0, v**0.8, (1.0 + s) / 3.0)
+    return evaluate(_seed.normalized_outcome, check_velocity("v", v), nout=5)[0]
 
 
 def normalized_max_force(v):
@@ -255,9 +212,7 @@ def normalized_max_force(v):
     ValueError
         If ``v`` is negative or NaN.
     """
-    v = check_velocity("v", v)
-    vp = _plastic_v(v)
-    return np.where(v <= 1.0, v**1.2, 0.5 * vp * _q(vp))
+    return evaluate(_seed.normalized_outcome, check_velocity("v", v), nout=5)[1]
 
 
 def normalized_plastic_approach(v):
@@ -280,11 +235,7 @@ def normalized_plastic_approach(v):
     ValueError
         If ``v`` is negative or NaN.
     """
-    A = normalized_max_approach(v)
-    P = normalized_max_force(v)
-    with np.errstate(invalid="ignore"):
-        out = np.where(np.asarray(v) <= 1.0, 0.0, A - P / np.sqrt(A))
-    return np.where(np.isinf(v), np.inf, np.maximum(out, 0.0))
+    return evaluate(_seed.normalized_outcome, check_velocity("v", v), nout=5)[2]
 
 
 def normalized_unloading_radius(v):
@@ -307,11 +258,7 @@ def normalized_unloading_radius(v):
     ValueError
         If ``v`` is negative or NaN.
     """
-    A = normalized_max_approach(v)
-    P = normalized_max_force(v)
-    with np.errstate(invalid="ignore"):
-        out = np.where(np.asarray(v) <= 1.0, 1.0, A**1.5 / P)
-    return np.where(np.isinf(v), np.inf, out)
+    return evaluate(_seed.normalized_outcome, check_velocity("v", v), nout=5)[3]
 
 
 def normalized_restitution(v):
@@ -341,7 +288,7 @@ def normalized_restitution(v):
     >>> round(float(normalized_restitution(1e8) * 1e8**0.25), 3)  # high-speed limit 1.185 v^(-1/4)
     1.185
     """
-    return _restitution_of_v(check_velocity("v", v))
+    return evaluate(_seed.normalized_outcome, check_velocity("v", v), nout=5)[4]
 
 
 def restitution_coefficient(velocity, yield_velocity):
@@ -372,6 +319,11 @@ def restitution_coefficient(velocity, yield_velocity):
     V = check_velocity("velocity", velocity)
     Vy = check_positive("yield_velocity", yield_velocity, allow_inf=True)
     return _restitution(V, Vy)
+
+
+def _restitution(V, Vy):
+    """Eq. 27 for checked speeds ``V`` and yield velocities ``V_y`` (used by :mod:`microimpact.adhesion`)."""
+    return evaluate(_seed.restitution_at, V, Vy)[0]
 
 
 def thornton_ning_restitution(velocity, yield_velocity):
@@ -435,8 +387,7 @@ def energy_loss_fraction(restitution):
     >>> float(energy_loss_fraction(0.5))
     0.75
     """
-    e = np.asarray(restitution, dtype=float)
-    return 1.0 - e**2
+    return _seed.energy_loss(np.asarray(restitution, dtype=float))
 
 
 def impact_outcome(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure):
@@ -469,51 +420,19 @@ def impact_outcome(velocity, effective_modulus, effective_radius, effective_mass
         ``large_strain`` (bool, ``a*/R* > 0.3``).
     """
     V = check_velocity("velocity", velocity)
-    E, R, m, p_y = _check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
-    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        # Yield point (eqs. 5, 7) and yield velocity (1/2 m* V_y^2 = 2/5 P_y alpha_y), each once;
-        # p_y = inf gives alpha_y = P_y = V_y = inf.
-        a_y = yield_approach(p_y, E, R)
-        P_y = hertz_force(a_y, E, R)
-        Vy = np.sqrt(0.8 * P_y * a_y / m)
-        # v = V/V_y; an infinite V_y (p_y = inf) makes every finite or infinite V elastic.
-        v = _normalized_speed(V, Vy)
-        elastic = v <= 1.0
-        infinite = np.isinf(v)
+    E, R, m, p_y = check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
+    out = outcome_arrays(_seed, V, E, R, m, p_y, ())
+    return {name: out[name] for name in OUTCOME_FIELDS[: OUTCOME_FIELDS.index("large_strain") + 1]}
 
-        # Elastic branch, dimensional (so p_y = inf works): Hertz at alpha_m.
-        alpha_m = elastic_max_approach(V, E, R, m)
-        F_m = hertz_force(alpha_m, E, R)
 
-        # Plastic branch, normalised (eqs. 22, 14, 11, 9, 27), from q = s/v computed once;
-        # entries where the impact is elastic or infinite are replaced below.
-        vp = _plastic_v(np.where(infinite, 1.0, v))
-        q = _q(vp)
-        A = (1.0 + vp * q) / 3.0  # alpha^* (eq. 22)
-        Phat = 0.5 * vp * q  # P^* = (3 alpha^* - 1)/2
-        sqA = np.sqrt(A)
-        e_pl = 0.5 * q / np.sqrt(sqA)  # P^*/(alpha^*^(1/4) v), the v cancelled
+def outcome_arrays(model, V, E, R, m, p_y, params) -> dict:
+    """Every field of ``model``'s outcome over checked, broadcast float arrays, as a dict of ndarrays.
 
-        restitution = np.where(elastic, 1.0, np.where(infinite, 0.0, e_pl))
-        max_approach = np.where(elastic, alpha_m, np.where(infinite, np.inf, a_y * A))
-        max_force = np.where(elastic, F_m, np.where(infinite, np.inf, P_y * Phat))
-        plastic = np.where(elastic, 0.0, np.where(infinite, np.inf, a_y * np.maximum(A - Phat / sqA, 0.0)))
-        R_p = np.where(elastic, R, np.where(infinite, np.inf, R * A * sqA / Phat))
-        rebound = np.where(infinite, np.inf, restitution * V)
-        a_max = np.sqrt(R * max_approach)
-    V_b, Vy_b = np.broadcast_arrays(V, Vy, E, R, m, p_y)[:2]
-    return {
-        "velocity": np.array(V_b, dtype=float),
-        "yield_velocity": np.broadcast_to(Vy_b, restitution.shape).copy(),
-        "normalized_velocity": v,
-        "elastic": elastic,
-        "restitution": restitution,
-        "rebound_velocity": rebound,
-        "max_approach": max_approach,
-        "plastic_approach": plastic,
-        "max_force": max_force,
-        "unloading_radius": R_p,
-        "energy_loss": energy_loss_fraction(restitution),
-        "max_contact_radius": a_max,
-        "large_strain": a_max / R > LARGE_STRAIN_RATIO,
-    }
+    The array path of :meth:`microimpact.pair.ContactPair.impact`: one compiled (or, for small
+    arrays, Python) loop over the model's scalar ``outcome``; flags become booleans.
+    """
+    values = evaluate(model.outcome, V, E, R, m, p_y, nout=len(OUTCOME_FIELDS), params=tuple(params))
+    out = dict(zip(OUTCOME_FIELDS, values))
+    for name in ("elastic", "large_strain"):
+        out[name] = out[name] == 1.0
+    return out

@@ -14,16 +14,59 @@ from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 
-from . import _kernels, contact, dynamics, impact
-from ._validation import check_positive
+from . import contact, dynamics, impact
+from ._validation import check_poisson, check_positive, check_velocity
+from .core import models, quantities
+from .core.constants import LARGE_STRAIN_RATIO
+from .core.quantities import FLAG_FIELDS, OUTCOME_FIELDS
 from .dynamics import ImpactHistory
 from .materials import DEFAULT_K, PAPER_CASES, Material, effective_modulus, get_material, sphere_mass
 
-__all__ = ["ContactPair", "ImpactResult", "LargeStrainWarning"]
+__all__ = ["ContactPair", "ImpactResult", "LargeStrainWarning", "PAIR_INPUTS", "DEFAULT_POISSON", "DEFAULT_SURFACE_MODULUS"]
+
+#: Poisson ratio of both bodies when a pair has no materials (the seed's Fig. 4 takes 0.3).
+DEFAULT_POISSON = 0.3
+#: Surface Young's modulus [Pa] when a pair has no materials (the seed's Fig. 4: 150 GPa).
+DEFAULT_SURFACE_MODULUS = 150e9
+
+#: The inputs of a pair that :meth:`ContactPair.vary` and :meth:`ContactPair.effective_values` take.
+PAIR_INPUTS = (
+    "limiting_pressure",
+    "yield_strength",
+    "k",
+    "yield_velocity",
+    "effective_modulus",
+    "particle_modulus",
+    "particle_poisson",
+    "surface_modulus",
+    "surface_poisson",
+    "radius",
+    "diameter",
+    "density",
+    "effective_radius",
+    "effective_mass",
+)
+_MATERIAL_INPUTS = ("particle_modulus", "particle_poisson", "surface_modulus", "surface_poisson")
+# Names that set the same value: any of the first tuple with any of the second is refused.
+_EXCLUSIVE = (
+    (("limiting_pressure",), ("yield_strength", "k", "yield_velocity")),
+    (("yield_velocity",), ("yield_strength", "k")),
+    (("effective_modulus",), _MATERIAL_INPUTS),
+    (("radius", "diameter", "density"), ("effective_radius", "effective_mass")),
+)
+_CHECKS = {
+    "limiting_pressure": lambda n, x: check_positive(n, x, allow_inf=True),
+    "particle_poisson": lambda n, x: check_poisson(n, x),
+    "surface_poisson": lambda n, x: check_poisson(n, x),
+}
 
 
 class LargeStrainWarning(UserWarning):
     """The contact radius exceeds the small-strain range of the model (``a/R* > 0.3``)."""
+
+
+_TRUE, _FALSE = np.bool_(True), np.bool_(False)
+_LARGE = OUTCOME_FIELDS.index("large_strain")
 
 
 def _scalar_or_array(x):
@@ -31,27 +74,9 @@ def _scalar_or_array(x):
     return x[()] if x.ndim == 0 else x
 
 
-# Quantities of an ImpactResult, with units and a short description: used by the
-# CLI table, the sweep's attrs and the CSV headers.
-RESULT_FIELDS: dict[str, tuple[str, str]] = {
-    "velocity": ("m/s", "impact speed V"),
-    "restitution": ("1", "coefficient of restitution e (eq. 27)"),
-    "rebound_velocity": ("m/s", "rebound speed V_r = e V"),
-    "energy_loss": ("1", "fraction of kinetic energy lost, 1 - e^2 (eq. 29)"),
-    "max_approach": ("m", "maximum approach alpha* (eq. 22)"),
-    "plastic_approach": ("m", "plastic (unrecoverable) approach alpha_p (eq. 11)"),
-    "max_force": ("N", "maximum contact force P*"),
-    "unloading_radius": ("m", "curvature radius of the flattened contact R_p (eq. 9)"),
-    "max_contact_radius": ("m", "contact radius at maximum approach a* = (R* alpha*)^(1/2)"),
-    "elastic_stage_time": ("s", "stage 1 (Hertz loading) duration t1 (eq. 20)"),
-    "plastic_stage_time": ("s", "stage 2 (plastic loading) duration t2 (eq. 23)"),
-    "loading_time": ("s", "loading time t_L = t1 + t2 (eq. 32)"),
-    "unloading_time": ("s", "unloading time t_U (eq. 26)"),
-    "contact_time": ("s", "contact time t_c = t_L + t_U (eq. 33)"),
-    "normalized_velocity": ("1", "V / V_y"),
-    "elastic": ("1", "True where V <= V_y (purely elastic impact)"),
-    "large_strain": ("1", "True where a*/R* > 0.3 (outside the small-strain range)"),
-}
+#: Quantities of an ImpactResult: name -> (unit, description), from the one table
+#: (:data:`microimpact.core.quantities.QUANTITIES`); the CLI table, the sweep's attrs and CSV headers use it.
+RESULT_FIELDS: dict[str, tuple[str, str]] = quantities.table([f for f in OUTCOME_FIELDS if f != "yield_velocity"])
 
 
 @dataclass(frozen=True, eq=False)
@@ -425,6 +450,186 @@ class ContactPair:
             c["radius"], c["density"], c["effective_modulus"], c["limiting_pressure"], label=c["label"]
         )
 
+    # ----------------------------------------------------------------- varying an input
+    def material_inputs(self) -> tuple[dict, str]:
+        """``{particle_modulus, particle_poisson, surface_modulus, surface_poisson}`` behind ``E*``, and where from.
+
+        From the pair's materials when it has them. A pair made from effective values only (the
+        paper cases) takes ``nu1 = nu2 =`` :data:`DEFAULT_POISSON` and ``E2 =``
+        :data:`DEFAULT_SURFACE_MODULUS`, as the seed's Fig. 4 does, and the ``E1`` that gives its
+        ``E*`` (``nan`` when no such ``E1`` exists).
+
+        Returns
+        -------
+        dict, str
+            The four inputs [Pa, -, Pa, -] and a sentence saying where they come from.
+        """
+        if self.particle is not None and self.surface is not None:
+            p, s = self.particle, self.surface
+            return (
+                {
+                    "particle_modulus": p.youngs_modulus,
+                    "particle_poisson": p.poisson_ratio,
+                    "surface_modulus": s.youngs_modulus,
+                    "surface_poisson": s.poisson_ratio,
+                },
+                f"from the base pair's materials ({p.name}, {s.name})",
+            )
+        nu, E2 = DEFAULT_POISSON, DEFAULT_SURFACE_MODULUS
+        inv = 1.0 / self.effective_modulus - (1.0 - nu**2) / E2
+        E1 = (1.0 - nu**2) / inv if inv > 0 else math.nan
+        return (
+            {"particle_modulus": E1, "particle_poisson": nu, "surface_modulus": E2, "surface_poisson": nu},
+            f"the base pair has effective values only: nu1 = nu2 = {nu}, E2 = {E2 / 1e9:g} GPa (as the seed's "
+            f"Fig. 4) and E1 = {E1:.6g} Pa so that E* equals the base pair's {self.effective_modulus:.6g} Pa",
+        )
+
+    def effective_values(self, **inputs):
+        """``(E*, R*, m*, p_y)`` of this pair with the named inputs changed, the derived values following.
+
+        The one way microimpact varies a pair (sweeps, fits and figures use it). Values may be
+        arrays; they broadcast.
+
+        * ``effective_modulus``; or any of ``particle_modulus``, ``particle_poisson``,
+          ``surface_modulus``, ``surface_poisson``: ``E* = 1/((1-nu1^2)/E1 + (1-nu2^2)/E2)``, the
+          others from :meth:`material_inputs`;
+        * ``radius`` (or ``diameter``) and/or ``density``: a sphere on a flat, ``R* = R`` and
+          ``m* = 4/3 pi R^3 rho`` (the missing one from this pair); or ``effective_radius``,
+          ``effective_mass`` directly;
+        * ``limiting_pressure``; or ``yield_strength`` and/or ``k`` (``p_y = k Y``, the missing one
+          from this pair); or ``yield_velocity`` (``p_y`` scaled so that ``V_y`` takes that value at
+          the new ``E*``, ``R*``, ``m*``: ``V_y`` grows as ``p_y^(5/2)``, eq. 28).
+
+        Parameters
+        ----------
+        **inputs : float or array_like
+            Names from :data:`PAIR_INPUTS`.
+
+        Returns
+        -------
+        tuple of ndarray
+            ``E*`` [Pa], ``R*`` [m], ``m*`` [kg], ``p_y`` [Pa].
+
+        Raises
+        ------
+        ValueError
+            An unknown name, two names that set the same value (naming both), an invalid value, or a
+            value this pair cannot take (a density without a radius and density to start from).
+
+        Examples
+        --------
+        >>> pair = ContactPair.paper_case("silicon")
+        >>> E, R, m, p_y = pair.effective_values(limiting_pressure=[100e6, 200e6], radius=1e-6)
+        >>> p_y.tolist(), float(R)
+        ([100000000.0, 200000000.0], 1e-06)
+        """
+        unknown = sorted(set(inputs) - set(PAIR_INPUTS))
+        if unknown:
+            raise ValueError(f"cannot vary {unknown[0]!r}; a pair's inputs: {', '.join(PAIR_INPUTS)}")
+        for group in _EXCLUSIVE:
+            given = [n for n in group[0] if n in inputs]
+            other = [n for n in group[1] if n in inputs]
+            if given and other:
+                raise ValueError(f"{given[0]} was given together with {other[0]}: they set the same value")
+        if "diameter" in inputs and "radius" in inputs:
+            raise ValueError("diameter was given together with radius: they set the same value")
+        v = {k: _CHECKS.get(k, check_positive)(k, x) for k, x in inputs.items()}
+        if "diameter" in v:
+            v["radius"] = 0.5 * v.pop("diameter")
+        # E*
+        material = [k for k in _MATERIAL_INPUTS if k in v]
+        if "effective_modulus" in v:
+            E = v["effective_modulus"]
+        elif material:
+            defaults, _ = self.material_inputs()
+            mat = {k: v.get(k, defaults[k]) for k in _MATERIAL_INPUTS}
+            for k, x in mat.items():
+                if k not in v and not math.isfinite(x):
+                    raise ValueError(
+                        f"{k} is needed: this pair's E* = {self.effective_modulus:g} Pa is too stiff to come "
+                        f"from a surface of E2 = {DEFAULT_SURFACE_MODULUS:g} Pa"
+                    )
+            E = effective_modulus(
+                mat["particle_modulus"], mat["particle_poisson"], mat["surface_modulus"], mat["surface_poisson"]
+            )
+        else:
+            E = np.float64(self.effective_modulus)
+        # R*, m*
+        if "radius" in v or "density" in v:
+            if "density" not in v and self.density is None:
+                raise ValueError(
+                    "density is needed: a radius or density change treats the particle as a sphere on a flat, "
+                    "and this pair has no density (a two-sphere pair?)"
+                )
+            R = v.get("radius", np.float64(self.effective_radius))
+            m = sphere_mass(R, v.get("density", self.density))
+        else:
+            R = v.get("effective_radius", np.float64(self.effective_radius))
+            m = v.get("effective_mass", np.float64(self.effective_mass))
+        # p_y
+        if "limiting_pressure" in v:
+            p_y = v["limiting_pressure"]
+        elif "k" in v or "yield_strength" in v:
+            Y = v["yield_strength"] if "yield_strength" in v else self._yield_strength()
+            k = v["k"] if "k" in v else self.limiting_pressure / Y
+            p_y = k * Y
+        elif "yield_velocity" in v:
+            if not math.isfinite(self.limiting_pressure):
+                raise ValueError("yield_velocity can be set only on a pair with a finite limiting_pressure")
+            Vy0 = impact.yield_velocity(self.limiting_pressure, E, R, m)
+            p_y = self.limiting_pressure * (v["yield_velocity"] / Vy0) ** 0.4
+        else:
+            p_y = np.float64(self.limiting_pressure)
+        return E, R, m, p_y
+
+    def vary(self, **inputs) -> ContactPair:
+        """This pair with the named inputs changed and the derived values following (:meth:`effective_values`).
+
+        Parameters
+        ----------
+        **inputs : float
+            Names from :data:`PAIR_INPUTS`, one value each.
+
+        Returns
+        -------
+        ContactPair
+            The new pair (label kept; materials kept unless a material input changed); this one is unchanged.
+
+        Examples
+        --------
+        >>> pair = ContactPair.paper_case("silicon")
+        >>> round(pair.vary(density=2700.0).effective_mass / pair.effective_mass, 6)
+        2.0
+        """
+        for k, x in inputs.items():
+            if np.ndim(x) != 0:
+                raise ValueError(f"{k} must be a single value to vary a pair, got shape {np.shape(x)}")
+        E, R, m, p_y = (float(x) for x in self.effective_values(**inputs))
+        rho = inputs.get("density", self.density)
+        if ("radius" in inputs or "diameter" in inputs or "density" in inputs) and rho is not None:
+            rho = float(rho)
+        elif "effective_radius" in inputs or "effective_mass" in inputs:
+            rho = None
+        changed_material = any(k in inputs for k in (*_MATERIAL_INPUTS, "effective_modulus"))
+        return replace(
+            self,
+            effective_modulus=E,
+            effective_radius=R,
+            effective_mass=m,
+            limiting_pressure=p_y,
+            density=rho,
+            particle=None if changed_material else self.particle,
+            surface=None if changed_material else self.surface,
+        )
+
+    def _yield_strength(self) -> float:
+        known = [x.yield_strength for x in (self.particle, self.surface) if x is not None and x.yield_strength]
+        if not known:
+            raise ValueError(
+                "yield_strength is needed: this pair has no material with a yield strength (give yield_strength=...)"
+            )
+        return min(known)
+
     def replace(self, **changes) -> ContactPair:
         """A copy with some effective values changed (e.g. ``limiting_pressure``).
 
@@ -472,9 +677,10 @@ class ContactPair:
         """
         if density is None and self.density is None:
             raise ValueError("density is needed to resize this pair (it has no particle density)")
-        r = self.effective_radius if radius is None else float(check_positive("radius", radius))
-        rho = self.density if density is None else float(check_positive("density", density))
-        return replace(self, effective_radius=r, effective_mass=float(sphere_mass(r, rho)), density=rho)
+        return self.vary(
+            radius=self.effective_radius if radius is None else radius,
+            **({} if density is None else {"density": density}),
+        )
 
     def elastic_equivalent(self) -> ContactPair:
         """The same pair with no yielding (``p_y = inf``): the seed's "equivalent elastic impact" (Fig. 7).
@@ -538,7 +744,7 @@ class ContactPair:
         )
 
     # ----------------------------------------------------------------- impact
-    def impact(self, velocity, *, warn: bool = True) -> ImpactResult:
+    def impact(self, velocity, *, model: str = models.DEFAULT, warn: bool = True, **params) -> ImpactResult:
         """Outcome and contact times of impacts at ``velocity`` [m/s] (scalar or array).
 
         Issues a :class:`LargeStrainWarning` (unless ``warn=False``) when some
@@ -547,35 +753,51 @@ class ContactPair:
         Parameters
         ----------
         velocity : float or array_like
-            Impact speed ``V`` [m/s], >= 0.
+            Impact speed ``V`` [m/s], >= 0 and finite.
+        model : str, optional
+            Name of the impact model (:func:`microimpact.models.available`); default the seed's,
+            ``"thornton_ning_2016"``. Fields a model does not define are NaN.
         warn : bool, optional
             Warn about large strain (default True).
+        **params : float
+            The model's own parameters by name (``microimpact.models.parameters(model)``).
 
         Returns
         -------
         ImpactResult
             Restitution, rebound speed, approaches, forces and contact times (seed
-            eqs. 5-33), shaped like ``velocity``.
+            eqs. 5-33 for the default model), shaped like ``velocity``.
 
         Raises
         ------
         ValueError
-            If ``velocity`` is negative or NaN.
+            If ``velocity`` is negative, NaN or infinite, the model is unknown or a parameter
+            is missing, unknown or invalid.
         """
-        if isinstance(velocity, (int, float)) and not isinstance(velocity, bool):
-            # One speed: the same closed forms with the math module (~10 us instead of ~0.4 ms).
-            d = _kernels.impact_scalar(velocity, *self._args)
-            res = ImpactResult._trusted({k: (np.bool_(x) if type(x) is bool else np.float64(x)) for k, x in d.items()})
-            flagged = d["large_strain"]
+        mod = models.get(model)
+        p = models.resolve_params(mod, params)
+        if type(velocity) is float or type(velocity) is int:
+            # One speed: the model's scalar outcome itself (microseconds; no numpy per field).
+            V = float(velocity)
+            if not 0.0 <= V < math.inf:
+                check_velocity("velocity", V)
+            values = mod.outcome(V, *self._args, p)
+            res = ImpactResult._trusted(
+                {
+                    k: (_TRUE if x == 1.0 else _FALSE) if k in FLAG_FIELDS else np.float64(x)
+                    for k, x in zip(OUTCOME_FIELDS, values)
+                }
+            )
+            flagged = values[_LARGE] == 1.0
         else:
-            out = impact.impact_outcome(velocity, *self._args)
-            times = dynamics.contact_times(velocity, *self._args, outcome=out)
-            res = ImpactResult(**{k: _scalar_or_array(v) for k, v in {**out, **times}.items()})
+            V = check_velocity("velocity", velocity)
+            out = impact.outcome_arrays(mod, V, *(np.float64(a) for a in self._args), p)
+            res = ImpactResult._trusted({k: _scalar_or_array(v) for k, v in out.items()})
             flagged = res.any_large_strain
         if warn and flagged:
             vmin = np.min(np.asarray(res.velocity)[np.asarray(res.large_strain)])
             warnings.warn(
-                f"contact radius exceeds {impact.LARGE_STRAIN_RATIO} R* from V = {vmin:.4g} m/s: "
+                f"contact radius exceeds {LARGE_STRAIN_RATIO} R* from V = {vmin:.4g} m/s: "
                 "outside the small-strain range of the model (results flagged in .large_strain)",
                 LargeStrainWarning,
                 stacklevel=2,
@@ -632,8 +854,7 @@ class ContactPair:
         numpy scalar or ndarray
             Coefficient of restitution ``e`` [-], shaped like ``velocity``.
         """
-        # The fused kernel (numba when installed, else blocked numpy): equal to eq. 27 to 1e-14.
-        return _scalar_or_array(_kernels.restitution_fast(velocity, self.yield_velocity))
+        return _scalar_or_array(impact.restitution_coefficient(velocity, self.yield_velocity))
 
     def ning_loading_time(self) -> float:
         """Ning's high-speed loading time [s] (seed eq. 31).

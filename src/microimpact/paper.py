@@ -380,7 +380,7 @@ def _monotone(y, axis, sign):
 
 def _st_pressure():
     V = np.linspace(30.0, 120.0, 10)
-    E = np.array([_silicon().replace(limiting_pressure=p).impact(V, warn=False).energy_loss for p in FIG3_PRESSURES])
+    E = np.array([_silicon().vary(limiting_pressure=p).impact(V, warn=False).energy_loss for p in FIG3_PRESSURES])
     ok = _monotone(E, 0, -1)
     return ok, (
         f"from 30 to 120 m/s the energy loss falls as p_y = 50 ... 250 MPa rises; at 120 m/s: "

@@ -20,18 +20,16 @@ xarray and dask are optional: ``pip install 'microimpact[sweep]'``.
 
 from __future__ import annotations
 
-import math
 import sys
 import warnings
 
 import numpy as np
 
-from . import dynamics, impact
+from . import impact
 from ._optional import require
-from ._validation import check_poisson, check_positive, check_velocity
-from .materials import effective_modulus as _effective_modulus
-from .materials import sphere_mass
-from .pair import RESULT_FIELDS, ContactPair
+from ._validation import check_pair, check_poisson, check_positive, check_velocity
+from .core import models, quantities
+from .pair import DEFAULT_POISSON, DEFAULT_SURFACE_MODULUS, RESULT_FIELDS, ContactPair
 
 __all__ = [
     "SWEEP_DIMENSIONS",
@@ -44,17 +42,19 @@ __all__ = [
 ]
 
 #: The inputs that can be swept, in the order their dimensions appear: name -> (unit, description).
-SWEEP_DIMENSIONS: dict[str, tuple[str, str]] = {
-    "velocity": ("m/s", "impact speed V"),
-    "limiting_pressure": ("Pa", "limiting contact pressure p_y"),
-    "particle_modulus": ("Pa", "Young's modulus of the particle E1"),
-    "surface_modulus": ("Pa", "Young's modulus of the surface E2"),
-    "density": ("kg/m^3", "particle density rho"),
-    "radius": ("m", "particle radius R (sphere on a flat: R* = R)"),
-    "particle_poisson": ("1", "Poisson ratio of the particle nu1"),
-    "surface_poisson": ("1", "Poisson ratio of the surface nu2"),
-    "effective_modulus": ("Pa", "effective modulus E* = 1/((1-nu1^2)/E1 + (1-nu2^2)/E2)"),
-}
+SWEEP_DIMENSIONS: dict[str, tuple[str, str]] = quantities.table(
+    (
+        "velocity",
+        "limiting_pressure",
+        "particle_modulus",
+        "surface_modulus",
+        "density",
+        "radius",
+        "particle_poisson",
+        "surface_poisson",
+        "effective_modulus",
+    )
+)
 
 _MATERIAL_INPUTS = ("particle_modulus", "particle_poisson", "surface_modulus", "surface_poisson")
 
@@ -79,12 +79,9 @@ _IMPACT_FIELDS = (
 )
 _BOOL_FIELDS = ("elastic", "large_strain")
 
-_EXTRA_FIELDS: dict[str, tuple[str, str]] = {
-    "yield_velocity": ("m/s", "yield velocity V_y, 1/2 m* V_y^2 = 2/5 P_y alpha_y (eq. 28)"),
-    "effective_modulus": ("Pa", "effective modulus E*"),
-    "effective_radius": ("m", "effective radius R*"),
-    "effective_mass": ("kg", "effective mass m*"),
-}
+_EXTRA_FIELDS: dict[str, tuple[str, str]] = quantities.table(
+    ("yield_velocity", "effective_modulus", "effective_radius", "effective_mass")
+)
 
 #: Every data variable a sweep returns: name -> (unit, description).
 SWEEP_VARIABLES: dict[str, tuple[str, str]] = {
@@ -92,10 +89,6 @@ SWEEP_VARIABLES: dict[str, tuple[str, str]] = {
     **_EXTRA_FIELDS,
 }
 
-#: Poisson ratio of both bodies when the base pair has no materials (the seed's Fig. 4 takes 0.3).
-DEFAULT_POISSON = 0.3
-#: Surface Young's modulus [Pa] when the base pair has no materials (the seed's Fig. 4: 150 GPa).
-DEFAULT_SURFACE_MODULUS = 150e9
 
 #: Points per block when ``chunks="auto"`` (about 40 MB of results and temporaries per block).
 _AUTO_BLOCK_POINTS = 1 << 17
@@ -107,41 +100,21 @@ _AUTO_BLOCK_POINTS = 1 << 17
 # sweep's coordinates beyond the block they are given.
 
 
-def _modulus(p, spec):
-    """``E*`` [Pa] from the inputs ``p`` (arrays that broadcast, or floats)."""
-    if spec["modulus_from_materials"]:
-        return _effective_modulus(
-            p["particle_modulus"], p["particle_poisson"], p["surface_modulus"], p["surface_poisson"]
-        )
-    return np.asarray(p["effective_modulus"], dtype=float)
-
-
-def _radius_mass(p, spec):
-    """``R*`` [m] and ``m*`` [kg]: a sphere on a flat from radius and density, or the base pair's."""
-    if spec["mass_from_density"]:
-        R = np.asarray(p["radius"], dtype=float)
-        return R, sphere_mass(R, p["density"])
-    return np.asarray(spec["effective_radius"], dtype=float), np.asarray(spec["effective_mass"], dtype=float)
-
-
 def _evaluate(group, p, spec):
-    """The fields of ``group`` for inputs ``p``, as a dict of arrays."""
+    """The fields of ``group`` for inputs ``p`` (arrays that broadcast, or floats), as a dict of arrays."""
+    pair = spec["pair"]
+    E, R, m, p_y = pair.effective_values(**{k: x for k, x in p.items() if k != "velocity"})
     if group == "effective_modulus":
-        return {"effective_modulus": _modulus(p, spec)}
+        return {"effective_modulus": E}
     if group == "effective_radius":
-        R = p["radius"] if spec["mass_from_density"] else spec["effective_radius"]
-        return {"effective_radius": np.asarray(R, dtype=float)}
-    R, m = _radius_mass(p, spec)
+        return {"effective_radius": R}
     if group == "effective_mass":
         return {"effective_mass": m}
-    E = _modulus(p, spec)
-    p_y = p["limiting_pressure"]
     if group == "yield_velocity":
         return {"yield_velocity": impact.yield_velocity(p_y, E, R, m)}
     if group == "impact":
-        out = impact.impact_outcome(p["velocity"], E, R, m, p_y)
-        out.update(dynamics.contact_times(p["velocity"], E, R, m, p_y, outcome=out))
-        return out
+        V = check_velocity("velocity", p["velocity"])
+        return impact.outcome_arrays(models.get(spec["model"]), V, *check_pair(E, R, m, p_y), ())
     raise ValueError(f"unknown group {group!r}")  # pragma: no cover
 
 
@@ -200,29 +173,6 @@ def _base_pair(base):
     if isinstance(base, str):
         return ContactPair.paper_case(base)
     raise ValueError(f"base must be a ContactPair or a paper case name, got {base!r}")
-
-
-def _material_defaults(pair):
-    """``(E1, nu1, E2, nu2)`` behind the base pair's ``E*``, and a sentence saying where they come from."""
-    if pair.particle is not None and pair.surface is not None:
-        p, s = pair.particle, pair.surface
-        return (
-            {
-                "particle_modulus": p.youngs_modulus,
-                "particle_poisson": p.poisson_ratio,
-                "surface_modulus": s.youngs_modulus,
-                "surface_poisson": s.poisson_ratio,
-            },
-            f"from the base pair's materials ({p.name}, {s.name})",
-        )
-    nu, E2 = DEFAULT_POISSON, DEFAULT_SURFACE_MODULUS
-    inv = 1.0 / pair.effective_modulus - (1.0 - nu**2) / E2
-    E1 = (1.0 - nu**2) / inv if inv > 0 else math.nan
-    return (
-        {"particle_modulus": E1, "particle_poisson": nu, "surface_modulus": E2, "surface_poisson": nu},
-        f"the base pair has effective values only: nu1 = nu2 = {nu}, E2 = {E2 / 1e9:g} GPa (as the seed's "
-        f"Fig. 4) and E1 = {E1:.6g} Pa so that E* equals the base pair's {pair.effective_modulus:.6g} Pa",
-    )
 
 
 def _normalize_chunks(chunks, dims, shape):
@@ -388,15 +338,11 @@ def sweep(
             f"effective_modulus was given together with {material_given[0]}: give E* directly, or the "
             "moduli and Poisson ratios it is made from, not both"
         )
-    # Inputs not swept: floats (the overrides, then the base pair's values).
+    # Inputs not swept: floats. Everything else is the base pair's (ContactPair.effective_values).
     fixed = {k: float(v) for k, v in values.items() if v.ndim == 0}
-    fixed.setdefault("limiting_pressure", pair.limiting_pressure)
-    spec = {
-        "modulus_from_materials": bool(material_given),
-        "mass_from_density": "radius" in values or "density" in values,
-        "effective_radius": pair.effective_radius,
-        "effective_mass": pair.effective_mass,
-    }
+    spec = {"pair": pair, "model": models.DEFAULT}
+    # Refuse bad combinations now, not inside a dask task (one value of each input is enough).
+    pair.effective_values(**{k: v.reshape(-1)[:1] for k, v in values.items() if k != "velocity"})
     attrs = {
         "title": "microimpact parameter sweep",
         "model": "elastic-plastic impact of a sphere on a flat, Aerosol Sci. Tech. 50(4):321-330 (2016), "
@@ -409,29 +355,8 @@ def sweep(
     }
     if pair.density is not None:
         attrs["base_density"] = pair.density
-    if spec["modulus_from_materials"]:
-        defaults, note = _material_defaults(pair)
-        for k in _MATERIAL_INPUTS:
-            if k not in values:
-                if not math.isfinite(defaults[k]):
-                    raise ValueError(
-                        f"particle_modulus is needed: the base pair's E* = {pair.effective_modulus:g} Pa is "
-                        f"too stiff to come from a surface of E2 = {DEFAULT_SURFACE_MODULUS:g} Pa"
-                    )
-                fixed[k] = float(defaults[k])
-        attrs["material_defaults"] = note
-    else:
-        fixed.setdefault("effective_modulus", pair.effective_modulus)
-    if spec["mass_from_density"]:
-        if "radius" not in values:
-            fixed["radius"] = pair.effective_radius
-        if "density" not in values:
-            if pair.density is None:
-                raise ValueError(
-                    "density is needed: radius/density sweeps treat the particle as a sphere on a flat, "
-                    "and the base pair has no density (a two-sphere pair?)"
-                )
-            fixed["density"] = pair.density
+    if material_given:
+        attrs["material_defaults"] = pair.material_inputs()[1]
 
     # Which inputs each variable depends on (only the swept ones become its dims).
     groups = [("impact", _IMPACT_FIELDS, dims)]

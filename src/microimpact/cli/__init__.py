@@ -32,17 +32,25 @@ class Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
 
 
-def build_parser() -> argparse.ArgumentParser:
-    from .. import __version__
+class _Version(argparse.Action):
+    """``--version``: reads the version from the package metadata only when asked."""
 
+    def __call__(self, parser, namespace, values, option_string=None):
+        from .. import __version__
+
+        parser.exit(0, f"microimpact {__version__}\n")
+
+
+def build_parser(only: str | None = None) -> argparse.ArgumentParser:
+    """The command-line parser; with ``only``, just that command's (the others are not imported)."""
     parser = Parser(
         prog="microimpact",
         description="Elastic-plastic impact of micro-particles on surfaces "
         "(Aerosol Sci. Tech. 50(4), 2016): restitution, energy loss, contact times, histories.",
     )
-    parser.add_argument("--version", action="version", version=f"microimpact {__version__}")
+    parser.add_argument("--version", action=_Version, nargs=0, help="show the version and exit")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
-    for name in COMMANDS:
+    for name in [only] if only in COMMANDS else COMMANDS:
         try:
             mod = importlib.import_module(f".{name}", __name__)
         except ModuleNotFoundError as exc:  # a command not yet built
@@ -59,7 +67,9 @@ def _short_warning(message, category, filename, lineno, file=None, line=None):
 
 def main(argv=None) -> int:
     """Entry point of the ``microimpact`` command; returns the exit status."""
-    parser = build_parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    # Import only the command being run: a command's dependencies cost more than its work.
+    parser = build_parser(only=argv[0] if argv and argv[0] in COMMANDS else None)
     try:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # --help, --version, or a usage error already printed

@@ -15,22 +15,14 @@ import sys
 
 import numpy as np
 
+from ..core import quantities
 from ..materials import PAPER_CASES, list_materials
 from ..pair import ContactPair
+from ..sweep import SWEEP_DIMENSIONS
 from ._common import parse_float, parse_values
 
 # option dest -> (unit, help); the dest is the sweep() keyword.
-SWEEP_OPTIONS = {
-    "velocity": ("m/s", "impact speed V"),
-    "limiting_pressure": ("Pa", "limiting contact pressure p_y"),
-    "particle_modulus": ("Pa", "particle Young's modulus E1"),
-    "surface_modulus": ("Pa", "surface Young's modulus E2"),
-    "density": ("kg/m^3", "particle density"),
-    "radius": ("m", "particle radius"),
-    "particle_poisson": ("-", "particle Poisson ratio nu1"),
-    "surface_poisson": ("-", "surface Poisson ratio nu2"),
-    "effective_modulus": ("Pa", "effective modulus E* (not with the moduli/Poisson ratios)"),
-}
+SWEEP_OPTIONS = quantities.table(SWEEP_DIMENSIONS)
 
 
 def register(sub) -> None:

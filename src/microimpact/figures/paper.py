@@ -36,7 +36,6 @@ import numpy as np
 from scipy import optimize
 
 from .. import contact
-from ..materials import effective_modulus as _effective_modulus
 from ..pair import ContactPair
 from . import _style
 
@@ -321,17 +320,16 @@ def plot_restitution(pairs=None, data=None, ax=None, *, velocity=None, table=Non
 
 # ----------------------------------------------------------------------------- Figs. 3-5
 def _pair_with(pair, parameter, value, particle_poisson, surface_modulus, surface_poisson):
-    """``pair`` with one input changed, and the extra columns that describe it."""
-    if parameter == "limiting_pressure":
-        return pair.replace(limiting_pressure=value), {}
-    if parameter == "effective_modulus":
-        return pair.replace(effective_modulus=value), {}
+    """``pair`` with one input changed (:meth:`ContactPair.vary`), and the extra columns that describe it."""
     if parameter == "particle_modulus":
-        E = float(_effective_modulus(value, particle_poisson, surface_modulus, surface_poisson))
-        return pair.replace(effective_modulus=E), {"effective_modulus_Pa": E}
-    if parameter == "density":
-        return pair.resized(density=value), {}
-    raise ValueError(f"parameter must be one of {', '.join(ENERGY_LOSS_PARAMETERS)}, got {parameter!r}")
+        p = pair.vary(
+            particle_modulus=value,
+            particle_poisson=particle_poisson,
+            surface_modulus=surface_modulus,
+            surface_poisson=surface_poisson,
+        )
+        return p, {"effective_modulus_Pa": p.effective_modulus}
+    return pair.vary(**{parameter: value}), {}
 
 
 def energy_loss_data(

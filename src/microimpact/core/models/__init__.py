@@ -24,9 +24,10 @@ A model module in this package defines (the contract every path relies on):
 from __future__ import annotations
 
 import importlib
+import math
 import pkgutil
 
-__all__ = ["available", "get", "DEFAULT"]
+__all__ = ["available", "get", "parameters", "resolve_params", "DEFAULT"]
 
 #: The seed's model (Aerosol Sci. Tech. 50(4), 2016), used when no model is named.
 DEFAULT = "thornton_ning_2016"
@@ -44,3 +45,35 @@ def get(name: str = DEFAULT):
     if not isinstance(name, str) or name not in names:
         raise ValueError(f"model must be one of {', '.join(names)}; got {name!r}")
     return importlib.import_module(f"{__name__}.{name}")
+
+
+def parameters(name: str = DEFAULT) -> dict:
+    """``{parameter: (unit, description, default)}`` of model ``name`` (``nan`` default: required)."""
+    mod = get(name)
+    return {p[0]: (p[1], p[2], d) for p, d in zip(mod.PARAMETERS, mod.DEFAULTS)}
+
+
+def resolve_params(module, given: dict) -> tuple:
+    """The model's parameters as the float tuple its functions take, from keyword values and defaults.
+
+    ValueError naming the parameter when one is unknown, missing (no default), not a real number,
+    or not finite.
+    """
+    names = [p[0] for p in module.PARAMETERS]
+    unknown = sorted(set(given) - set(names))
+    if unknown:
+        raise ValueError(
+            f"model {module.NAME!r} has no parameter {unknown[0]!r}; its parameters: {', '.join(names) or 'none'}"
+        )
+    out = []
+    for name, default in zip(names, module.DEFAULTS):
+        value = given.get(name, default)
+        if isinstance(value, bool) or not isinstance(value, (int, float)) and not hasattr(value, "__float__"):
+            raise ValueError(f"{name} must be a real number, got {value!r}")
+        value = float(value)
+        if math.isnan(value):
+            raise ValueError(f"model {module.NAME!r} needs the parameter {name!r} (no default)")
+        if not math.isfinite(value):
+            raise ValueError(f"{name} must be finite, got {value!r}")
+        out.append(value)
+    return tuple(out)

@@ -1,0 +1,283 @@
+"""The seed's dynamic elastic-plastic impact model (the default model).
+
+Source: "Dynamic impact model of plastic deformation between micro-particles and flat surfaces
+without adhesion", *Aerosol Science and Technology* 50(4):321-330 (2016), eqs. 1-33 (restored
+in the theory page), after Thornton & Ning (1998). Loading is Hertzian up to the yield approach
+``alpha_y`` (eqs. 2, 5, 7), then linear with the limiting pressure ``p_y`` (eqs. 6, 8); unloading is
+Hertzian with the enlarged radius ``R_p`` from the plastic approach ``alpha_p`` (eqs. 9-11). The
+outcome is in closed form (eqs. 22, 27-29) and so are the contact times (eqs. 20, 23, 26, 32, 33;
+the theory page derives them: the seed integrated them numerically).
+
+Validity: small strain, flagged by ``large_strain`` when ``a*/R* > 0.3``
+(:data:`~microimpact.core.constants.LARGE_STRAIN_RATIO`); no adhesion; no rate dependence;
+``p_y`` constant during plastic loading. Defines every field of
+:data:`~microimpact.core.quantities.OUTCOME_FIELDS`. No parameters beyond the pair.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .. import hertz
+from .._jit import jitable
+from ..constants import LARGE_STRAIN_RATIO
+from ..special import BETA_25_12, hertz_beta
+
+NAME = "thornton_ning_2016"
+TITLE = "Elastic-plastic impact without adhesion (Aerosol Sci. Tech. 50(4), 2016; Thornton & Ning 1998)"
+PARAMETERS = ()
+DEFAULTS = ()
+
+
+@jitable
+def yield_point(E, R, m, p_y):
+    """``(alpha_y, P_y, V_y)``: yield approach [m] (eq. 5), force [N] (eq. 7) and velocity [m/s] (eq. 28).
+
+    ``V_y`` from the energy balance ``1/2 m* V_y^2 = 2/5 P_y alpha_y`` (Davies 1949; Thornton & Ning
+    1998). ``p_y = inf`` gives ``inf`` for all three (every impact elastic).
+    """
+    if p_y == math.inf:
+        return math.inf, math.inf, math.inf
+    a_y = yield_approach(p_y, E, R)
+    P_y = hertz.force(a_y, E, R)
+    return a_y, P_y, math.sqrt(0.8 * P_y * a_y / m)
+
+
+@jitable
+def yield_velocity_sphere_on_flat(p_y, E, rho):
+    """``V_y = (pi^4/40)^(1/2) (p_y^5/(E*^4 rho))^(1/2)`` [m/s] (eq. 28, a sphere on a flat)."""
+    return math.sqrt(math.pi**4 / 40.0) * math.sqrt(p_y**5 / (E**4 * rho))
+
+
+@jitable
+def plastic_stage(v):
+    """Normalised outcome of a plastic impact at ``v = V/V_y > 1`` (eqs. 22, 14, 11, 9, 27).
+
+    Returns ``(A, Phat, alpha_p_hat, R_p_hat, e)``: ``alpha*/alpha_y`` (eq. 22), ``P*/P_y`` (eq. 14),
+    ``alpha_p/alpha_y`` (eq. 11), ``R_p/R*`` (eq. 9) and the restitution coefficient (eq. 27). All are
+    computed from ``q = s/v = ((24 - 4/v^2)/5)^(1/2)``, with ``s = 2 P*/P_y``, so that nothing
+    overflows before ``v`` does.
+    """
+    q = math.sqrt((24.0 - 4.0 / (v * v)) / 5.0)
+    A = (1.0 + v * q) / 3.0
+    Phat = 0.5 * v * q
+    sqA = math.sqrt(A)
+    e = 0.5 * q / math.sqrt(sqA)  # P^*/(alpha^*^(1/4) v) with the v cancelled
+    return A, Phat, max(A - Phat / sqA, 0.0), A * sqA / Phat, e
+
+
+@jitable
+def normalized_outcome(v):
+    """``(alpha*/alpha_y, P*/P_y, alpha_p/alpha_y, R_p/R*, e)`` at any ``v = V/V_y >= 0`` (eqs. 13-15, 22, 27).
+
+    Elastic for ``v <= 1`` (``v^(4/5)``, ``v^(6/5)``, 0, 1, 1); the limits ``inf, inf, inf, inf, 0`` at
+    ``v = inf``.
+    """
+    if v <= 1.0:
+        return v**0.8, v**1.2, 0.0, 1.0, 1.0
+    if v == math.inf:
+        return math.inf, math.inf, math.inf, math.inf, 0.0
+    return plastic_stage(v)
+
+
+@jitable
+def restitution(v):
+    """Restitution coefficient at ``v = V/V_y`` [-] (eq. 27): 1 for ``v <= 1``, 0 at ``v = inf``."""
+    if v <= 1.0:
+        return 1.0
+    if v == math.inf:
+        return 0.0
+    return plastic_stage(v)[4]
+
+
+@jitable
+def restitution_at(V, V_y):
+    """Restitution coefficient of an impact at ``V`` [m/s] for the yield velocity ``V_y`` [m/s] (eq. 27)."""
+    return restitution(normalized_velocity(V, V_y))
+
+
+@jitable
+def energy_loss(e):
+    """Fraction of the kinetic energy lost, ``1 - e^2`` [-] (eq. 29); also takes arrays."""
+    return 1.0 - e * e
+
+
+@jitable
+def normalized_velocity(V, V_y):
+    """``v = V/V_y``; 0 where ``V_y = inf`` (``p_y = inf``: every impact elastic, even ``V = inf``)."""
+    return 0.0 if V_y == math.inf else V / V_y
+
+
+@jitable
+def elastic_stage_time(V, E, R, m, V_y):
+    """Stage 1, Hertz loading to yield or to rest: ``t1 = (2/5)(alpha_m/V) B(u; 2/5, 1/2)`` [s] (eq. 20).
+
+    ``u = min(1, (V_y/V)^2)``; 0 at ``V = inf``.
+    """
+    if V == math.inf:
+        return 0.0
+    u = 1.0
+    if V > V_y:
+        w = V_y / V
+        u = w * w  # w * w, not w ** 2: compiled code must give the same bits
+    return 0.4 * hertz.time_scale(V, E, R, m) * hertz_beta(u)
+
+
+@jitable
+def plastic_stage_time(V, R, m, p_y, alpha_y, V_y):
+    """Stage 2, plastic loading: ``t2 = atan2((V^2 - V_y^2)^(1/2), 2 omega alpha_y/3) / omega`` [s] (eq. 23).
+
+    A harmonic oscillation of angular frequency ``omega = (pi p_y R*/m*)^(1/2)`` about ``alpha_y/3``;
+    0 for an elastic impact, ``pi/(2 omega)`` (Ning's loading time, eq. 31) at ``V = inf``.
+    """
+    if not V > V_y:
+        return 0.0
+    omega = plastic_frequency(p_y, R, m)
+    v1 = math.sqrt(max(V * V - V_y * V_y, 0.0))
+    return math.atan2(v1, 2.0 * omega * alpha_y / 3.0) / omega
+
+
+@jitable
+def plastic_frequency(p_y, R, m):
+    """Angular frequency of the plastic stage, ``omega = (pi p_y R*/m*)^(1/2)`` [rad/s] (eqs. 18-23)."""
+    return math.sqrt(math.pi * p_y * R / m)
+
+
+@jitable
+def outcome(V, E, R, m, p_y, params):
+    """Outcome and contact times of one impact (eqs. 5-33), in the order of ``OUTCOME_FIELDS``."""
+    inf = math.inf
+    a_y, P_y, Vy = yield_point(E, R, m, p_y)
+    v = normalized_velocity(V, Vy)
+    elastic = v <= 1.0
+    if elastic:
+        max_approach = hertz.max_approach(V, E, R, m)  # dimensional, so p_y = inf works
+        max_force = hertz.force(max_approach, E, R)
+        e = 1.0
+        plastic = 0.0
+        R_p = R
+    elif v == inf:
+        e = 0.0
+        max_approach = max_force = plastic = R_p = inf
+    else:
+        A, Phat, ap_hat, Rp_hat, e = plastic_stage(v)
+        max_approach = a_y * A
+        max_force = P_y * Phat
+        plastic = a_y * ap_hat
+        R_p = R * Rp_hat
+    rebound = inf if v == inf else e * V
+    a_max = math.sqrt(R * max_approach)
+
+    # Contact times (eqs. 20, 23, 26, 32, 33).
+    t1 = elastic_stage_time(V, E, R, m, Vy)
+    t2 = plastic_stage_time(V, R, m, p_y, a_y, Vy)
+    if V == inf:
+        tU = 0.0
+    elif elastic:
+        tU = 0.4 * BETA_25_12 * hertz.time_scale(V, E, R, m)  # the Hertz half-period
+    else:
+        # Hertz unloading with R_p from alpha* to alpha_p (eq. 26): the stage-1 integral run backwards.
+        tU = 0.4 * BETA_25_12 * (max_approach - plastic) / rebound
+    tL = t1 + t2
+    return (
+        V,
+        Vy,
+        v,
+        1.0 if elastic else 0.0,
+        e,
+        rebound,
+        max_approach,
+        plastic,
+        max_force,
+        R_p,
+        energy_loss(e),
+        a_max,
+        1.0 if a_max / R > LARGE_STRAIN_RATIO else 0.0,
+        t1,
+        t2,
+        tL,
+        tU,
+        tL + tU,
+    )
+
+
+@jitable
+def yield_contact_radius(p_y, E, R):
+    """Contact radius at yield, ``a_y = pi p_y R*/(2 E*)`` [m] (eq. 4 with ``p0 = p_y``)."""
+    return math.pi * p_y * R / (2.0 * E)
+
+
+@jitable
+def yield_approach(p_y, E, R):
+    """Yield approach ``alpha_y = a_y^2/R* = (pi p_y/(2 E*))^2 R*`` [m] (eq. 5)."""
+    ac = yield_contact_radius(p_y, E, R)
+    return ac * ac / R
+
+
+@jitable
+def plastic_loading_force(alpha, E, R, p_y):
+    """Plastic loading force ``P_y + pi p_y R* (alpha - alpha_y)`` [N] (eqs. 6, 8), for ``alpha >= alpha_y``."""
+    a_y = yield_approach(p_y, E, R)
+    return hertz.force(a_y, E, R) + math.pi * p_y * R * (alpha - a_y)
+
+
+@jitable
+def loading_force(alpha, E, R, p_y):
+    """Loading force [N]: Hertz up to ``alpha_y`` (eq. 2), then plastic (eqs. 6, 8)."""
+    if p_y == math.inf or alpha <= yield_approach(p_y, E, R):
+        return hertz.force(alpha, E, R)
+    return plastic_loading_force(alpha, E, R, p_y)
+
+
+@jitable
+def unloading_radius(alpha_max, P_max, E, R):
+    """``R_p = R* F_e/P*`` [m] (eq. 9), ``F_e`` the Hertz force at ``alpha*``; ``R*`` where ``P* = 0``."""
+    if not P_max > 0.0:
+        return R
+    return R * (hertz.force(alpha_max, E, R) / P_max)
+
+
+@jitable
+def plastic_approach(alpha_max, P_max, E, R):
+    """Plastic approach ``alpha_p = alpha* (1 - P*/F_e)`` [m] (eq. 11), >= 0; 0 where ``F_e = 0``."""
+    F_e = hertz.force(alpha_max, E, R)
+    if not F_e > 0.0:
+        return 0.0
+    return max(alpha_max * (1.0 - P_max / F_e), 0.0)
+
+
+@jitable
+def unloading_force(alpha, a_p, R_p, E):
+    """Unloading force ``4/3 E* R_p^(1/2) (alpha - alpha_p)^(3/2)`` [N] (eq. 10); 0 below ``alpha_p``."""
+    return hertz.force(max(alpha - a_p, 0.0), E, R_p)
+
+
+@jitable
+def unloading_force_from(alpha, alpha_max, E, R, p_y):
+    """Force [N] at ``alpha`` while unloading from the maximum approach ``alpha_max`` (eqs. 9-11, 10)."""
+    P_max = loading_force(alpha_max, E, R, p_y)
+    return unloading_force(alpha, plastic_approach(alpha_max, P_max, E, R), unloading_radius(alpha_max, P_max, E, R), E)
+
+
+@jitable
+def normalized_loading_force(a):
+    """``P/P_y`` against ``alpha/alpha_y`` on loading: ``a^(3/2)`` to 1, then ``(3a - 1)/2`` (eqs. 13, 14)."""
+    return a * math.sqrt(a) if a <= 1.0 else (3.0 * a - 1.0) / 2.0
+
+
+@jitable
+def normalized_unloading_force(a, am):
+    """``P/P_y`` on unloading from ``am = alpha*/alpha_y`` (eq. 15): ``(R_p/R*)^(1/2) (a - a_p)^(3/2)``."""
+    Pm = normalized_loading_force(am)
+    d = max(a - (am - Pm / math.sqrt(am)), 0.0)
+    return math.sqrt(am * math.sqrt(am) / Pm) * (d * math.sqrt(d))
+
+
+@jitable
+def force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
+    """The model's force law [N]: loading (eqs. 2, 6, 8) while ``alpha >= alpha_max``, else unloading (eq. 10)."""
+    if alpha <= 0.0:
+        return 0.0
+    if alpha >= alpha_max:
+        return loading_force(alpha, E, R, p_y)
+    return unloading_force_from(alpha, alpha_max, E, R, p_y)

@@ -1,0 +1,143 @@
+"""Every execution path of the core on the same cases: the scalar Python core, the array paths
+(Python loop, compiled serial loop, compiled multi-threaded loop) and the exported C.
+
+The array paths run the very same scalar functions, so they must agree bitwise. The C export is
+the one permitted second copy of the restitution and yield velocity; it agrees to a few ulp.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import math
+import shutil
+import subprocess
+
+import numpy as np
+import pytest
+
+import microimpact as mi
+from microimpact.cexport import generate_c_source
+from microimpact.core import arrays
+from microimpact.core.models import thornton_ning_2016 as seed
+from microimpact.core.quantities import OUTCOME_FIELDS
+
+PAIR = mi.ContactPair.paper_case("silicon")
+ARGS = (PAIR.effective_modulus, PAIR.effective_radius, PAIR.effective_mass, PAIR.limiting_pressure)
+VY = PAIR.yield_velocity
+
+
+def _edge_speeds(Vy):
+    """Elastic, at V_y, one ulp either side, just above, far above, huge, V = 0."""
+    return np.array(
+        [
+            0.0,
+            5e-324,
+            1e-300,
+            1e-6,
+            0.5 * Vy,
+            np.nextafter(Vy, 0.0),
+            Vy,
+            np.nextafter(Vy, np.inf),
+            Vy * (1 + 1e-12),
+            Vy * (1 + 1e-6),
+            1.5 * Vy,
+            50.0,
+            1e3,
+            1e6,
+            1e12,
+            1e200,
+            1.7e308,
+        ]
+    )
+
+
+def _random_cases(n=3000, seed_=7):
+    rng = np.random.default_rng(seed_)
+    E = 10 ** rng.uniform(8, 11.7, n)
+    R = 10 ** rng.uniform(-8, -3, n)
+    m = 4 / 3 * np.pi * R**3 * 10 ** rng.uniform(2.7, 4.3, n)
+    p = 10 ** rng.uniform(6, 10, n)
+    p[::11] = np.inf  # p_y = inf: every impact elastic
+    Vy = np.array([seed.yield_point(*x)[2] for x in zip(E, R, m, p)])
+    V = np.where(rng.uniform(size=n) < 0.5, Vy * 10 ** rng.uniform(-3, 3, n), 10 ** rng.uniform(-3, 5, n))
+    V[np.isinf(V)] = 10.0
+    return V, E, R, m, p
+
+
+def _all_paths(fn, *arrays_, nout, params=None):
+    """``fn`` over the inputs by each path: scalar calls, Python loop, compiled serial and parallel."""
+    n = arrays_[0].size
+    scalar = np.array([fn(*(float(a[i]) for a in arrays_), *(() if params is None else (params,))) for i in range(n)])
+    scalar = scalar.reshape(n, nout).T if nout > 1 else scalar.reshape(1, n)
+    py = arrays.evaluate(fn, *arrays_, nout=nout, params=params, backend="python")
+    serial = arrays.evaluate(fn, *arrays_, nout=nout, params=params, backend="numba")  # n < PARALLEL_MIN
+    old = arrays.PARALLEL_MIN
+    try:
+        arrays.PARALLEL_MIN = 1
+        parallel = arrays.evaluate(fn, *arrays_, nout=nout, params=params, backend="numba")
+    finally:
+        arrays.PARALLEL_MIN = old
+    return {"scalar": scalar, "python loop": py, "compiled serial": serial, "compiled parallel": parallel}
+
+
+@pytest.mark.parametrize("cases", ["edge", "random"])
+def test_outcome_bitwise_equal_on_every_path(cases):
+    if cases == "edge":
+        V = _edge_speeds(VY)
+        E, R, m, p = (np.full(V.size, x) for x in ARGS)
+    else:
+        V, E, R, m, p = _random_cases()
+    paths = _all_paths(seed.outcome, V, E, R, m, p, nout=len(OUTCOME_FIELDS), params=())
+    ref = paths.pop("scalar")
+    assert np.all(np.isfinite(ref[OUTCOME_FIELDS.index("restitution")]))
+    for name, got in paths.items():
+        for k, field in enumerate(OUTCOME_FIELDS):
+            same = (got[k] == ref[k]) | (np.isnan(got[k]) & np.isnan(ref[k]))
+            assert same.all(), f"{name}: {field} differs at V = {V[~same][:3]}"
+
+
+def test_pair_impact_scalar_bitwise_equal_to_array_path():
+    """``pair.impact(50.0)`` (the scalar core) equals ``pair.impact([50.0])`` (compiled or loop) bit for bit."""
+    one = PAIR.impact(50.0, warn=False)
+    many = PAIR.impact(np.array([50.0, 50.0]), warn=False)
+    for field in OUTCOME_FIELDS:
+        assert np.asarray(getattr(many, field))[0] == getattr(one, field), field
+
+
+# ------------------------------------------------------------------------------ the C export
+def _compile_c(tmp_path):
+    cc = next((shutil.which(c) for c in ("cc", "gcc", "clang") if shutil.which(c)), None)
+    if cc is None:
+        pytest.skip("no C compiler on this machine")
+    src = tmp_path / "mi.c"
+    src.write_text(generate_c_source(PAIR))
+    lib = tmp_path / "libmi.so"
+    subprocess.run([cc, "-std=c99", "-O2", "-shared", "-fPIC", "-o", str(lib), str(src), "-lm"], check=True)
+    so = ctypes.CDLL(str(lib))
+    for name, nargs in (("microimpact_restitution", 2), ("microimpact_yield_velocity", 4)):
+        getattr(so, name).restype = ctypes.c_double
+        getattr(so, name).argtypes = [ctypes.c_double] * nargs
+    return so
+
+
+def test_c_export_matches_the_core_on_edge_and_random_cases(tmp_path):
+    so = _compile_c(tmp_path)
+    V, E, R, m, p = _random_cases(1000)
+    Vy = np.array([seed.yield_point(*x)[2] for x in zip(E, R, m, p)])
+    c_vy = np.array([so.microimpact_yield_velocity(pi, Ei, Ri, mi_) for pi, Ei, Ri, mi_ in zip(p, E, R, m)])
+    np.testing.assert_array_equal(c_vy, Vy)  # same operations in the same order: same bits
+    speeds = np.concatenate([_edge_speeds(VY) / VY * v for v in (VY,)] + [V])
+    vys = np.concatenate([np.full(_edge_speeds(VY).size, VY), Vy])
+    core = arrays.evaluate(seed.restitution_at, speeds, vys)[0]
+    c_e = np.array([so.microimpact_restitution(a, b) for a, b in zip(speeds, vys)])
+    np.testing.assert_allclose(c_e, core, rtol=4e-16, atol=0.0)
+    assert c_e[0] == 1.0 and core[-1] <= 1.0
+
+
+def test_every_path_refuses_nothing_silently_for_infinite_p_y():
+    """``p_y = inf``: V_y = inf, every impact elastic, on every path."""
+    V = np.array([0.0, 1.0, 1e6])
+    paths = _all_paths(seed.outcome, V, *(np.full(3, x) for x in (*ARGS[:3], math.inf)), nout=18, params=())
+    for got in paths.values():
+        assert np.all(got[OUTCOME_FIELDS.index("elastic")] == 1.0)
+        assert np.all(got[OUTCOME_FIELDS.index("restitution")] == 1.0)
