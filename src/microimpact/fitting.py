@@ -438,7 +438,8 @@ def _outcome_of(model_name, pair, params, V, fields=("restitution", "rebound_vel
     """Outcome ``fields`` of model ``model_name`` for ``pair`` and model ``params`` at speeds ``V`` [m/s].
 
     The seed through :meth:`ContactPair.impact` (seed eqs. 5-33); a zoo model through its
-    scalar ``outcome(V, E, R, m, p_y, params)`` (one call per speed).
+    scalar ``outcome(V, E, R, m, p_y, params)`` over the array (:func:`microimpact.impact.outcome_arrays`:
+    a Python loop for small arrays, compiled loops for large ones).
     """
     V = np.asarray(V, dtype=float)
     if model_name == SEED_MODEL:
@@ -446,23 +447,17 @@ def _outcome_of(model_name, pair, params, V, fields=("restitution", "rebound_vel
             return {"restitution": restitution_coefficient(V, pair.yield_velocity)}
         res = pair.impact(V, warn=False)
         return {f: np.asarray(getattr(res, f), dtype=float) for f in fields}
-    from .core.quantities import OUTCOME_FIELDS
+    from .impact import outcome_arrays
 
     module = _model_module(model_name)
-    idx = [OUTCOME_FIELDS.index(f) for f in fields]
-    args = (
-        float(pair.effective_modulus),
-        float(pair.effective_radius),
-        float(pair.effective_mass),
-        float(pair.limiting_pressure),
+    out = outcome_arrays(
+        module,
+        V.ravel(),
+        *(np.asarray(float(x)) for x in (pair.effective_modulus, pair.effective_radius, pair.effective_mass)),
+        np.asarray(float(pair.limiting_pressure)),
         tuple(float(x) for x in params),
     )
-    out = np.empty((len(fields), V.size))
-    for i, v in enumerate(V.ravel()):
-        row = module.outcome(float(v), *args)
-        for k, j in enumerate(idx):
-            out[k, i] = row[j]
-    return {f: out[k].reshape(V.shape) for k, f in enumerate(fields)}
+    return {f: np.asarray(out[f], dtype=float).reshape(V.shape) for f in fields}
 
 
 def _restitution_of(model_name, pair, params, V):
@@ -641,19 +636,13 @@ class _Model:
         self.ref_vy = self.ref_pair.yield_velocity
 
     def pair_at(self, u) -> ContactPair:
-        """The pair with the free pair parameter at ``ref * exp(u)``."""
+        """The pair with the free pair parameter at ``ref * exp(u)`` (via :meth:`ContactPair.vary`)."""
         theta = float(self.ref * math.exp(float(u)))
-        p = self.pair
-        if self.name == "limiting_pressure":
-            return p.replace(limiting_pressure=theta)
         if self.name == "k":
-            return p.replace(limiting_pressure=theta * self.yield_strength)
-        if self.name == "effective_modulus":
-            return p.replace(effective_modulus=theta)
-        if self.name == "density":
-            return p.resized(density=theta)
-        # yield_velocity
-        return self.base.replace(limiting_pressure=self.base.limiting_pressure * (theta / self.ref) ** 0.4)
+            return self.pair.vary(limiting_pressure=theta * self.yield_strength)
+        if self.name == "yield_velocity":
+            return self.base.vary(yield_velocity=theta)
+        return self.pair.vary(**{self.name: theta})
 
     def split(self, u):
         """``(pair, params)`` at ``u``: the pair and the model's parameter tuple."""
@@ -1433,7 +1422,7 @@ def _fit(
     if method == "auto":
         method = "profile" if (p and n_above < PROFILE_BELOW) else "wald"
     ci_u = dict(wald_u)
-    if method == "profile" and p:
+    if method == "profile" and p and s2 * m1 > 0:  # (a perfect fit has a zero-width interval: Wald's)
         objective = _Objective(resid, loss, f_scale, s2 * m1, u, q)
         ci_u = {nm: objective.interval(j, se_u[j]) for j, nm in enumerate(mdl.names)}
 
