@@ -292,3 +292,17 @@ def test_plot_models_draws_each_model_and_residuals(fake_zoo, tmp_path):
     assert "[m/s]" in rax.get_xlabel()
     ax.figure.savefig(tmp_path / "models.png", dpi=100)
     plt.close("all")
+
+
+def test_the_seed_through_the_zoo_path_fits_like_the_seed_array_path(fake_zoo, monkeypatch):
+    """The real seed module under another name goes through the zoo's outcome loop: same fit."""
+    monkeypatch.setitem(FAKE, "seed_via_zoo", zoo.get(SEED_MODEL))
+    rng = np.random.default_rng(31)
+    V = np.geomspace(5.0, 120.0, 14)
+    e = SILICON.restitution(V) + rng.normal(0, 0.02, V.size)
+    direct = fit_restitution(V, e, SILICON)
+    via_zoo = fit_restitution(V, e, SILICON, model="seed_via_zoo")
+    assert via_zoo.params["limiting_pressure"] == pytest.approx(direct.params["limiting_pressure"], rel=1e-9)
+    assert via_zoo.conf_int["limiting_pressure"] == pytest.approx(direct.conf_int["limiting_pressure"], rel=1e-7)
+    pred, ref = via_zoo.predict(V, band=True), direct.predict(V, band=True)
+    np.testing.assert_allclose(pred.contact_time_hi, ref.contact_time_hi, rtol=1e-9)

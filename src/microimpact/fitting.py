@@ -438,8 +438,8 @@ def _outcome_of(model_name, pair, params, V, fields=("restitution", "rebound_vel
     """Outcome ``fields`` of model ``model_name`` for ``pair`` and model ``params`` at speeds ``V`` [m/s].
 
     The seed through :meth:`ContactPair.impact` (seed eqs. 5-33); a zoo model through its
-    scalar ``outcome(V, E, R, m, p_y, params)`` over the array (:func:`microimpact.impact.outcome_arrays`:
-    a Python loop for small arrays, compiled loops for large ones).
+    scalar ``outcome(V, E, R, m, p_y, params)`` over the array (:func:`microimpact.core.arrays.evaluate`,
+    as :func:`microimpact.impact.outcome_arrays` does: compiled loops for a ``@jitable`` outcome).
     """
     V = np.asarray(V, dtype=float)
     if model_name == SEED_MODEL:
@@ -447,17 +447,21 @@ def _outcome_of(model_name, pair, params, V, fields=("restitution", "rebound_vel
             return {"restitution": restitution_coefficient(V, pair.yield_velocity)}
         res = pair.impact(V, warn=False)
         return {f: np.asarray(getattr(res, f), dtype=float) for f in fields}
-    from .impact import outcome_arrays
+    from .core.arrays import evaluate, registered
+    from .core.quantities import OUTCOME_FIELDS
 
     module = _model_module(model_name)
-    out = outcome_arrays(
-        module,
+    args = (
         V.ravel(),
         *(np.asarray(float(x)) for x in (pair.effective_modulus, pair.effective_radius, pair.effective_mass)),
         np.asarray(float(pair.limiting_pressure)),
-        tuple(float(x) for x in params),
     )
-    return {f: np.asarray(out[f], dtype=float).reshape(V.shape) for f in fields}
+    # compiled loops for a @jitable outcome (every zoo model); a plain Python function runs in Python
+    backend = None if module.outcome in registered() else "python"
+    values = evaluate(
+        module.outcome, *args, nout=len(OUTCOME_FIELDS), params=tuple(float(x) for x in params), backend=backend
+    )
+    return {f: np.asarray(values[OUTCOME_FIELDS.index(f)], dtype=float).reshape(V.shape) for f in fields}
 
 
 def _restitution_of(model_name, pair, params, V):
