@@ -1,23 +1,34 @@
-"""Fit the limiting contact pressure (or ``k``, ``E*``, density) to measured restitution data.
+"""Fit a model's free parameter(s) to measured restitution data, and rank models on one data set.
 
 The seed paper notes that the limiting contact pressure ``p_y`` is uncertain and
 "may be modified by fitting the experimental data". :func:`fit_restitution` does
 that: given measured impact speeds ``V_i`` and restitution coefficients ``e_i``
 (optionally their standard uncertainties ``sigma_i``) and a known
-:class:`~microimpact.pair.ContactPair`, it adjusts one free parameter so that the
-model's ``e(V)`` (seed eq. 27, with ``V_y`` from eq. 28) matches the data.
+:class:`~microimpact.pair.ContactPair`, it adjusts the free parameter(s) so that
+the model's ``e(V)`` (for the seed: eq. 27, with ``V_y`` from eq. 28) matches the
+data. :func:`rank_models` fits several models to the same data and ranks them.
 
-What restitution data can and cannot determine
-----------------------------------------------
-The model's restitution depends on the impact speed only through ``V / V_y``
+Models
+------
+A model is named as in :mod:`microimpact.core.models` (``model="thornton_ning_2016"``,
+the seed, is the default) and is evaluated through one function,
+``_restitution_of(model, pair, params, V)``: the seed by its array formula, every
+other model of the zoo by its scalar ``outcome`` (field ``"restitution"`` of
+:data:`microimpact.core.quantities.OUTCOME_FIELDS`). Free parameters are one
+parameter of the pair (:data:`FREE_PARAMETERS`) and/or the model's own
+``PARAMETERS`` (positive, fitted in ``ln``); fixed model parameters come from the
+model's ``DEFAULTS`` or ``model_params=``.
+
+What restitution data can and cannot determine (seed model)
+------------------------------------------------------------
+The seed's restitution depends on the impact speed only through ``V / V_y``
 (seed eqs. 22, 27) and ``V_y`` depends on the pair only through
 ``p_y^(5/2) E*^(-2) m*^(-1/2) R*^0`` (eq. 28 and its general energy form: ``R*``
 cancels). Restitution data therefore determine ``V_y`` and *exactly one*
-parameter given the others: scaling ``E*`` by ``lambda`` and ``p_y`` by
+parameter of the pair given the others: scaling ``E*`` by ``lambda`` and ``p_y`` by
 ``lambda^(4/5)`` leaves every ``e(V)`` unchanged, whatever the speed range of
-the data. Asking for two free parameters raises a :class:`ValueError` that says
-so (their Jacobian columns are proportional, so no data set can separate them).
-The free parameter is one of
+the data. Asking for two pair parameters raises a :class:`ValueError` that says so.
+The pair parameter is one of
 
 * ``"limiting_pressure"`` ``p_y`` [Pa] (default);
 * ``"k"``: ``p_y = k Y`` with a known yield strength ``Y`` (``yield_strength=``
@@ -29,46 +40,89 @@ The free parameter is one of
 Whatever the free parameter, the result also reports the derived ``V_y`` with
 its confidence interval.
 
+Measured values above 1 and stuck particles
+-------------------------------------------
+Near ``V_y`` the true ``e`` is 1, so measurement scatter gives values above 1.
+Every finite ``e_i >= 0`` is accepted and fitted as measured (no clipping: clipping
+or dropping such points biases ``p_y``). ``e_i = 0`` ("stuck") is accepted only by
+a model that can stick (its module sets ``STICKS = True``); the seed never gives
+``e = 0`` at a finite speed. A :class:`FitWarning` names the points that lie *far*
+above 1: ``e_i - 1 > 3 s_i``, with ``s_i = sigma_i`` when absolute uncertainties
+are given, else the robust residual scatter ``s = 1.4826 MAD`` of the residuals at
+the solution. Such points are unlikely under the stated noise (one in 740 for
+Gaussian noise) and usually mean a tracking or calibration error.
+
 Method
 ------
-* Optimiser: :func:`scipy.optimize.least_squares` (trust-region reflective).
-  We chose it over lmfit because it adds no dependency (scipy is already a
-  runtime requirement), it has the robust losses built in (``"soft_l1"``,
-  ``"huber"``, ``"cauchy"``, ``"arctan"``), and it returns the Jacobian at the
-  solution, which is all the covariance needs. lmfit would wrap the same
-  routine and add parameter objects this one-parameter problem does not need.
-* Parametrisation: the fit runs in ``u = ln(theta / theta_ref)``, which keeps the
-  parameter positive and the problem well scaled (``p_y`` ~ 1e8 Pa); ``V_y`` is a
-  power law of every free parameter, so ``e`` is smooth in ``u``.
+* Optimiser: :func:`scipy.optimize.least_squares` (trust-region reflective),
+  with its robust losses (``"soft_l1"``, ``"huber"``, ``"cauchy"``, ``"arctan"``).
+* Parametrisation: ``u = ln(theta / theta_ref)`` for every free parameter (keeps it
+  positive and the problem well scaled).
 * Start: a grid search of the least-absolute-deviation objective over ``V_y``
-  (robust to outliers and to the flat region where every point is elastic),
-  then the local least-squares refinement.
+  on at most 2048 points spread evenly over the sorted speeds (memory does not grow
+  with the grid), then the local refinement on all points. Memory grows linearly
+  with the number of points (about 0.1 kB per point; ``benchmarks/fit_memory.py``).
 * Elastic points: the model gives ``e = 1`` at and below the fitted ``V_y``; such
-  points stay in the fit with the residual ``e_i - 1`` (they constrain ``V_y``
-  from above) and are counted in :attr:`FitResult.n_elastic`.
+  points stay in the fit with the residual ``e_i - 1`` and are counted in
+  :attr:`FitResult.n_elastic`.
 * Residuals ``r_i = (e_i - e(V_i)) / sigma_i`` (``sigma_i = 1`` if not given).
-* Covariance of ``u`` (delta method from the Jacobian ``J`` at the solution):
+* Covariance of ``u`` from the Jacobian ``J = dr/du`` of the *raw* residuals at the
+  solution (central differences; :func:`~scipy.optimize.least_squares` returns a
+  Jacobian rescaled by the robust loss, which must not be used here):
 
   - ``loss="linear"``: ``C = s^2 (J^T J)^-1``. Without ``sigma``, ``s^2`` is the
     residual variance ``sum r_i^2 / (n - p)``. With ``sigma`` the uncertainties are
     taken as absolute (``s^2 = 1``; ``absolute_sigma=False`` rescales by the
     reduced chi-square instead, treating ``sigma`` as relative weights).
-  - robust losses: Huber's asymptotic covariance of an M-estimator,
-    ``C = [sum psi_i^2 / (n - p)] / [mean psi'_i]^2 (J^T J)^-1`` with ``psi`` the
-    derivative of the loss (Huber, *Robust Statistics*, 1981, ch. 7); the scale
-    always comes from the residuals here. It reduces to the linear case when
+  - robust losses: Huber's asymptotic covariance of a regression M-estimator,
+    ``C = kappa^2 [sum psi_i^2 / (n - p)] / [mean psi'_i]^2 (J^T J)^-1`` with
+    ``kappa^2 = 1 + (p/n) var(psi') / mean(psi')^2`` and ``psi`` the derivative of
+    the loss (Huber, *Robust Statistics*, 1981, as given in the NAG Library
+    documentation of ``g02hfc``). We use this analytic sandwich rather than a
+    bootstrap because it costs one Jacobian (a bootstrap refits hundreds of times,
+    prohibitive for 1e6 points) and because a bootstrap of 10-20 points
+    under-covers; the coverage tests in ``tests/test_fitting.py`` check that it
+    gives the stated coverage for every loss. It reduces to the linear case when
     ``psi(r) = r``.
-* Confidence intervals: ``u_hat +- q sqrt(C)`` mapped back by ``exp`` (so they
-  are asymmetric in the parameter and stay positive), with ``q`` the Student
-  ``t`` quantile with ``n - p`` degrees of freedom when the scale is estimated
-  from the residuals, and the normal quantile when ``sigma`` is absolute (known
-  variance). Standard errors in parameter units are ``theta_hat sqrt(C)``
-  (first-order delta method). :meth:`FitResult.confidence_band` propagates
-  ``C`` to ``e(V)`` the same way.
+* Confidence intervals (``interval=``):
+
+  - ``"wald"``: ``u_hat +- q sqrt(C_jj)`` mapped back by ``exp`` (asymmetric in
+    the parameter, always positive), with ``q`` the Student ``t`` quantile with
+    ``n - p`` degrees of freedom when the scale is estimated from the residuals,
+    and the normal quantile when ``sigma`` is absolute;
+  - ``"profile"``: the set of ``u_j`` where the profile statistic
+    ``D(u_j) = [Q(u_j) - Q_hat] / (s^2 mean psi')`` stays below ``q^2``, with ``Q``
+    the summed loss (``sum r_i^2`` for least squares) minimised over the other
+    parameters. For least squares this is the usual F (unknown scale) or
+    chi-square (absolute sigma) likelihood-ratio interval; for a robust loss the
+    same drop in the objective, scaled so that ``D`` equals the Wald statistic to
+    second order. It follows the curvature of ``e(V)`` near the identifiability
+    edge, where the delta method is poor;
+  - ``"auto"`` (default): the profile interval when fewer than 10 points lie
+    above the fitted ``V_y``, the Wald interval otherwise.
+
+  Standard errors in parameter units are ``theta_hat sqrt(C_jj)`` (delta method).
+* Uncertainty forward: :meth:`FitResult.predict` with ``band=True`` gives ``e(V)``,
+  the rebound speed and the contact time at the ends of the parameter's interval
+  (one free parameter: exact for a quantity monotone in it) or by the delta method
+  over all free parameters; :meth:`FitResult.band_ends` gives the fitted model at
+  the interval's ends for exports.
+
+Ranking (:func:`rank_models`)
+-----------------------------
+Each model is fitted to the same data; the table gives ``AIC = -2 ln L + 2K``,
+the small-sample ``AICc = AIC + 2K(K+1)/(n-K-1)`` and ``BIC = -2 ln L + K ln n``
+with Gaussian ``-2 ln L = n ln(RSS/n)`` (``K`` counts the scale) or ``chi^2``
+with absolute sigma (astropy's ``akaike_info_criterion_lsq`` documentation),
+the Akaike weights ``w_i = exp(-Delta_i/2) / sum exp(-Delta_j/2)`` of the AICc
+differences (Burnham & Anderson, *Model Selection and Multimodel Inference*,
+2002), and a K-fold cross-validated error. When the second model lies within 2
+units of AICc of the best (the rule of thumb of Burnham & Anderson 2002), the
+ranking carries a caveat that the data cannot tell these models apart.
 
 Measured accuracy (tests/test_fitting.py): noise-free data give ``p_y`` back to
-better than 1e-6 relative; over 200 seeded synthetic data sets the 95 %
-intervals cover the true value in about 95 % of draws.
+better than 1e-6 relative; over seeded synthetic data sets with points near and
+above 1 the 95 % intervals cover the true value at the stated rate for every loss.
 """
 
 from __future__ import annotations
@@ -77,6 +131,7 @@ import csv
 import io
 import math
 import os
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -88,35 +143,95 @@ from .materials import DEFAULT_K, sphere_mass
 from .pair import ContactPair
 
 __all__ = [
+    "FAR_ABOVE_ONE",
     "FREE_PARAMETERS",
+    "INTERVALS",
     "LOSSES",
+    "PROFILE_BELOW",
+    "SEED_MODEL",
+    "TUNING",
     "FitResult",
+    "FitWarning",
+    "ModelRanking",
+    "Prediction",
     "RestitutionData",
+    "available_models",
     "fit_restitution",
     "load_restitution_csv",
     "plot_fit",
+    "plot_models",
     "plot_residuals",
+    "rank_models",
 ]
 
-#: Parameters that :func:`fit_restitution` can leave free, with the exponent ``c``
-#: of ``V_y ~ theta^c`` (eq. 28: ``V_y ~ p_y^(5/2) E*^(-2) rho^(-1/2)``), the
-#: unit shown to people, and the scale from SI to that unit.
+#: The seed's model (Thornton & Ning form, seed eqs. 22-28): the default ``model=``.
+SEED_MODEL = "thornton_ning_2016"
+
+#: Pair parameters that :func:`fit_restitution` can leave free, with the exponent ``c``
+#: of ``V_y ~ theta^c`` (eq. 28: ``V_y ~ p_y^(5/2) E*^(-2) rho^(-1/2)``), the SI unit,
+#: the unit shown to people and the scale from SI to that unit.
 FREE_PARAMETERS: dict[str, dict] = {
-    "limiting_pressure": {"exponent": 2.5, "unit": "MPa", "scale": 1e-6, "symbol": "p_y", "tex": "$p_y$"},
-    "k": {"exponent": 2.5, "unit": "", "scale": 1.0, "symbol": "k = p_y/Y", "tex": "$k = p_y/Y$"},
-    "effective_modulus": {"exponent": -2.0, "unit": "GPa", "scale": 1e-9, "symbol": "E*", "tex": "$E^*$"},
-    "density": {"exponent": -0.5, "unit": "kg/m^3", "scale": 1.0, "symbol": "rho", "tex": r"$\rho$"},
-    "yield_velocity": {"exponent": 1.0, "unit": "m/s", "scale": 1.0, "symbol": "V_y", "tex": "$V_y$"},
+    "limiting_pressure": {
+        "exponent": 2.5,
+        "si": "Pa",
+        "unit": "MPa",
+        "scale": 1e-6,
+        "symbol": "p_y",
+        "tex": "$p_y$",
+    },
+    "k": {"exponent": 2.5, "si": "", "unit": "", "scale": 1.0, "symbol": "k = p_y/Y", "tex": "$k = p_y/Y$"},
+    "effective_modulus": {
+        "exponent": -2.0,
+        "si": "Pa",
+        "unit": "GPa",
+        "scale": 1e-9,
+        "symbol": "E*",
+        "tex": "$E^*$",
+    },
+    "density": {
+        "exponent": -0.5,
+        "si": "kg/m^3",
+        "unit": "kg/m^3",
+        "scale": 1.0,
+        "symbol": "rho",
+        "tex": r"$\rho$",
+    },
+    "yield_velocity": {"exponent": 1.0, "si": "m/s", "unit": "m/s", "scale": 1.0, "symbol": "V_y", "tex": "$V_y$"},
 }
 
 #: Losses of :func:`scipy.optimize.least_squares` accepted by :func:`fit_restitution`.
 LOSSES = ("linear", "soft_l1", "huber", "cauchy", "arctan")
+
+#: Default ``f_scale`` of each loss in units of the noise's standard deviation: the value at which
+#: the M-estimator has 95 % asymptotic efficiency for Gaussian noise, ``E[psi']^2 / E[psi^2] = 0.95``,
+#: computed numerically for the losses of :func:`scipy.optimize.least_squares` (for Huber's loss it
+#: reproduces the classical 1.345, for Cauchy's 2.385).
+TUNING = {"linear": 1.0, "soft_l1": 1.287, "huber": 1.345, "cauchy": 2.385, "arctan": 2.571}
+
+#: Interval methods of :func:`fit_restitution`.
+INTERVALS = ("auto", "wald", "profile")
+
+#: ``interval="auto"`` uses the profile interval below this many points above ``V_y``.
+PROFILE_BELOW = 10
+
+#: A point is "far above 1" when ``e - 1`` exceeds this many standard uncertainties.
+FAR_ABOVE_ONE = 3.0
+
+#: The profile search looks this far from the estimate in ``ln theta`` (a factor e^8 ~ 3000).
+_PROFILE_REACH = 8.0
+
+#: Largest number of points the start's grid search looks at.
+_START_POINTS = 2048
 
 # Column names accepted by load_restitution_csv (lower case, units stripped).
 _VELOCITY_NAMES = ("velocity", "v", "speed", "impact_velocity", "impact_speed")
 _RESTITUTION_NAMES = ("restitution", "e", "cor", "coefficient_of_restitution")
 _SIGMA_NAMES = ("sigma", "e_err", "uncertainty", "e_sigma", "restitution_err", "restitution_sigma")
 _VELOCITY_UNITS = ("m/s", "m s-1", "m s^-1", "m.s-1", "m*s^-1", "m s**-1")
+
+
+class FitWarning(UserWarning):
+    """Something in the data or the fit the user should look at (points far above 1, ...)."""
 
 
 # --------------------------------------------------------------------------- data
@@ -183,8 +298,10 @@ def load_restitution_csv(path) -> RestitutionData:
     ------
     ValueError
         With the file's line number: missing columns, a wrong number of cells,
-        non-numeric or non-finite cells, negative (or zero) speeds, restitution
-        outside (0, 1], non-positive uncertainties, no data rows.
+        non-numeric or non-finite cells, negative (or zero) speeds, negative
+        restitution, non-positive uncertainties, no data rows. Measured values
+        above 1 are kept (scatter near the yield velocity); ``e = 0`` is kept as
+        "stuck" (:func:`fit_restitution` decides whether the model allows it).
 
     Examples
     --------
@@ -265,8 +382,8 @@ def load_restitution_csv(path) -> RestitutionData:
         if v == 0:
             raise ValueError(f"{where} line {lineno}: impact speed must be positive, got 0")
         r = number(ie, "restitution")
-        if not 0.0 < r <= 1.0:
-            raise ValueError(f"{where} line {lineno}: restitution {r:g} is outside (0, 1]")
+        if r < 0.0:
+            raise ValueError(f"{where} line {lineno}: restitution must be >= 0, got {r:g}")
         if isg is not None:
             sg = number(isg, "sigma")
             if sg <= 0:
@@ -281,12 +398,93 @@ def load_restitution_csv(path) -> RestitutionData:
     )
 
 
-# --------------------------------------------------------------------------- model
+# --------------------------------------------------------------------------- models
+def _zoo():
+    from .core import models  # imported here: keeps `import microimpact` fast
+
+    return models
+
+
+def available_models() -> list[str]:
+    """Names accepted as ``model=``: the seed first, then the models of :mod:`microimpact.core.models`."""
+    names = [n for n in _zoo().available() if n != SEED_MODEL]
+    return [SEED_MODEL, *names]
+
+
+_MODULES: dict = {}
+
+
+def _model_module(name):
+    """The zoo module of ``name``; None for the seed (evaluated by its array formula)."""
+    if name == SEED_MODEL:
+        return None
+    if not isinstance(name, str):
+        raise ValueError(f"model must be a model's name (one of {', '.join(available_models())}), got {name!r}")
+    zoo = _zoo()
+    key = (name, zoo.get)  # the registry's function in the key: a replaced registry is looked up anew
+    if key not in _MODULES:
+        if name not in available_models():
+            raise ValueError(f"model must be one of {', '.join(available_models())}; got {name!r}")
+        _MODULES[key] = zoo.get(name)
+    return _MODULES[key]
+
+
+def _model_sticks(name) -> bool:
+    module = _model_module(name)
+    return bool(getattr(module, "STICKS", False)) if module is not None else False
+
+
+def _outcome_of(model_name, pair, params, V, fields=("restitution", "rebound_velocity", "contact_time")):
+    """Outcome ``fields`` of model ``model_name`` for ``pair`` and model ``params`` at speeds ``V`` [m/s].
+
+    The seed through :meth:`ContactPair.impact` (seed eqs. 5-33); a zoo model through its
+    scalar ``outcome(V, E, R, m, p_y, params)`` over the array (:func:`microimpact.core.arrays.evaluate`,
+    as :func:`microimpact.impact.outcome_arrays` does: compiled loops for a ``@jitable`` outcome).
+    """
+    V = np.asarray(V, dtype=float)
+    if model_name == SEED_MODEL:
+        if fields == ("restitution",):
+            return {"restitution": restitution_coefficient(V, pair.yield_velocity)}
+        res = pair.impact(V, warn=False)
+        return {f: np.asarray(getattr(res, f), dtype=float) for f in fields}
+    from .core.arrays import evaluate, registered
+    from .core.quantities import OUTCOME_FIELDS
+
+    module = _model_module(model_name)
+    args = (
+        V.ravel(),
+        *(np.asarray(float(x)) for x in (pair.effective_modulus, pair.effective_radius, pair.effective_mass)),
+        np.asarray(float(pair.limiting_pressure)),
+    )
+    # compiled loops for a @jitable outcome (every zoo model); a plain Python function runs in Python
+    backend = None if module.outcome in registered() else "python"
+    values = evaluate(
+        module.outcome, *args, nout=len(OUTCOME_FIELDS), params=tuple(float(x) for x in params), backend=backend
+    )
+    return {f: np.asarray(values[OUTCOME_FIELDS.index(f)], dtype=float).reshape(V.shape) for f in fields}
+
+
+def _restitution_of(model_name, pair, params, V):
+    """Restitution ``e(V)`` [-] of model ``model_name`` with ``pair`` and model ``params``: the one
+    function through which fitting and ranking evaluate every model."""
+    return _outcome_of(model_name, pair, params, V, fields=("restitution",))["restitution"]
+
+
+# --------------------------------------------------------------------------- checks
 def _where(i, line_numbers):
     return f"line {int(line_numbers[i])}" if line_numbers is not None else f"point {int(i)}"
 
 
 def _check_data(velocity, restitution, sigma, line_numbers):
+    for what, x in (("velocity", velocity), ("restitution", restitution), ("sigma", sigma)):
+        if x is None:
+            continue
+        if isinstance(x, bool) or (isinstance(x, np.ndarray) and x.dtype == bool):
+            raise ValueError(f"{what} must be numbers, got booleans")
+        if np.iscomplexobj(x):
+            raise ValueError(f"{what} must be real numbers, got complex values")
+        if np.ma.isMaskedArray(x):
+            raise ValueError(f"{what}: masked arrays are not accepted; drop the masked points first")
     V = np.asarray(velocity, dtype=float).ravel()
     e = np.asarray(restitution, dtype=float).ravel()
     if V.size != e.size:
@@ -301,10 +499,10 @@ def _check_data(velocity, restitution, sigma, line_numbers):
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
         raise ValueError(f"velocity must be positive and finite, got {float(V[i])!r} ({_where(i, line_numbers)})")
-    bad = ~((e > 0) & (e <= 1))
+    bad = ~(np.isfinite(e) & (e >= 0))
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
-        raise ValueError(f"restitution must lie in (0, 1], got {float(e[i])!r} ({_where(i, line_numbers)})")
+        raise ValueError(f"restitution must be finite and >= 0, got {float(e[i])!r} ({_where(i, line_numbers)})")
     if sigma is not None:
         s = np.broadcast_to(np.asarray(sigma, dtype=float), V.shape).copy()
         bad = ~(np.isfinite(s) & (s > 0))
@@ -315,38 +513,92 @@ def _check_data(velocity, restitution, sigma, line_numbers):
     return V, e, sigma, line_numbers
 
 
-def _parse_params(params):
+def _parse_params(params, allow_empty=False):
     if isinstance(params, str):
         params = [p.strip() for p in params.split(",") if p.strip()]
     params = tuple(params)
-    if not params:
+    if not params and not allow_empty:
         raise ValueError("params: give at least one free parameter")
     for p in params:
-        if p not in FREE_PARAMETERS:
-            raise ValueError(f"params must be among {', '.join(FREE_PARAMETERS)}, got {p!r}")
+        if not isinstance(p, str):
+            raise ValueError(f"params: names of parameters, got {p!r}")
     if len(set(params)) != len(params):
         raise ValueError(f"params: each parameter once, got {params!r}")
-    if len(params) > 1:
+    pair_level = [p for p in params if p in FREE_PARAMETERS]
+    if len(pair_level) > 1:
         raise ValueError(
-            f"params {', '.join(params)}: restitution data determine only one parameter. The model's "
-            "e depends on V only through V/V_y, and V_y on p_y^(5/2) E*^(-2) m*^(-1/2) (seed eqs. 27-28), "
+            f"params {', '.join(pair_level)}: restitution data determine only one parameter of the pair. The "
+            "model's e depends on V only through V/V_y, and V_y on p_y^(5/2) E*^(-2) m*^(-1/2) (seed eqs. 27-28), "
             "so these parameters are not separately identifiable whatever the speed range; "
             "fix all but one (e.g. params=('limiting_pressure',))"
         )
     return params
 
 
-class _Model:
-    """Maps the free parameter to a :class:`ContactPair` (by ``pair.replace``) and ``e(V)``."""
+def _number(name, value):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise ValueError(f"{name} must be a real number, got {value!r}")
+    return float(value)
 
-    def __init__(self, pair: ContactPair, name: str, yield_strength=None):
+
+class _YieldOnly:
+    """Stands for a pair where only ``yield_velocity`` [m/s] is read (the seed's e(V), eq. 27)."""
+
+    __slots__ = ("yield_velocity",)
+
+    def __init__(self, yield_velocity):
+        self.yield_velocity = yield_velocity
+
+
+class _Model:
+    """Maps the free parameters ``u`` (logs) to a pair and model parameters, and those to ``e(V)``.
+
+    At most one pair parameter (by ``pair.replace``) and any of the model's own
+    ``PARAMETERS``; ``theta_j = ref_j exp(u_j)``.
+    """
+
+    def __init__(self, pair: ContactPair, names, *, model=SEED_MODEL, model_params=None, yield_strength=None):
         if not isinstance(pair, ContactPair):
             raise ValueError(f"pair must be a ContactPair, got {type(pair).__name__}")
+        module = _model_module(model)
+        self.model = model
         self.pair = pair
-        self.name = name
-        self.exponent = FREE_PARAMETERS[name]["exponent"]
+        spec = tuple(module.PARAMETERS) if module is not None else ()
+        self.own = tuple(p[0] for p in spec)
+        self.own_units = {p[0]: p[1] for p in spec}
+        values = dict(zip(self.own, (float(d) for d in module.DEFAULTS))) if module is not None else {}
+        for k, v in (model_params or {}).items():
+            if k not in self.own:
+                have = ", ".join(self.own) or "none"
+                raise ValueError(f"model_params: model {model} has no parameter {k!r} (its parameters: {have})")
+            values[k] = _number(f"model_params[{k!r}]", v)
+        unknown = [n for n in names if n not in FREE_PARAMETERS and n not in self.own]
+        if unknown:
+            allowed = ", ".join([*FREE_PARAMETERS, *self.own])
+            raise ValueError(f"params must be among {allowed} for model {model}, got {unknown[0]!r}")
+        pair_names = [n for n in names if n in FREE_PARAMETERS]
+        self.own_free = tuple(n for n in names if n in self.own)
+        self.names = tuple(pair_names) + self.own_free
+        for n in self.own:
+            v = values[n]
+            if n in self.own_free and not (math.isfinite(v) and v > 0):
+                raise ValueError(
+                    f"model parameter {n} is fitted in ln and needs a positive start value: "
+                    f"give model_params={{{n!r}: ...}}, got {v!r}"
+                )
+            if not math.isfinite(v):
+                raise ValueError(f"model {model} needs a value of its parameter {n}: give model_params={{{n!r}: ...}}")
+        self.values = values
+        self.name = pair_names[0] if pair_names else None
         self.yield_strength = None
         finite_py = math.isfinite(pair.limiting_pressure)
+        self.ref = None
+        if self.name is not None:
+            self._init_pair_parameter(pair, self.name, yield_strength, finite_py)
+        self.refs = np.array(([self.ref] if self.name else []) + [values[n] for n in self.own_free], dtype=float)
+
+    def _init_pair_parameter(self, pair, name, yield_strength, finite_py):
+        self.exponent = FREE_PARAMETERS[name]["exponent"]
         if not finite_py and name in ("effective_modulus", "density"):
             raise ValueError(f"pair has limiting_pressure = inf (never yields): give it a finite p_y to fit {name}")
         if name == "k":
@@ -359,7 +611,7 @@ class _Model:
                     "yield_strength is needed to fit k = p_y / Y: give yield_strength=... or a pair "
                     "built from materials with a yield strength"
                 )
-            Y = float(Y)
+            Y = _number("yield_strength", Y)
             if not (math.isfinite(Y) and Y > 0):
                 raise ValueError(f"yield_strength must be positive and finite, got {Y!r}")
             self.yield_strength = Y
@@ -382,37 +634,61 @@ class _Model:
             # V_y ~ p_y^(5/2) at fixed E*, m*: vary p_y from this base pair.
             self.base = pair if finite_py else pair.replace(limiting_pressure=1e8)
             self.ref = self.base.yield_velocity
-        # Every free parameter enters V_y as a power law; a pair with p_y = inf has no
+        # Every pair parameter enters V_y as a power law; a pair with p_y = inf has no
         # finite V_y, so the reference pair takes a nominal finite p_y there.
         self.ref_pair = self.pair_at(0.0) if not finite_py else pair
         self.ref_vy = self.ref_pair.yield_velocity
 
     def pair_at(self, u) -> ContactPair:
-        """The pair with the free parameter at ``ref * exp(u)``."""
+        """The pair with the free pair parameter at ``ref * exp(u)`` (via :meth:`ContactPair.vary`)."""
         theta = float(self.ref * math.exp(float(u)))
-        p = self.pair
-        if self.name == "limiting_pressure":
-            return p.replace(limiting_pressure=theta)
         if self.name == "k":
-            return p.replace(limiting_pressure=theta * self.yield_strength)
-        if self.name == "effective_modulus":
-            return p.replace(effective_modulus=theta)
-        if self.name == "density":
-            return p.resized(density=theta)
-        # yield_velocity
-        return self.base.replace(limiting_pressure=self.base.limiting_pressure * (theta / self.ref) ** 0.4)
+            return self.pair.vary(limiting_pressure=theta * self.yield_strength)
+        if self.name == "yield_velocity":
+            return self.base.vary(yield_velocity=theta)
+        return self.pair.vary(**{self.name: theta})
 
-    def yield_velocity(self, u):
-        """``V_y`` [m/s] at ``u``, from the pair (eq. 28, general energy form)."""
-        return self.pair_at(u).yield_velocity
+    def split(self, u):
+        """``(pair, params)`` at ``u``: the pair and the model's parameter tuple."""
+        u = np.atleast_1d(np.asarray(u, dtype=float))
+        i = 0
+        pair = self.pair
+        if self.name is not None:
+            pair = self.pair_at(u[0])
+            i = 1
+        vals = dict(self.values)
+        for j, n in enumerate(self.own_free):
+            vals[n] = float(self.refs[i + j] * math.exp(float(u[i + j])))
+        return pair, tuple(vals[n] for n in self.own)
+
+    def theta(self, u):
+        """Free parameters in their own units at ``u``."""
+        return self.refs * np.exp(np.asarray(u, dtype=float))
 
     def restitution(self, u, V):
-        """Model ``e(V)`` (eq. 27) of the pair at ``u``."""
-        return restitution_coefficient(V, self.yield_velocity(u))
+        """Model ``e(V)`` at ``u`` (via :func:`_restitution_of`).
+
+        The seed's ``e(V)`` reads only ``pair.yield_velocity``, which is the power law
+        ``V_y,ref exp(c u)`` of the free pair parameter (eq. 28); the optimiser's many
+        evaluations get it from :class:`_YieldOnly` instead of building a
+        :class:`ContactPair` each time (0.3 ms of validation per pair).
+        """
+        if self.model == SEED_MODEL and self.name is not None:
+            u0 = float(np.atleast_1d(u)[0])
+            return _restitution_of(self.model, _YieldOnly(self.ref_vy * math.exp(self.exponent * u0)), (), V)
+        pair, params = self.split(u)
+        return _restitution_of(self.model, pair, params, V)
+
+    def outcome(self, u, V, fields=("restitution", "rebound_velocity", "contact_time")):
+        pair, params = self.split(u)
+        return _outcome_of(self.model, pair, params, V, fields)
 
     def u_of_yield_velocity(self, vy):
         """Inverse of the power law ``V_y = V_y,ref exp(c u)`` (start values)."""
         return np.log(np.asarray(vy) / self.ref_vy) / self.exponent
+
+    def unit(self, name):
+        return FREE_PARAMETERS[name]["si"] if name in FREE_PARAMETERS else self.own_units.get(name, "")
 
 
 # ---------------------------------------------------------------------- losses
@@ -437,7 +713,80 @@ def _psi(loss, r, f_scale):
     return r * d1, d1 + 2.0 * z * d2
 
 
+def _loss_terms(loss, r, f_scale):
+    """``2 L(r_i) = f^2 rho((r_i/f)^2)`` per point (``r_i^2`` for least squares)."""
+    z = (r / f_scale) ** 2
+    if loss == "linear":
+        rho = z
+    elif loss == "soft_l1":
+        rho = 2.0 * (np.sqrt(1.0 + z) - 1.0)
+    elif loss == "huber":
+        rho = np.where(z <= 1.0, z, 2.0 * np.sqrt(z) - 1.0)
+    elif loss == "cauchy":
+        rho = np.log1p(z)
+    else:
+        rho = np.arctan(z)
+    return f_scale**2 * rho
+
+
+def _objective(loss, r, f_scale):
+    """``Q = sum 2 L(r_i)`` (``sum r_i^2`` for least squares)."""
+    return float(np.sum(_loss_terms(loss, r, f_scale)))
+
+
+def _mad_scale(r):
+    """Robust scatter ``1.4826 median |r - median r|`` (consistent with the sd for Gaussian noise)."""
+    return 1.4826 * float(np.median(np.abs(r - np.median(r)))) if r.size else 0.0
+
+
 # ---------------------------------------------------------------------- result
+@dataclass(frozen=True)
+class Prediction:
+    """``e(V)``, rebound speed and contact time of a fitted model, each with its band.
+
+    Every ``*_lo`` / ``*_hi`` pair bounds the quantity pointwise at the confidence
+    of the fit; ``method`` says how (``"interval ends"`` or ``"delta method"``).
+
+    Attributes
+    ----------
+    velocity : ndarray
+        Impact speeds ``V`` [m/s].
+    restitution, restitution_lo, restitution_hi : ndarray
+        Coefficient of restitution ``e`` [-] and its band.
+    rebound_velocity, rebound_velocity_lo, rebound_velocity_hi : ndarray
+        Rebound speed ``V_r = e V`` [m/s] and its band.
+    contact_time, contact_time_lo, contact_time_hi : ndarray
+        Contact time [s] and its band (seed eqs. 29-33 for the seed).
+    confidence : float
+        Level of the band.
+    method : str
+        How the band was obtained.
+    """
+
+    velocity: np.ndarray
+    restitution: np.ndarray
+    restitution_lo: np.ndarray
+    restitution_hi: np.ndarray
+    rebound_velocity: np.ndarray
+    rebound_velocity_lo: np.ndarray
+    rebound_velocity_hi: np.ndarray
+    contact_time: np.ndarray
+    contact_time_lo: np.ndarray
+    contact_time_hi: np.ndarray
+    confidence: float
+    method: str
+
+    def to_dict(self) -> dict:
+        """Plain lists (SI units)."""
+        return {
+            k: (np.asarray(v).tolist() if isinstance(v, np.ndarray) else v)
+            for k, v in self.__dict__.items()  # noqa: SIM118
+        }
+
+
+_QUANTITIES = ("restitution", "rebound_velocity", "contact_time")
+
+
 @dataclass(frozen=True, eq=False)
 class FitResult:
     """Outcome of :func:`fit_restitution`.
@@ -445,12 +794,11 @@ class FitResult:
     Attributes
     ----------
     params : dict
-        Estimate of each free parameter, SI units (``k`` dimensionless).
+        Estimate of each free parameter, SI units (``k`` dimensionless); see :attr:`units`.
     stderr : dict
         Standard error of each (delta method: ``theta sqrt(C_uu)``).
     conf_int : dict
-        ``(lo, hi)`` confidence interval of each, at :attr:`confidence` (exact image of the
-        symmetric interval in ``ln theta``).
+        ``(lo, hi)`` confidence interval of each at :attr:`confidence`, by :attr:`interval`.
     covariance : ndarray
         Covariance of the free parameters, SI units (delta method from ``log_covariance``).
     log_covariance : ndarray
@@ -473,6 +821,16 @@ class FitResult:
         The optimiser converged.
     message : str
         The optimiser's message.
+    model : str
+        Name of the model (``model=`` of :func:`fit_restitution`).
+    model_params : dict
+        All of the model's own parameters at the solution (fitted or fixed).
+    interval : str
+        ``"wald"`` or ``"profile"``: how :attr:`conf_int` was obtained.
+    units : dict
+        SI unit of each free parameter.
+    n_far_above_one : int
+        Points with ``e_i - 1 > 3 s_i`` (see the module docstring); a :class:`FitWarning` names them.
     """
 
     params: dict
@@ -501,6 +859,12 @@ class FitResult:
     restitution: np.ndarray = field(repr=False)
     sigma: np.ndarray | None = field(repr=False)
     nfev: int = 0
+    model: str = SEED_MODEL
+    model_params: dict = field(default_factory=dict)
+    interval: str = "wald"
+    wald_conf_int: dict = field(default_factory=dict)
+    units: dict = field(default_factory=dict)
+    n_far_above_one: int = 0
     _model: _Model = field(repr=False, default=None)
     _u: np.ndarray = field(repr=False, default=None)
 
@@ -514,32 +878,134 @@ class FitResult:
         """``chi2 / dof`` (about 1 when ``sigma`` describes the scatter)."""
         return self.chi2 / self.dof if self.dof > 0 else math.nan
 
-    def predict(self, velocity):
-        """Restitution coefficient of the fitted pair at ``velocity`` [m/s] (seed eq. 27)."""
-        return self.pair.restitution(velocity)
+    def predict(self, velocity, band=False):
+        """Restitution of the fitted model at ``velocity`` [m/s]; with ``band=True`` a :class:`Prediction`.
 
-    def confidence_band(self, velocity, confidence=None):
-        """Pointwise confidence band ``(lo, hi)`` of the fitted ``e(V)``.
+        Parameters
+        ----------
+        velocity : array_like
+            Impact speeds [m/s], >= 0.
+        band : bool
+            False (default): return ``e(V)`` [-] as an array. True: return a
+            :class:`Prediction` with ``e(V)``, the rebound speed [m/s] and the
+            contact time [s], each with its band at :attr:`confidence`. With one
+            free parameter the band is the range of each quantity over the
+            parameter's interval :attr:`conf_int` (evaluated at its ends and the
+            estimate: exact for a quantity monotone in the parameter, which ``e``,
+            ``V_r`` and the contact time are for the seed); with several, the delta
+            method over all of them (:attr:`log_covariance`).
 
-        Delta method: ``var e(V) = g C g^T`` with ``g = de/du`` (central difference
-        in the log-parameter ``u``) and ``C`` the fit's :attr:`log_covariance`;
-        the band is ``e +- q sqrt(var)``, clipped to ``[0, 1]``, with ``q`` the
-        quantile used for :attr:`conf_int` (or the one for ``confidence``).
+        Returns
+        -------
+        ndarray or Prediction
         """
+        if not band:
+            return self._model.restitution(self._u, velocity)
         V = np.asarray(velocity, dtype=float)
-        q = self.quantile if confidence is None else self._quantile(confidence)
-        h = 1e-6
-        u = self._u
-        grads = []
+        mid = self._model.outcome(self._u, V)
+        if not self.params:  # nothing fitted: no band
+            lo, hi = dict(mid), dict(mid)
+            method = "no free parameter"
+        elif len(self.params) == 1:
+            ends = [self._model.outcome(u, V) for u in self._end_us()]
+            lo = {q: np.minimum(mid[q], np.minimum(ends[0][q], ends[1][q])) for q in _QUANTITIES}
+            hi = {q: np.maximum(mid[q], np.maximum(ends[0][q], ends[1][q])) for q in _QUANTITIES}
+            method = "interval ends"
+        else:
+            lo, hi = {}, {}
+            grads = self._gradients(lambda u: self._model.outcome(u, V), _QUANTITIES)
+            for q in _QUANTITIES:
+                half = self.quantile * np.sqrt(self._quadratic(grads[q]))
+                lo[q], hi[q] = mid[q] - half, mid[q] + half
+            method = "delta method"
+        lo["restitution"] = np.clip(lo["restitution"], 0.0, 1.0)
+        hi["restitution"] = np.clip(hi["restitution"], 0.0, 1.0)
+        kw = {}
+        for q in _QUANTITIES:
+            kw[q], kw[q + "_lo"], kw[q + "_hi"] = mid[q], lo[q], hi[q]
+        return Prediction(velocity=V, confidence=self.confidence, method=method, **kw)
+
+    def _end_us(self):
+        name = self.free[0]
+        lo, hi = self.conf_int[name]
+        ref = self._model.refs[0]
+        out = []
+        for t in (lo, hi):
+            if t > 0 and math.isfinite(t):
+                out.append(np.array([math.log(t / ref)]))
+            else:  # an open profile interval: no finite end on that side
+                out.append(np.array([self._u[0] + (50.0 if t > 0 else -50.0)]))
+        return out
+
+    def band_ends(self) -> list[dict]:
+        """The fitted model at the two ends of the parameter's confidence interval.
+
+        What an export needs to write tables at the band's ends: for each end a dict
+        with ``"end"`` (``"lower"``/``"upper"`` end of the parameter interval),
+        ``"parameter"``, ``"value"`` (SI), ``"pair"`` (:class:`ContactPair`),
+        ``"model"`` and ``"model_params"`` (dict). Defined for one free parameter.
+        """
+        if len(self.params) != 1:
+            raise ValueError(f"band_ends needs exactly one free parameter, this fit has {len(self.params)}")
+        name = self.free[0]
+        out = []
+        for end, u, value in zip(("lower", "upper"), self._end_us(), self.conf_int[name]):
+            pair, params = self._model.split(u)
+            out.append(
+                {
+                    "end": end,
+                    "parameter": name,
+                    "value": float(value),
+                    "pair": pair,
+                    "model": self.model,
+                    "model_params": dict(zip(self._model.own, params)),
+                }
+            )
+        return out
+
+    def _gradients(self, f, keys, h=1e-6):
+        """Central differences of ``f(u)[key]`` with respect to every component of ``u``."""
+        u = np.asarray(self._u, dtype=float)
+        cols = {k: [] for k in keys}
         for j in range(u.size):
             up, um = u.copy(), u.copy()
             up[j] += h
             um[j] -= h
-            grads.append((self._model.restitution(up[0], V) - self._model.restitution(um[0], V)) / (2 * h))
-        g = np.stack(grads, axis=-1)
-        var = np.einsum("...i,ij,...j->...", g, self.log_covariance, g)
-        e = self._model.restitution(u[0], V)
-        half = q * np.sqrt(np.maximum(var, 0.0))
+            fp, fm = f(up), f(um)
+            for k in keys:
+                cols[k].append((np.asarray(fp[k]) - np.asarray(fm[k])) / (2 * h))
+        return {k: np.stack(v, axis=-1) for k, v in cols.items()}
+
+    def _quadratic(self, g):
+        return np.maximum(np.einsum("...i,ij,...j->...", g, self.log_covariance, g), 0.0)
+
+    def confidence_band(self, velocity, confidence=None):
+        """Pointwise confidence band ``(lo, hi)`` of the fitted ``e(V)`` (delta method).
+
+        ``var e(V) = g C g^T`` with ``g = de/du`` (central differences in *every*
+        free log-parameter ``u_j``) and ``C`` the fit's :attr:`log_covariance`; the
+        band is ``e +- q sqrt(var)``, clipped to ``[0, 1]``, with ``q`` the quantile
+        used for the Wald interval (or the one for ``confidence``).
+
+        Parameters
+        ----------
+        velocity : array_like
+            Impact speeds [m/s].
+        confidence : float, optional
+            Level; default :attr:`confidence`.
+
+        Returns
+        -------
+        (ndarray, ndarray)
+            Lower and upper ends [-].
+        """
+        V = np.asarray(velocity, dtype=float)
+        q = self.quantile if confidence is None else self._quantile(confidence)
+        e = self._model.restitution(self._u, V)
+        if len(self.params) == 0:
+            return e.copy(), e.copy()
+        g = self._gradients(lambda u: {"e": self._model.restitution(u, V)}, ("e",))["e"]
+        half = q * np.sqrt(self._quadratic(g))
         return np.clip(e - half, 0.0, 1.0), np.clip(e + half, 0.0, 1.0)
 
     def _quantile(self, confidence):
@@ -549,9 +1015,13 @@ class FitResult:
     def to_dict(self) -> dict:
         """Estimates, errors and fit statistics as plain Python values (SI units)."""
         return {
+            "model": self.model,
+            "model_params": {k: float(v) for k, v in self.model_params.items()},
             "params": {k: float(v) for k, v in self.params.items()},
+            "units": dict(self.units),
             "stderr": {k: float(v) for k, v in self.stderr.items()},
             "conf_int": {k: [float(a), float(b)] for k, (a, b) in self.conf_int.items()},
+            "interval": self.interval,
             "confidence": self.confidence,
             "yield_velocity": self.yield_velocity,
             "yield_velocity_stderr": self.yield_velocity_stderr,
@@ -563,6 +1033,7 @@ class FitResult:
             "reduced_chi2": self.reduced_chi2,
             "n_points": self.n_points,
             "n_elastic": self.n_elastic,
+            "n_far_above_one": self.n_far_above_one,
             "loss": self.loss,
             "f_scale": self.f_scale,
             "absolute_sigma": self.absolute_sigma,
@@ -579,29 +1050,30 @@ class FitResult:
             "residuals": np.asarray(self.residuals).tolist(),
         }
 
+    def _display(self, name):
+        """(scale, unit) shown to people for parameter ``name``."""
+        if name in FREE_PARAMETERS:
+            return FREE_PARAMETERS[name]["scale"], FREE_PARAMETERS[name]["unit"]
+        return 1.0, self.units.get(name, "")
+
+    def _rows(self):
+        rows = []
+        for name, value in self.params.items():
+            scale, unit = self._display(name)
+            lo, hi = self.conf_int[name]
+            rows.append((name, value * scale, self.stderr[name] * scale, lo * scale, hi * scale, unit))
+        if "yield_velocity" not in self.params:
+            lo, hi = self.yield_velocity_conf_int
+            rows.append(("yield_velocity (derived)", self.yield_velocity, self.yield_velocity_stderr, lo, hi, "m/s"))
+        return rows
+
     def summary(self) -> str:
         """The estimates with standard errors and confidence intervals, in readable units."""
         pct = f"{100 * self.confidence:g} %"
-        rows = [("parameter", "estimate", "std. error", f"{pct} confidence interval")]
-
-        def fmt_row(label, value, err, lo, hi, unit, scale):
+        rows = [("parameter", "estimate", "std. error", f"{pct} confidence interval ({self.interval})")]
+        for label, value, err, lo, hi, unit in self._rows():
             u = f" {unit}" if unit else ""
-            return (
-                label,
-                f"{value * scale:.6g}{u}",
-                f"{err * scale:.3g}{u}",
-                f"[{lo * scale:.6g}, {hi * scale:.6g}]{u}",
-            )
-
-        for name, value in self.params.items():
-            info = FREE_PARAMETERS[name]
-            lo, hi = self.conf_int[name]
-            rows.append(fmt_row(name, value, self.stderr[name], lo, hi, info["unit"], info["scale"]))
-        if "yield_velocity" not in self.params:
-            lo, hi = self.yield_velocity_conf_int
-            rows.append(
-                fmt_row("yield_velocity (derived)", self.yield_velocity, self.yield_velocity_stderr, lo, hi, "m/s", 1.0)
-            )
+            rows.append((label, f"{value:.6g}{u}", f"{err:.3g}{u}", f"[{lo:.6g}, {hi:.6g}]{u}"))
         widths = [max(len(r[j]) for r in rows) for j in range(4)]
         table = ["  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in rows]
         table.insert(1, "  ".join("-" * w for w in widths))
@@ -616,7 +1088,7 @@ class FitResult:
             how = f"Huber M-estimator covariance, f_scale = {self.f_scale:.3g}"
         qname = "normal" if (self.absolute_sigma and self.loss == "linear") else f"Student t ({self.dof} dof)"
         head = (
-            f"fit of e(V) (seed eq. 27): {self.n_points} points, {self.n_elastic} at or below V_y "
+            f"fit of e(V), model {self.model}: {self.n_points} points, {self.n_elastic} at or below V_y "
             f"(elastic), loss {self.loss}; {how}; {qname} quantile"
         )
         stats_line = (
@@ -625,14 +1097,48 @@ class FitResult:
             f"rms residual = {math.sqrt(self.rss / self.n_points):.3g}"
         )
         tail = [] if self.success else [f"WARNING: the optimiser did not converge: {self.message}"]
+        if self.n_far_above_one:
+            tail.append(f"note: {self.n_far_above_one} point(s) lie more than {FAR_ABOVE_ONE:g} sigma above e = 1")
         return "\n".join([head, *table, stats_line, *tail])
 
     def __str__(self) -> str:
         return self.summary()
 
+    def __repr__(self) -> str:
+        pct = f"{100 * self.confidence:g}%"
+        parts = []
+        for label, value, _err, lo, hi, unit in self._rows():
+            u = f" {unit}" if unit else ""
+            parts.append(f"{label.split(' ')[0]}={value:.4g}{u} [{pct}: {lo:.4g}, {hi:.4g}]")
+        rms = math.sqrt(self.rss / self.n_points)
+        return (
+            f"FitResult(model={self.model!r}, {', '.join(parts)}, n={self.n_points} ({self.n_elastic} elastic), "
+            f"loss={self.loss!r}, interval={self.interval!r}, rms={rms:.3g})"
+        )
+
+    def _repr_html_(self) -> str:
+        import html
+
+        pct = f"{100 * self.confidence:g} %"
+        head = (
+            "<tr><th>parameter</th><th>estimate</th><th>std. error</th>"
+            f"<th>{pct} interval ({html.escape(self.interval)})</th><th>unit</th></tr>"
+        )
+        body = "".join(
+            f"<tr><td>{html.escape(label)}</td><td>{value:.6g}</td><td>{err:.3g}</td>"
+            f"<td>[{lo:.6g}, {hi:.6g}]</td><td>{html.escape(unit)}</td></tr>"
+            for label, value, err, lo, hi, unit in self._rows()
+        )
+        rms = math.sqrt(self.rss / self.n_points)
+        caption = (
+            f"fit of e(V), model {html.escape(self.model)}: {self.n_points} points "
+            f"({self.n_elastic} elastic), loss {html.escape(self.loss)}, rms residual {rms:.3g}"
+        )
+        return f"<table><caption>{caption}</caption>{head}{body}</table>"
+
 
 def _check_confidence(confidence):
-    c = float(confidence)
+    c = _number("confidence", confidence)
     if not 0.0 < c < 1.0:
         raise ValueError(f"confidence must lie in (0, 1), got {confidence!r}")
     return c
@@ -640,7 +1146,7 @@ def _check_confidence(confidence):
 
 def _quantile(confidence, dof, known_scale):
     p = 0.5 + confidence / 2.0
-    return float(special.ndtri(p) if known_scale else special.stdtrit(dof, p))
+    return float(special.ndtri(p) if known_scale else special.stdtrit(max(dof, 1), p))
 
 
 # ---------------------------------------------------------------------- the fit
@@ -651,50 +1157,61 @@ def fit_restitution(
     *,
     sigma=None,
     params=("limiting_pressure",),
+    model: str = SEED_MODEL,
+    model_params=None,
     loss: str = "linear",
     f_scale=None,
     confidence: float = 0.95,
+    interval: str = "auto",
     yield_strength=None,
     absolute_sigma=None,
     line_numbers=None,
     max_nfev=None,
 ) -> FitResult:
-    """Fit one parameter of a contact pair to measured restitution coefficients.
+    """Fit free parameter(s) of a model to measured restitution coefficients.
 
     Parameters
     ----------
     velocity : array_like
         Measured impact speeds ``V_i`` [m/s], positive.
     restitution : array_like
-        Measured restitution coefficients ``e_i``, in (0, 1].
+        Measured restitution coefficients ``e_i`` [-], finite and >= 0; values above 1
+        (scatter near ``V_y``) are fitted as measured; ``0`` ("stuck") only for a model
+        that can stick.
     pair : ContactPair
-        The known pair; its value of the free parameter is only a reference (the
+        The known pair; its value of a free pair parameter is only a reference (the
         start comes from a grid search over the data).
     sigma : array_like or float, optional
-        Standard uncertainty of each ``e_i``; absolute unless ``absolute_sigma=False``.
+        Standard uncertainty of each ``e_i`` [-]; absolute unless ``absolute_sigma=False``.
     params : sequence of str or str
-        The free parameter: ``"limiting_pressure"`` (default), ``"k"``,
-        ``"effective_modulus"``, ``"density"`` or ``"yield_velocity"``. Only one
-        can be free (see the module docstring: the data determine ``V_y`` only).
+        The free parameters: at most one pair parameter (``"limiting_pressure"``,
+        default, ``"k"``, ``"effective_modulus"``, ``"density"`` or
+        ``"yield_velocity"``; the seed's data determine ``V_y`` only) and any of the
+        model's own parameters.
+    model : str
+        Name of the model (:func:`available_models`); default the seed.
+    model_params : dict, optional
+        Values of the model's own parameters (start values of the free ones).
     loss : str
         ``"linear"`` (least squares) or a robust loss of
         :func:`scipy.optimize.least_squares`: ``"soft_l1"``, ``"huber"``,
         ``"cauchy"``, ``"arctan"``.
     f_scale : float, optional
         Residual size at which a robust loss starts to down-weight, in units of
-        ``e`` (or of ``sigma`` when given). Default: 1 with ``sigma``; without,
-        ``1.4826 * MAD`` of the residuals at the robust start (a robust estimate of
-        the scatter).
+        ``e`` (or of ``sigma`` when given). Default: the loss's :data:`TUNING`
+        constant (95 % efficiency for Gaussian noise) times the noise scale: 1 with
+        ``sigma``, else ``1.4826 * MAD`` of the residuals at the robust start.
     confidence : float
         Level of the confidence intervals, default 0.95.
+    interval : str
+        ``"auto"`` (default), ``"wald"`` or ``"profile"`` (module docstring).
     yield_strength : float, optional
         ``Y`` [Pa] for ``params=("k",)``; default: the smaller yield strength of the
         pair's materials.
     absolute_sigma : bool, optional
         Default True when ``sigma`` is given.
     line_numbers : array_like of int, optional
-        Source line of each point, quoted in error messages (the CLI passes
-        :attr:`RestitutionData.lines`).
+        Source line of each point, quoted in error messages and warnings.
     max_nfev : int, optional
         Passed to :func:`scipy.optimize.least_squares`.
 
@@ -707,6 +1224,12 @@ def fit_restitution(
     ValueError
         Bad data (naming the point or line), unknown or non-identifiable parameter
         sets, or too few points above the yield velocity for the parameters asked.
+
+    Warns
+    -----
+    FitWarning
+        Points far above 1 (``e_i - 1 > 3 s_i``, module docstring), or an optimiser
+        that did not converge.
 
     Examples
     --------
@@ -721,95 +1244,222 @@ def fit_restitution(
     (155.6, 1)
     """
     names = _parse_params(params)
+    return _fit(
+        velocity,
+        restitution,
+        pair,
+        names=names,
+        sigma=sigma,
+        model=model,
+        model_params=model_params,
+        loss=loss,
+        f_scale=f_scale,
+        confidence=confidence,
+        interval=interval,
+        yield_strength=yield_strength,
+        absolute_sigma=absolute_sigma,
+        line_numbers=line_numbers,
+        max_nfev=max_nfev,
+    )
+
+
+def _start_subset(V, n_max=_START_POINTS):
+    """Indices of at most ``n_max`` points spread evenly over the sorted speeds."""
+    if V.size <= n_max:
+        return np.arange(V.size)
+    order = np.argsort(V, kind="stable")
+    return order[np.linspace(0, V.size - 1, n_max).astype(np.intp)]
+
+
+def _fit(
+    velocity,
+    restitution,
+    pair,
+    *,
+    names,
+    sigma=None,
+    model=SEED_MODEL,
+    model_params=None,
+    loss="linear",
+    f_scale=None,
+    confidence=0.95,
+    interval="auto",
+    yield_strength=None,
+    absolute_sigma=None,
+    line_numbers=None,
+    max_nfev=None,
+    warn=True,
+):
     if loss not in LOSSES:
         raise ValueError(f"loss must be one of {', '.join(LOSSES)}, got {loss!r}")
+    if interval not in INTERVALS:
+        raise ValueError(f"interval must be one of {', '.join(INTERVALS)}, got {interval!r}")
     confidence = _check_confidence(confidence)
     V, e, sigma, line_numbers = _check_data(velocity, restitution, sigma, line_numbers)
+    mdl = _Model(pair, names, model=model, model_params=model_params, yield_strength=yield_strength)
+    stuck = e == 0.0
+    if stuck.any() and not _model_sticks(model):
+        i = int(np.flatnonzero(stuck)[0])
+        raise ValueError(
+            f"restitution 0 (stuck) at {_where(i, line_numbers)}: model {model} never sticks "
+            "(e > 0 at every finite speed); drop stuck points or choose a model with adhesion"
+        )
     if absolute_sigma is None:
         absolute_sigma = sigma is not None
     absolute_sigma = bool(absolute_sigma) and sigma is not None
     w = np.ones_like(V) if sigma is None else 1.0 / sigma
-    p = len(names)
+    p = len(mdl.names)
     n = V.size
+    if n <= p:
+        raise ValueError(f"{n} point(s) for {p} free parameter(s): need at least {p + 1}")
 
     plastic = e < 1.0
-    if plastic.sum() < p + 1:
-        at = ", ".join(_where(i, line_numbers) for i in np.flatnonzero(plastic)) or "none"
+    if mdl.name is not None and plastic.sum() < p + 1:
+        at = ", ".join(_where(i, line_numbers) for i in np.flatnonzero(plastic)[:10]) or "none"
         raise ValueError(
             f"too few points above the yield velocity for {p} free parameter(s): "
             f"{int(plastic.sum())} point(s) with e < 1 ({at}); need at least {p + 1}"
         )
 
-    model = _Model(pair, names[0], yield_strength=yield_strength)
-
-    # Robust start: least absolute deviations over a log grid of V_y.
-    vy_grid = np.geomspace(V.min() * 1e-3, V.max() * 2.0, 600)
-    e_grid = restitution_coefficient(V[None, :], vy_grid[:, None])
-    lad = np.sum(np.abs((e[None, :] - e_grid) * w[None, :]), axis=1)
-    vy0 = vy_grid[int(np.argmin(lad))]
-    u0 = np.atleast_1d(model.u_of_yield_velocity(vy0)).astype(float)
+    # Robust start: least absolute deviations over a log grid of V_y, on a subset.
+    u0 = np.zeros(p)
+    sub = _start_subset(V)
+    Vs, es, ws = V[sub], e[sub], w[sub]
+    if mdl.name is not None:
+        vy_grid = np.geomspace(Vs.min() * 1e-3, Vs.max() * 2.0, 600 if model == SEED_MODEL else 60)
+        if model == SEED_MODEL:
+            lad = np.concatenate(
+                [
+                    np.sum(np.abs((es - restitution_coefficient(Vs[None, :], blk[:, None])) * ws), axis=1)
+                    for blk in np.array_split(vy_grid, 10)  # blocks of 60 x 2048: about 1 MB each
+                ]
+            )
+        else:
+            lad = []
+            for vy in vy_grid:
+                ug = u0.copy()
+                ug[0] = float(mdl.u_of_yield_velocity(vy))
+                lad.append(np.sum(np.abs((es - mdl.restitution(ug, Vs)) * ws)))
+            lad = np.asarray(lad)
+        u0[0] = float(mdl.u_of_yield_velocity(vy_grid[int(np.argmin(lad))]))
 
     if f_scale is None:
-        if loss == "linear" or sigma is not None:
-            f_scale = 1.0
-        else:
-            r0 = e - restitution_coefficient(V, vy0)
-            f_scale = max(1.4826 * float(np.median(np.abs(r0 - np.median(r0)))), 1e-6)
+        f_scale = TUNING[loss]
+        if loss != "linear" and sigma is None:
+            f_scale *= max(_mad_scale((es - mdl.restitution(u0, Vs)) * ws), 1e-6)
     else:
-        f_scale = float(f_scale)
+        f_scale = _number("f_scale", f_scale)
         if not (math.isfinite(f_scale) and f_scale > 0):
             raise ValueError(f"f_scale must be positive and finite, got {f_scale!r}")
 
     def resid(u):
-        return (model.restitution(u[0], V) - e) * w
+        return (mdl.restitution(u, V) - e) * w
 
-    kw = {} if max_nfev is None else {"max_nfev": int(max_nfev)}
-    from scipy import optimize  # imported here: keeps `import microimpact` fast
+    if p:
+        kw = {} if max_nfev is None else {"max_nfev": int(max_nfev)}
+        from scipy import optimize  # imported here: keeps `import microimpact` fast
 
-    sol = optimize.least_squares(
-        resid, u0, jac="3-point", loss=loss, f_scale=f_scale, x_scale=1.0, xtol=1e-12, ftol=1e-12, gtol=1e-12, **kw
-    )
-    u = np.asarray(sol.x, dtype=float)
-    fitted = model.pair_at(u[0])
+        sol = optimize.least_squares(
+            resid, u0, jac="3-point", loss=loss, f_scale=f_scale, x_scale=1.0, xtol=1e-12, ftol=1e-12, gtol=1e-12, **kw
+        )
+        u = np.asarray(sol.x, dtype=float)
+        success, message, nfev = bool(sol.success), str(sol.message), int(sol.nfev)
+        del sol
+    else:
+        u, success, message, nfev = u0, True, "no free parameter", 0
+    fitted, params_now = mdl.split(u)
     fitted = fitted.replace(label=(pair.label + " (fitted)").strip() if pair.label else "fitted")
     vy = fitted.yield_velocity
-    e_fit = restitution_coefficient(V, vy)
+    e_fit = mdl.restitution(u, V)
     above = V > vy
-    if above.sum() < p + 1:
-        at = ", ".join(_where(i, line_numbers) for i in np.flatnonzero(above)) or "none"
+    if mdl.name is not None and above.sum() < p + 1:
+        at = ", ".join(_where(i, line_numbers) for i in np.flatnonzero(above)[:10]) or "none"
         raise ValueError(
             f"too few points above the fitted yield velocity V_y = {vy:.4g} m/s for {p} free "
             f"parameter(s): {int(above.sum())} ({at}); need at least {p + 1}"
         )
     dof = n - p
-    r_w = (e - e_fit) * w  # weighted residuals, data minus model
-    J = np.asarray(sol.jac, dtype=float)
-    JTJ = J.T @ J
-    if not np.all(np.isfinite(JTJ)) or np.linalg.matrix_rank(JTJ) < p:
-        raise ValueError("the data do not constrain the free parameter (singular Jacobian at the solution)")
-    JTJ_inv = np.linalg.inv(JTJ)
+    resid_raw = e - e_fit
+    r_w = resid_raw * w  # weighted residuals, data minus model
+    del e_fit
+
+    # Covariance from the Jacobian of the raw residuals (not least_squares' loss-scaled one).
+    if p:
+        h = 1e-6
+        J = np.empty((n, p))
+        for j in range(p):
+            up, um = u.copy(), u.copy()
+            up[j] += h
+            um[j] -= h
+            J[:, j] = resid(up)
+            J[:, j] -= resid(um)
+            J[:, j] /= 2 * h
+        JTJ = J.T @ J
+        del J
+        if not np.all(np.isfinite(JTJ)) or np.linalg.matrix_rank(JTJ) < p:
+            raise ValueError("the data do not constrain the free parameters (singular Jacobian at the solution)")
+        JTJ_inv = np.linalg.inv(JTJ)
+    else:
+        JTJ_inv = np.zeros((0, 0))
     if loss == "linear":
-        s2 = 1.0 if absolute_sigma else float(np.sum(r_w**2) / dof)
+        s2 = 1.0 if absolute_sigma else float(np.sum(r_w**2) / max(dof, 1))
+        m1 = 1.0
     else:
         psi, dpsi = _psi(loss, r_w, f_scale)
-        mean_dpsi = float(np.mean(dpsi))
-        if mean_dpsi <= 0:  # redescending loss with most points beyond f_scale
+        m1 = float(np.mean(dpsi))
+        if m1 <= 0:  # redescending loss with most points beyond f_scale
             raise ValueError(f"loss {loss!r} with f_scale = {f_scale:g} rejects most points; increase f_scale")
-        s2 = float(np.sum(psi**2) / dof) / mean_dpsi**2
+        kappa2 = 1.0 + (p / n) * float(np.var(dpsi)) / m1**2
+        s2 = kappa2 * float(np.sum(psi**2) / max(dof, 1)) / m1**2
+        del psi, dpsi
     cov_u = s2 * JTJ_inv
     known_scale = absolute_sigma and loss == "linear"
     q = _quantile(confidence, dof, known_scale)
 
-    theta = model.ref * np.exp(u)
+    theta = mdl.theta(u)
     se_u = np.sqrt(np.diag(cov_u))
-    params_ = {nm: float(t) for nm, t in zip(names, theta)}
-    stderr = {nm: float(t * s) for nm, t, s in zip(names, theta, se_u)}
-    conf = {nm: (float(t * math.exp(-q * s)), float(t * math.exp(q * s))) for nm, t, s in zip(names, theta, se_u)}
+    params_ = {nm: float(t) for nm, t in zip(mdl.names, theta)}
+    stderr = {nm: float(t * s) for nm, t, s in zip(mdl.names, theta, se_u)}
+    wald_u = {nm: (float(uu - q * s), float(uu + q * s)) for nm, uu, s in zip(mdl.names, u, se_u)}
+    n_above = int(above.sum())
+    method = interval
+    if method == "auto":
+        method = "profile" if (p and n_above < PROFILE_BELOW) else "wald"
+    ci_u = dict(wald_u)
+    if method == "profile" and p and s2 * m1 > 0:  # (a perfect fit has a zero-width interval: Wald's)
+        objective = _Objective(resid, loss, f_scale, s2 * m1, u, q)
+        ci_u = {nm: objective.interval(j, se_u[j]) for j, nm in enumerate(mdl.names)}
+
+    def to_theta(ref, a, b):
+        return (float(ref * math.exp(a)) if a > -700 else 0.0, float(ref * math.exp(b)) if b < 700 else math.inf)
+
+    conf = {nm: to_theta(r, *ci_u[nm]) for nm, r in zip(mdl.names, mdl.refs)}
+    wald = {nm: to_theta(r, *wald_u[nm]) for nm, r in zip(mdl.names, mdl.refs)}
     cov = cov_u * np.outer(theta, theta)
-    c = model.exponent
-    se_vy = abs(c) * float(se_u[0])
-    vy_ci = (float(vy * math.exp(-q * se_vy)), float(vy * math.exp(q * se_vy)))
-    resid_raw = e - e_fit
+    if mdl.name is not None:
+        c = mdl.exponent
+        se_vy = abs(c) * float(se_u[0])
+        a, b = ci_u[mdl.name]
+        ends = sorted((c * (a - u[0]), c * (b - u[0])))
+        vy_ci = (float(vy * math.exp(max(ends[0], -700))), float(vy * math.exp(min(ends[1], 700))))
+    else:
+        se_vy, vy_ci = 0.0, (float(vy), float(vy))
+
+    # Points far above 1: more than FAR_ABOVE_ONE standard uncertainties.
+    scale_i = sigma if absolute_sigma else np.full(n, _mad_scale(resid_raw) or math.sqrt(np.sum(resid_raw**2) / n))
+    far = np.flatnonzero(e - 1.0 > FAR_ABOVE_ONE * scale_i)
+    if warn and far.size:
+        what = "sigma" if absolute_sigma else f"the residual scatter 1.4826 MAD = {float(scale_i[0]):.3g}"
+        at = ", ".join(f"{_where(i, line_numbers)} (e = {e[i]:.4g})" for i in far[:5])
+        more = f" and {far.size - 5} more" if far.size > 5 else ""
+        warnings.warn(
+            f"{far.size} point(s) lie more than {FAR_ABOVE_ONE:g} x {what} above e = 1: {at}{more}; "
+            "check them (kept in the fit)",
+            FitWarning,
+            stacklevel=3,
+        )
+    if warn and not success:
+        warnings.warn(f"the optimiser did not converge: {message}", FitWarning, stacklevel=3)
     return FitResult(
         params=params_,
         stderr=stderr,
@@ -824,10 +1474,10 @@ def fit_restitution(
         rss=float(np.sum(resid_raw**2)),
         dof=int(dof),
         n_points=int(n),
-        n_elastic=int(n - above.sum()),
+        n_elastic=int(n - n_above),
         pair=fitted,
-        success=bool(sol.success),
-        message=str(sol.message),
+        success=success,
+        message=message,
         confidence=confidence,
         loss=loss,
         f_scale=float(f_scale),
@@ -836,10 +1486,332 @@ def fit_restitution(
         velocity=V,
         restitution=e,
         sigma=sigma,
-        nfev=int(sol.nfev),
-        _model=model,
+        nfev=nfev,
+        model=model,
+        model_params=dict(zip(mdl.own, params_now)),
+        interval=method,
+        wald_conf_int=wald,
+        units={nm: mdl.unit(nm) for nm in mdl.names},
+        n_far_above_one=int(far.size),
+        _model=mdl,
         _u=u,
     )
+
+
+class _Objective:
+    """Profile statistic ``D(u_j) = [Q(u_j) - Q_hat] / s2_eff``, ``Q`` minimised over the other ``u``."""
+
+    def __init__(self, resid, loss, f_scale, s2_eff, u_hat, q):
+        self.resid, self.loss, self.f_scale, self.s2 = resid, loss, f_scale, s2_eff
+        self.u_hat = np.asarray(u_hat, dtype=float)
+        self.q2 = q * q
+        self.q_hat = _objective(loss, resid(self.u_hat), f_scale)
+
+    def profile(self, j, t):
+        u = self.u_hat.copy()
+        u[j] = t
+        if u.size > 1:
+            from scipy import optimize
+
+            others = [i for i in range(u.size) if i != j]
+
+            def sub(v):
+                w = u.copy()
+                w[others] = v
+                return self.resid(w)
+
+            sol = optimize.least_squares(sub, u[others], loss=self.loss, f_scale=self.f_scale, x_scale=1.0)
+            u[others] = sol.x
+        q = _objective(self.loss, self.resid(u), self.f_scale)
+        return max(q - self.q_hat, 0.0) / self.s2
+
+    def interval(self, j, se):
+        """``(lo, hi)`` in ``u_j`` where ``D <= q^2``; ``-inf``/``inf`` where ``D`` never reaches it."""
+        from scipy import optimize
+
+        u0 = float(self.u_hat[j])
+        step = max(math.sqrt(self.q2) * float(se), 1e-6)
+        ends = []
+        for sign in (-1.0, 1.0):
+            inner, found = 0.0, None
+            d = min(step, _PROFILE_REACH)
+            while True:
+                if self.profile(j, u0 + sign * d) > self.q2:
+                    found = d
+                    break
+                inner = d
+                if d >= _PROFILE_REACH:
+                    break
+                d = min(2.0 * d, _PROFILE_REACH)
+            if found is None:
+                ends.append(sign * math.inf)
+                continue
+            g = lambda x: self.profile(j, u0 + sign * x) - self.q2  # noqa: E731
+            ends.append(sign * optimize.brentq(g, inner, found, xtol=1e-10, rtol=1e-10))
+        return (u0 + ends[0], u0 + ends[1])
+
+
+# ---------------------------------------------------------------------- ranking
+def _parse_spec(spec):
+    """``"name"``, ``"name:a+b"``, ``"name:none"``, ``(name, free)`` or a dict -> (label, name, free, model_params)."""
+    if isinstance(spec, dict):
+        name = spec.get("model", SEED_MODEL)
+        free = _parse_params(spec.get("params", ("limiting_pressure",)), allow_empty=True)
+        label = spec.get("label") or f"{name}:{'+'.join(free) or 'none'}"
+        return label, name, free, spec.get("model_params")
+    if isinstance(spec, tuple) and len(spec) == 2:
+        name, free = spec
+        free = _parse_params(free, allow_empty=True)
+        return f"{name}:{'+'.join(free) or 'none'}", name, free, None
+    if not isinstance(spec, str) or not spec.strip():
+        raise ValueError(f"models: each model is a name, 'name:free1+free2' or 'name:none', got {spec!r}")
+    text = spec.strip()
+    name, _, rest = text.partition(":")
+    name = name.strip()
+    if rest.strip().lower() == "none":
+        free = ()
+    elif rest.strip():
+        free = _parse_params([r.strip() for r in rest.split("+")], allow_empty=False)
+    else:
+        free = ("limiting_pressure",)
+    return text, name, free, None
+
+
+def _information(fit, n, absolute):
+    """``(-2 ln L, K)`` of a least-squares fit: Gaussian with estimated scale, or chi^2 with absolute sigma."""
+    p = len(fit.params)
+    if absolute:
+        return fit.chi2, p
+    rss_w = max(fit.chi2, 1e-300)
+    return n * math.log(rss_w / n), p + 1
+
+
+@dataclass(frozen=True, eq=False)
+class ModelRanking:
+    """Models fitted to one data set, ranked by AICc (see :func:`rank_models`).
+
+    Attributes
+    ----------
+    rows : list of dict
+        One per model, best first: ``label``, ``model``, ``free``, ``k`` (counted
+        parameters), ``rss``, ``aic``, ``aicc``, ``bic``, ``delta_aicc``, ``weight``
+        (Akaike weight from AICc), ``cv_error`` (K-fold cross-validated RMS of the
+        weighted residuals [-], or of ``sqrt(2 L)`` for a robust loss).
+    fits : dict
+        ``label -> FitResult`` on all points.
+    caveat : str
+        Empty, or why the data cannot tell the leading models apart.
+    k_folds : int
+        Folds of the cross-validation.
+    """
+
+    rows: list
+    fits: dict
+    caveat: str
+    k_folds: int
+    velocity: np.ndarray = field(repr=False)
+    restitution: np.ndarray = field(repr=False)
+    sigma: np.ndarray | None = field(repr=False)
+
+    @property
+    def best(self) -> str:
+        """Label of the model with the lowest AICc."""
+        return self.rows[0]["label"]
+
+    def table(self) -> str:
+        """The ranking as aligned text."""
+        head = ("rank", "model", "k", "rss", "AIC", "AICc", "BIC", "dAICc", "weight", f"CV({self.k_folds}) error")
+        out = [head]
+        for i, r in enumerate(self.rows, start=1):
+            out.append(
+                (
+                    str(i),
+                    r["label"],
+                    str(r["k"]),
+                    f"{r['rss']:.4g}",
+                    f"{r['aic']:.2f}",
+                    f"{r['aicc']:.2f}",
+                    f"{r['bic']:.2f}",
+                    f"{r['delta_aicc']:.2f}",
+                    f"{r['weight']:.3f}",
+                    f"{r['cv_error']:.4g}",
+                )
+            )
+        widths = [max(len(r[j]) for r in out) for j in range(len(head))]
+        lines = ["  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in out]
+        lines.insert(1, "  ".join("-" * w for w in widths))
+        if self.caveat:
+            lines.append("caveat: " + self.caveat)
+        return "\n".join(lines)
+
+    def __str__(self) -> str:
+        return self.table()
+
+    def __repr__(self) -> str:
+        models = ", ".join(f"{r['label']} (w={r['weight']:.2f})" for r in self.rows)
+        return f"ModelRanking(best={self.best!r}, {models}{', caveat' if self.caveat else ''})"
+
+    def _repr_html_(self) -> str:
+        import html
+
+        head = "".join(f"<th>{h}</th>" for h in ("rank", "model", "k", "AICc", "dAICc", "weight", "BIC", "CV error"))
+        body = "".join(
+            f"<tr><td>{i}</td><td>{html.escape(r['label'])}</td><td>{r['k']}</td><td>{r['aicc']:.2f}</td>"
+            f"<td>{r['delta_aicc']:.2f}</td><td>{r['weight']:.3f}</td><td>{r['bic']:.2f}</td>"
+            f"<td>{r['cv_error']:.4g}</td></tr>"
+            for i, r in enumerate(self.rows, start=1)
+        )
+        cap = html.escape(self.caveat) if self.caveat else "ranked by AICc"
+        return f"<table><caption>{cap}</caption><tr>{head}</tr>{body}</table>"
+
+    def to_dict(self) -> dict:
+        """Plain values: the rows, the caveat and each model's fit (SI units)."""
+        rows = [{**r, "free": list(r["free"])} for r in self.rows]
+        fits = {}
+        for label, fit in self.fits.items():
+            d = fit.to_dict()
+            d.pop("residuals", None)
+            fits[label] = d
+        return {"ranking": rows, "caveat": self.caveat, "k_folds": self.k_folds, "fits": fits}
+
+
+def rank_models(
+    velocity,
+    restitution,
+    pair: ContactPair,
+    models,
+    *,
+    sigma=None,
+    loss: str = "linear",
+    k_folds: int = 5,
+    seed: int = 0,
+    confidence: float = 0.95,
+    yield_strength=None,
+    absolute_sigma=None,
+    line_numbers=None,
+) -> ModelRanking:
+    """Fit several models to the same data and rank them (AIC, AICc, BIC, Akaike weights, K-fold CV).
+
+    Parameters
+    ----------
+    velocity, restitution : array_like
+        Measured speeds [m/s] and restitution coefficients [-] (as :func:`fit_restitution`).
+    pair : ContactPair
+        The known pair.
+    models : sequence
+        Each a model name (free parameter ``limiting_pressure``), ``"name:a+b"`` (free
+        parameters ``a`` and ``b``), ``"name:none"`` (nothing fitted: the pair and
+        model parameters as given), ``(name, free)`` or a dict with keys ``model``,
+        ``params``, ``model_params``, ``label``.
+    sigma : array_like or float, optional
+        Standard uncertainty of each ``e_i`` [-].
+    loss : str
+        Loss of every fit (:data:`LOSSES`). The information criteria use the Gaussian
+        likelihood of the residuals; with a robust loss they are approximate.
+    k_folds : int
+        Folds of the cross-validation (at most the number of points), default 5.
+    seed : int
+        Seed of the random split into folds (the ranking is reproducible).
+    confidence : float
+        Level of each fit's intervals.
+    yield_strength : float, optional
+        ``Y`` [Pa] for models with ``k`` free.
+    absolute_sigma : bool, optional
+        As :func:`fit_restitution`; with absolute sigma ``-2 ln L = chi^2``.
+    line_numbers : array_like of int, optional
+        Source lines of the points, for messages.
+
+    Returns
+    -------
+    ModelRanking
+        Best first. ``caveat`` is set when the second model is within 2 units of
+        AICc of the best (Burnham & Anderson 2002): the data cannot tell them apart.
+    """
+    specs = [_parse_spec(s) for s in (models.split(",") if isinstance(models, str) else models)]
+    if not specs:
+        raise ValueError("models: give at least one model")
+    labels = [s[0] for s in specs]
+    if len(set(labels)) != len(labels):
+        raise ValueError(f"models: each model once, got {labels!r}")
+    if isinstance(k_folds, bool) or not isinstance(k_folds, (int, np.integer)) or k_folds < 2:
+        raise ValueError(f"k_folds must be an integer >= 2, got {k_folds!r}")
+    V, e, sg, line_numbers = _check_data(velocity, restitution, sigma, line_numbers)
+    n = V.size
+    absolute = (sg is not None) if absolute_sigma is None else (bool(absolute_sigma) and sg is not None)
+    common = {
+        "loss": loss,
+        "confidence": confidence,
+        "yield_strength": yield_strength,
+        "absolute_sigma": absolute_sigma,
+    }
+    folds = np.array_split(np.random.default_rng(seed).permutation(n), min(int(k_folds), n))
+    rows, fits = [], {}
+    for label, name, free, mparams in specs:
+        fit = _fit(
+            V, e, pair, names=free, sigma=sg, model=name, model_params=mparams, line_numbers=line_numbers, **common
+        )
+        fits[label] = fit
+        m2lnl, k = _information(fit, n, absolute and loss == "linear")
+        aic = m2lnl + 2 * k
+        aicc = aic + (2 * k * (k + 1) / (n - k - 1) if n - k - 1 > 0 else math.inf)
+        bic = m2lnl + k * math.log(n)
+        # K-fold cross-validation: refit without each fold, score the held-out points.
+        held = np.empty(n)
+        for idx in folds:
+            train = np.ones(n, dtype=bool)
+            train[idx] = False
+            try:
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore", FitWarning)
+                    fk = _fit(
+                        V[train],
+                        e[train],
+                        pair,
+                        names=free,
+                        sigma=None if sg is None else sg[train],
+                        model=name,
+                        model_params=mparams,
+                        interval="wald",
+                        warn=False,
+                        **{**common, "confidence": 0.95},
+                    )
+            except ValueError:
+                held[idx] = np.nan
+                continue
+            r = (e[idx] - fk.predict(V[idx])) * (1.0 if sg is None else 1.0 / sg[idx])
+            held[idx] = _loss_terms(loss, r, fit.f_scale)
+        cv = math.sqrt(float(np.mean(held))) if np.all(np.isfinite(held)) else math.nan
+        rows.append(
+            {
+                "label": label,
+                "model": name,
+                "free": tuple(free),
+                "k": int(k),
+                "n": int(n),
+                "rss": fit.rss,
+                "chi2": fit.chi2,
+                "aic": aic,
+                "aicc": aicc,
+                "bic": bic,
+                "cv_error": cv,
+            }
+        )
+    best = min(r["aicc"] for r in rows)
+    weights = [math.exp(-(r["aicc"] - best) / 2) for r in rows]
+    total = sum(weights)
+    for r, wgt in zip(rows, weights):
+        r["delta_aicc"] = r["aicc"] - best
+        r["weight"] = wgt / total
+    rows.sort(key=lambda r: round(r["aicc"], 6))  # stable: ties (to 1e-6) keep the order given
+    close = [r["label"] for r in rows[1:] if r["delta_aicc"] < 2.0]
+    caveat = ""
+    if close:
+        caveat = (
+            f"the data cannot tell {rows[0]['label']} from {', '.join(close)} apart "
+            "(AICc within 2, Burnham & Anderson 2002); more points, less scatter or a wider speed range "
+            "would be needed to prefer one"
+        )
+    return ModelRanking(rows=rows, fits=fits, caveat=caveat, k_folds=len(folds), velocity=V, restitution=e, sigma=sg)
 
 
 # ---------------------------------------------------------------------- plots
@@ -913,10 +1885,7 @@ def plot_fit(
     band = {"color": "tab:blue", "alpha": 0.25, "linewidth": 0, "label": f"{pct} confidence band"}
     band.update(band_kws or {})
     ax.fill_between(grid, lo, hi, **band)
-    name, value = next(iter(fit_result.params.items()))
-    info = FREE_PARAMETERS[name]
-    unit = f" {info['unit']}" if info["unit"] else ""
-    lab = f"model fit, {info['tex']} = {value * info['scale']:.4g}{unit}"
+    lab = "model fit" + (f", {_param_label(fit_result)}" if fit_result.params else "")
     line = {"color": "tab:blue", "linewidth": 1.8, "label": lab}
     line.update(fit_kws or {})
     ax.plot(grid, fit_result.predict(grid), **line)
@@ -940,8 +1909,8 @@ def plot_fit(
             label=f"$V_y$ = {fit_result.yield_velocity:.3g} m/s",
         )
     ax.set_xlim(0.0, grid[-1])
-    ax.set_ylim(0.0, 1.05)
-    ax.set_ylabel("coefficient of restitution $e$")
+    ax.set_ylim(0.0, max(1.05, float(np.max(e)) + 0.03) if e.size else 1.05)
+    ax.set_ylabel("coefficient of restitution $e$ [-]")
     ax.legend(loc="lower left", frameon=False, fontsize="small")
     ax.grid(True, alpha=0.3)
     if residual_ax is not None:
@@ -991,6 +1960,115 @@ def plot_residuals(fit_result, data_velocity, data_restitution, ax=None, *, sigm
     span = max(span * 1.15, 1e-3)
     ax.set_ylim(-span, span)
     ax.set_xlabel("impact velocity $V$ [m/s]")
-    ax.set_ylabel(r"$e - e_\mathrm{fit}$")
+    ax.set_ylabel(r"$e - e_\mathrm{fit}$ [-]")
     ax.grid(True, alpha=0.3)
     return ax
+
+
+def _param_label(fit, tex=True):
+    """``p_y = 156 MPa`` style text of a fit's free parameters."""
+    parts = []
+    for name, value in fit.params.items():
+        if name in FREE_PARAMETERS:
+            info = FREE_PARAMETERS[name]
+            sym, scale, unit = (info["tex"] if tex else info["symbol"]), info["scale"], info["unit"]
+        else:
+            sym, scale, unit = name, 1.0, fit.units.get(name, "")
+        parts.append(f"{sym} = {value * scale:.4g}" + (f" {unit}" if unit else ""))
+    return ", ".join(parts)
+
+
+def plot_models(ranking, ax=None, *, residual_ax=None, data_kws=None):
+    """Data, each ranked model's fitted ``e(V)`` and their residuals.
+
+    Parameters
+    ----------
+    ranking : ModelRanking
+        From :func:`rank_models`.
+    ax : matplotlib Axes, optional
+        Axes for data and curves; when None a new figure with two panels (curves
+        above, residuals below, shared speed axis).
+    residual_ax : matplotlib Axes, optional
+        Where to draw residuals when ``ax`` is given (skipped if None).
+    data_kws : dict, optional
+        Passed to ``errorbar`` for the measured points.
+
+    Returns
+    -------
+    (Axes, Axes or None)
+        Curve axes (speed [m/s] against ``e`` [-]) and residual axes (``e - e_fit`` [-]).
+    """
+    plt = require("matplotlib.pyplot", "plotting")
+    V, e, sigma = ranking.velocity, ranking.restitution, ranking.sigma
+    if ax is None:
+        _, (ax, residual_ax) = plt.subplots(
+            2,
+            1,
+            sharex=True,
+            figsize=(7.0, 6.2),
+            gridspec_kw={"height_ratios": [3, 1.4]},
+            layout="constrained",
+        )
+    many = V.size > 2000
+    dk = {
+        "fmt": "o",
+        "color": "0.15",
+        "markersize": 1.5 if many else 4.5,
+        "capsize": 0 if many else 2,
+        "elinewidth": 0.8,
+        "markerfacecolor": "white",
+        "label": f"measured ({V.size} points)",
+        "zorder": 1,
+    }
+    if many:
+        dk.update(alpha=0.3, rasterized=True)
+    dk.update(data_kws or {})
+    ax.errorbar(V, e, yerr=None if many else sigma, **dk)
+    vmax = float(np.max(V)) * 1.08
+    vys = [f.yield_velocity for f in ranking.fits.values()]
+    grid = np.union1d(np.geomspace(max(1e-3 * vmax, 1e-9), vmax, 500), [v for v in vys if v < vmax])
+    styles = ["-", "--", "-.", ":", (0, (5, 1, 1, 1)), (0, (3, 1, 1, 1, 1, 1))]
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    span = 0.0
+    for i, row in enumerate(ranking.rows):
+        fit = ranking.fits[row["label"]]
+        style = {"color": colors[i % len(colors)], "linestyle": styles[i % len(styles)], "linewidth": 1.8}
+        detail = _param_label(fit)
+        lab = f"{row['label']}: " + (detail + ", " if detail else "")
+        lab += rf"$\Delta$AICc = {row['delta_aicc']:.1f}, w = {row['weight']:.2f}"
+        ax.plot(grid, fit.predict(grid), label=lab, zorder=3, **style)
+        if residual_ax is not None:
+            r = e - fit.predict(V)
+            span = max(span, float(np.max(np.abs(r))) if r.size else 0.0)
+            off = (i - (len(ranking.rows) - 1) / 2) * 0.006 * vmax
+            residual_ax.plot(
+                V + (0 if many else off),
+                r,
+                marker="os^dvx"[i % 6],
+                linestyle="none",
+                markersize=1.5 if many else 4,
+                color=style["color"],
+                alpha=0.4 if many else 0.9,
+                rasterized=many,
+            )
+    ax.set_xlim(0.0, vmax)
+    ax.set_ylim(0.0, max(1.08, float(np.max(e)) + 0.04))
+    ax.axhline(1.0, color="0.6", linewidth=0.8, linestyle=":")
+    ax.set_ylabel("coefficient of restitution $e$ [-]")
+    title = f"ranked by AICc; best: {ranking.best}"
+    if ranking.caveat:
+        title += "\n(the data cannot tell the leading models apart: AICc within 2)"
+    ax.set_title(title, fontsize="medium")
+    ax.legend(loc="lower left", frameon=False, fontsize="small")
+    ax.grid(True, alpha=0.3)
+    if residual_ax is not None:
+        residual_ax.axhline(0.0, color="0.3", linewidth=1.0)
+        span = max(span * 1.15, 1e-3)
+        residual_ax.set_ylim(-span, span)
+        residual_ax.set_xlabel("impact velocity $V$ [m/s]")
+        residual_ax.set_ylabel(r"$e - e_\mathrm{fit}$ [-]")
+        residual_ax.grid(True, alpha=0.3)
+        ax.tick_params(labelbottom=False)
+    else:
+        ax.set_xlabel("impact velocity $V$ [m/s]")
+    return ax, residual_ax

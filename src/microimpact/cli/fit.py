@@ -1,11 +1,24 @@
-"""``microimpact fit``: fit the limiting contact pressure (or k, E*, density) to measured restitution."""
+"""``microimpact fit``: fit the limiting contact pressure (or k, E*, density) to measured restitution,
+or rank several models on the same data (``--models``)."""
 
 from __future__ import annotations
 
 import sys
+import warnings
 
 from .._optional import require
-from ..fitting import FREE_PARAMETERS, LOSSES, fit_restitution, load_restitution_csv, plot_fit
+from ..fitting import (
+    FREE_PARAMETERS,
+    INTERVALS,
+    LOSSES,
+    FitWarning,
+    available_models,
+    fit_restitution,
+    load_restitution_csv,
+    plot_fit,
+    plot_models,
+    rank_models,
+)
 from ..io import save_figure, write_json
 from ..materials import PAPER_CASES, get_material
 from ._common import add_pair_arguments, check_input_file, check_outputs, pair_from_args, parse_float
@@ -25,9 +38,23 @@ def register(sub) -> None:
     add_pair_arguments(p)
     p.add_argument(
         "--free",
-        default="limiting_pressure",
+        default=None,
         metavar="NAME",
         help=f"free parameter: one of {', '.join(FREE_PARAMETERS)} (default limiting_pressure)",
+    )
+    p.add_argument(
+        "--models",
+        metavar="A,B,C",
+        help="rank these models on the data (AIC, AICc, BIC, Akaike weights, K-fold CV): each a model name "
+        "(free p_y), NAME:PARAM+PARAM (those free) or NAME:none (nothing fitted); models: "
+        + ", ".join(available_models()),
+    )
+    p.add_argument("--folds", default="5", metavar="K", help="folds of the cross-validation with --models (default 5)")
+    p.add_argument(
+        "--interval",
+        default="auto",
+        choices=INTERVALS,
+        help="confidence intervals: wald, profile, or auto (profile when fewer than 10 points lie above V_y)",
     )
     p.add_argument(
         "--loss",
@@ -93,28 +120,99 @@ def plot_fig2(fit, data, path) -> None:
         plt.close(ax.figure)
 
 
+def _rank(args, data, pair, f_scale_given, confidence) -> int:
+    velocity, restitution, sigma = data
+    if args.free is not None:
+        raise ValueError("--free and --models conflict: name each model's free parameters as NAME:PARAM+PARAM")
+    if args.fig2:
+        raise ValueError("--fig2 and --models conflict: --fig2 draws one fitted model")
+    if f_scale_given:
+        raise ValueError("--f-scale and --models conflict: each model's fit sets its own scale")
+    try:
+        folds = int(args.folds)
+    except ValueError:
+        raise ValueError(f"--folds must be an integer, got {args.folds!r}") from None
+    if folds < 2:
+        raise ValueError(f"--folds must be >= 2, got {folds}")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", FitWarning)
+        ranking = rank_models(
+            velocity,
+            restitution,
+            pair,
+            args.models,
+            sigma=sigma,
+            loss=args.loss,
+            k_folds=folds,
+            confidence=confidence,
+            yield_strength=_yield_strength(args),
+            absolute_sigma=False if args.relative_sigma else None,
+            line_numbers=data.lines,
+        )
+    if args.plot:
+        plt = require("matplotlib.pyplot", "--plot")
+        ax, _ = plot_models(ranking)
+        try:
+            save_figure(ax.figure, args.plot, dpi=200)
+        finally:
+            plt.close(ax.figure)
+    if args.json:
+        doc = {"data": args.data, **ranking.to_dict()}
+        if args.plot:
+            doc["plot"] = args.plot
+        write_json(doc)  # NaN/inf -> null: always valid JSON
+    else:
+        print(f"data: {args.data} ({len(velocity)} points{', with sigma' if sigma is not None else ''})")
+        print(ranking.table())
+        for row in ranking.rows:
+            print()
+            print(f"[{row['label']}]")
+            print(ranking.fits[row["label"]].summary())
+        if args.plot:
+            print(f"plot written to {args.plot}")
+    _report(caught)
+    if ranking.caveat and args.json:
+        print("caveat: " + ranking.caveat, file=sys.stderr)
+    return 0
+
+
+def _report(caught) -> None:
+    seen = set()
+    for w in caught:
+        text = str(w.message)
+        if text not in seen:
+            seen.add(text)
+            print(f"warning: {text}", file=sys.stderr)
+
+
 def run(args) -> int:
     check_input_file(args.data, "data")  # errors name the file (missing, a directory, binary)
     check_outputs(figures=[args.plot, args.fig2])  # before fitting: nothing computed for an unwritable path
-    free = [s.strip() for s in args.free.split(",") if s.strip()]
     data = load_restitution_csv(args.data)
     velocity, restitution, sigma = data
-    pair = _fit_pair(args, free[0] if free else "")
     f_scale = None if args.f_scale is None else parse_float(args.f_scale, "--f-scale")
     confidence = parse_float(args.confidence, "--confidence")
-    fit = fit_restitution(
-        velocity,
-        restitution,
-        pair,
-        sigma=sigma,
-        params=free,
-        loss=args.loss,
-        f_scale=f_scale,
-        confidence=confidence,
-        yield_strength=_yield_strength(args) if "k" in free else None,
-        absolute_sigma=False if args.relative_sigma else None,
-        line_numbers=data.lines,
-    )
+    if args.models:
+        pair = _fit_pair(args, "limiting_pressure")
+        return _rank(args, data, pair, f_scale is not None, confidence)
+    free = [s.strip() for s in (args.free or "limiting_pressure").split(",") if s.strip()]
+    pair = _fit_pair(args, free[0] if free else "")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", FitWarning)
+        fit = fit_restitution(
+            velocity,
+            restitution,
+            pair,
+            sigma=sigma,
+            params=free,
+            loss=args.loss,
+            f_scale=f_scale,
+            confidence=confidence,
+            interval=args.interval,
+            yield_strength=_yield_strength(args) if "k" in free else None,
+            absolute_sigma=False if args.relative_sigma else None,
+            line_numbers=data.lines,
+        )
     if args.plot:
         plt = require("matplotlib.pyplot", "--plot")
         ax, _ = plot_fit(fit, velocity, restitution)
@@ -140,6 +238,5 @@ def run(args) -> int:
         for what, path in (("plot", args.plot), ("Fig. 2 layout", args.fig2)):
             if path:
                 print(f"{what} written to {path}")
-    if not fit.success:
-        print(f"warning: the fit did not converge: {fit.message}", file=sys.stderr)
+    _report(caught)
     return 0

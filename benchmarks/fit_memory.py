@@ -1,0 +1,67 @@
+"""Peak memory of fitting N measured points: ``python benchmarks/fit_memory.py [N ...]``.
+
+Each size runs in a fresh subprocess that makes N synthetic points (the seed's e(V) for the
+silicon case plus seeded noise 0.02, speeds 2-100 m/s, values above 1 included), starts
+``tracemalloc`` after the data exist, calls ``fit_restitution`` (least squares) and reports
+the peak of Python/numpy allocations during the fit, in MB and in bytes per point, with the
+fit's time. Memory must grow linearly with N with a small constant: 1e6 points under 500 MB.
+Nothing is written; the numbers are printed (``--json`` prints them as JSON).
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+CHILD = r"""
+import json, sys, time, tracemalloc, warnings
+import numpy as np
+import microimpact as mi
+from microimpact.fitting import FitWarning, fit_restitution
+
+n = int(sys.argv[1])
+loss = sys.argv[2]
+pair = mi.ContactPair.paper_case("silicon")
+rng = np.random.default_rng(1)
+V = rng.uniform(2.0, 100.0, n)
+e = pair.restitution(V) + rng.normal(0.0, 0.02, n)
+fit_restitution(V[:50], e[:50], pair)  # warm caches (compilation) outside the measurement
+tracemalloc.start()
+t = time.perf_counter()
+with warnings.catch_warnings():
+    warnings.simplefilter("ignore", FitWarning)
+    fit = fit_restitution(V, e, pair.replace(limiting_pressure=80e6), loss=loss)
+elapsed = time.perf_counter() - t
+_, peak = tracemalloc.get_traced_memory()
+tracemalloc.stop()
+print(json.dumps({"n": n, "loss": loss, "peak_bytes": peak, "seconds": elapsed,
+                  "p_y": fit.params["limiting_pressure"], "above_one": int(np.sum(e > 1))}))
+"""
+
+
+def measure(n: int, loss: str = "linear") -> dict:
+    """Peak traced memory [bytes] and time [s] of one fit of ``n`` points, in a subprocess."""
+    out = subprocess.run([sys.executable, "-c", CHILD, str(n), loss], capture_output=True, text=True, check=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def main(argv=None) -> int:
+    args = list(sys.argv[1:] if argv is None else argv)
+    as_json = "--json" in args
+    sizes = [int(float(a)) for a in args if a != "--json"] or [10_000, 100_000, 1_000_000]
+    rows = [measure(n, loss) for n in sizes for loss in ("linear", "soft_l1")]
+    if as_json:
+        print(json.dumps(rows, indent=2))
+        return 0
+    print(f"{'points':>10}  {'loss':8}  {'peak [MB]':>9}  {'bytes/point':>11}  {'time [s]':>8}  p_y [MPa]")
+    for r in rows:
+        print(
+            f"{r['n']:>10}  {r['loss']:8}  {r['peak_bytes'] / 1e6:9.1f}  {r['peak_bytes'] / r['n']:11.0f}  "
+            f"{r['seconds']:8.2f}  {r['p_y'] / 1e6:.2f}"
+        )
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
