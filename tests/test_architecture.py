@@ -21,6 +21,7 @@ LAYERS = {
     "_validation": 1,
     "_optional": 1,
     "materials": 1,
+    "io": 1,
     "contact": 2,
     "impact": 2,
     "dynamics": 2,

@@ -495,7 +495,7 @@ def test_cli_fit_models_ranks_prints_the_caveat_and_draws(tmp_path, capsys):
         (["--models", "thornton_ning_2016", "--f-scale", "0.1"], "--f-scale and --models conflict"),
         (["--models", "nonesuch"], "model must be one of"),
         (["--models", "thornton_ning_2016", "--folds", "1"], "--folds must be >= 2"),
-        (["--plot", "/nonexistent-folder/x.png"], "--plot /nonexistent-folder/x.png: folder"),
+        (["--plot", "/nonexistent-folder/x.png"], "/nonexistent-folder: directory does not exist"),
     ],
 )
 def test_cli_fit_conflicts_exit_2(tmp_path, capsys, extra, match):

@@ -407,7 +407,7 @@ BAD_DATA = {
     "text cell": b"velocity,restitution\n5,abc\n20,0.8\n30,0.7\n",
     "negative speed": b"velocity,restitution\n-5,1\n20,0.8\n30,0.7\n",
     "nan": b"velocity,restitution\nnan,1\n20,0.8\n30,0.7\n",
-    "restitution above 1": b"velocity,restitution\n5,1.5\n20,0.8\n30,0.7\n",
+    "negative restitution": b"velocity,restitution\n5,-0.2\n20,0.8\n30,0.7\n",
     "ragged": b"velocity,restitution\n5\n20,0.8,9\n",
 }
 

@@ -131,6 +131,7 @@ TITLE = (
 PARAMETERS = ()
 DEFAULTS = ()
 
+
 @jitable
 def _hertz_remainder(x):
     """``r(x) = 1 - (2/5)(1 - (1 - x)^(5/2))/x`` for ``0 <= x <= 1``, without cancellation.
