@@ -84,6 +84,7 @@ sphinx_gallery_conf = {
     "backreferences_dir": None,
     "write_computation_times": False,
     "first_notebook_cell": None,
+    "capture_repr": (),  # show what the scripts print, not the repr of a last Axes call
 }
 
 # -- plot directive (the how-to pages) -----------------------------------------
@@ -98,6 +99,8 @@ plot_pre_code = "import numpy as np\nimport matplotlib.pyplot as plt\nimport mic
 html_theme = "furo"
 html_title = f"microimpact {release}"
 html_theme_options = {"navigation_with_keys": True}
+html_static_path = ["_static"]
+html_css_files = ["microimpact.css"]
 html_show_sourcelink = False
 
 nitpicky = False

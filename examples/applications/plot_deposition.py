@@ -18,6 +18,10 @@ import numpy as np
 from microimpact.deposition import plot_deposition, simulate_deposition
 
 result = simulate_deposition(
-    np.geomspace(1e-6, 30e-6, 30), jet_speeds=[1.0, 2.0, 5.0], n_particles=40, work_of_adhesion=0.3, friction=0.3
+    np.geomspace(1e-6, 30e-6, 30),
+    jet_speeds=[1.0, 2.0, 5.0],
+    n_particles=40,
+    work_of_adhesion=0.3,
+    friction=0.3,
 )
 ax = plot_deposition(result)

@@ -24,14 +24,18 @@ pair = mi.ContactPair.paper_case("silicon")
 rng = np.random.default_rng(20160401)
 V = np.sort(rng.uniform(3.0, 110.0, 40))  # impact speeds [m/s]
 sigma = 0.015
-e = np.minimum(pair.impact(V, warn=False).restitution + rng.normal(0.0, sigma, V.size), 1.0)
+e = np.minimum(
+    pair.impact(V, warn=False).restitution + rng.normal(0.0, sigma, V.size), 1.0
+)
 
 # %%
 # Fit ``p_y`` (the default free parameter) with the known uncertainty.
 
 fit = fit_restitution(V, e, pair, sigma=sigma)
 p, (lo, hi) = fit.params["limiting_pressure"], fit.conf_int["limiting_pressure"]
-print(f"p_y = {p / 1e6:.1f} MPa, 95 % interval {lo / 1e6:.1f} to {hi / 1e6:.1f} MPa (true value 156 MPa)")
+print(
+    f"p_y = {p / 1e6:.1f} MPa, 95 % interval {lo / 1e6:.1f} to {hi / 1e6:.1f} MPa (true value 156 MPa)"
+)
 print(f"V_y = {fit.yield_velocity:.2f} m/s, chi2 / dof = {fit.chi2 / fit.dof:.2f}")
 
 # %%
@@ -52,7 +56,12 @@ grid = np.linspace(1.0, 120.0, 400)
 lo, hi = fit.confidence_band(grid)
 fig, ax = plt.subplots(figsize=(6.4, 3.2), layout="constrained")
 ax.plot(grid, (hi - lo) / 2, label="95 % band half-width")
-ax.axvline(fit.yield_velocity, color="0.4", ls=":", label=f"$V_y$ = {fit.yield_velocity:.2f} m/s")
+ax.axvline(
+    fit.yield_velocity,
+    color="0.4",
+    ls=":",
+    label=f"$V_y$ = {fit.yield_velocity:.2f} m/s",
+)
 ax.set_xlabel("impact speed $V$ [m/s]")
 ax.set_ylabel("half-width of the band in $e$ [-]")
 ax.set_xlim(0.0, 120.0)

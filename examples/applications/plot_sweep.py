@@ -16,7 +16,11 @@ import microimpact as mi
 from microimpact.sweep import sweep
 
 pair = mi.ContactPair.paper_case("silicon")
-ds = sweep(np.linspace(0.5, 120.0, 300), limiting_pressure=np.linspace(50e6, 250e6, 120), base=pair)
+ds = sweep(
+    np.linspace(0.5, 120.0, 300),
+    limiting_pressure=np.linspace(50e6, 250e6, 120),
+    base=pair,
+)
 print(ds)
 
 # %%
@@ -26,10 +30,23 @@ print(ds)
 
 e = ds["restitution"].transpose("limiting_pressure", "velocity")
 fig, ax = plt.subplots(figsize=(6.4, 4.2), layout="constrained")
-mesh = ax.pcolormesh(ds["velocity"], ds["limiting_pressure"] / 1e6, e, shading="auto", cmap="viridis")
-cs = ax.contour(ds["velocity"], ds["limiting_pressure"] / 1e6, e, levels=[0.6, 0.7, 0.8, 0.9], colors="white")
+mesh = ax.pcolormesh(
+    ds["velocity"], ds["limiting_pressure"] / 1e6, e, shading="auto", cmap="viridis"
+)
+cs = ax.contour(
+    ds["velocity"],
+    ds["limiting_pressure"] / 1e6,
+    e,
+    levels=[0.6, 0.7, 0.8, 0.9],
+    colors="white",
+)
 ax.clabel(cs, fmt="e = %.1f", fontsize=8)
-ax.plot(ds["yield_velocity"], ds["limiting_pressure"] / 1e6, "k--", label="yield velocity $V_y$")
+ax.plot(
+    ds["yield_velocity"],
+    ds["limiting_pressure"] / 1e6,
+    "k--",
+    label="yield velocity $V_y$",
+)
 ax.set_xlabel("impact speed $V$ [m/s]")
 ax.set_ylabel("limiting contact pressure $p_y$ [MPa]")
 ax.set_xlim(0.5, 120.0)
@@ -42,7 +59,10 @@ fig.colorbar(mesh, ax=ax, label="restitution coefficient $e$ [-]")
 # the same numbers.
 
 lazy = sweep(
-    np.linspace(0.5, 120.0, 300), limiting_pressure=np.linspace(50e6, 250e6, 120), base=pair, chunks={"velocity": 100}
+    np.linspace(0.5, 120.0, 300),
+    limiting_pressure=np.linspace(50e6, 250e6, 120),
+    base=pair,
+    chunks={"velocity": 100},
 )
 mean_lazy = float(lazy["restitution"].mean().compute())
 print(f"mean restitution: eager {float(e.mean()):.12f}, chunked {mean_lazy:.12f}")

@@ -17,8 +17,12 @@ import numpy as np
 from microimpact.coupling import wall_interaction
 
 speed = 20.0  # [m/s]
-angle = np.radians(np.linspace(0.5, 90.0, 359))  # angle between the velocity and the wall
-velocity = np.column_stack([speed * np.cos(angle), np.zeros_like(angle), -speed * np.sin(angle)])
+angle = np.radians(
+    np.linspace(0.5, 90.0, 359)
+)  # angle between the velocity and the wall
+velocity = np.column_stack(
+    [speed * np.cos(angle), np.zeros_like(angle), -speed * np.sin(angle)]
+)
 out = wall_interaction(
     velocity,
     normal=[0.0, 0.0, 1.0],
@@ -29,7 +33,9 @@ out = wall_interaction(
     work_of_adhesion=0.3,
     friction=0.3,
 )
-print(f"V_y = {out.yield_velocity[0]:.2f} m/s, sticking velocity V_s = {out.sticking_velocity[0]:.3f} m/s")
+print(
+    f"V_y = {out.yield_velocity[0]:.2f} m/s, sticking velocity V_s = {out.sticking_velocity[0]:.3f} m/s"
+)
 
 # %%
 # Normal restitution (it depends on the normal speed only) and the tangential
@@ -44,8 +50,17 @@ deg = np.degrees(angle)
 fig, ax = plt.subplots(figsize=(6.4, 4.0), layout="constrained")
 ax.plot(deg, out.restitution, label="normal restitution $e = -v'_n / v_n$")
 ax.plot(deg, tangential, label="tangential ratio $v'_t / v_t$")
-ax.fill_between(deg, 0, 1.05, where=out.regime == "rolling", color="0.9", label="rolling (slip stopped)")
-ax.fill_between(deg, 0, 1.05, where=out.stuck, color="tab:red", alpha=0.25, label="stuck (adhesion)")
+ax.fill_between(
+    deg,
+    0,
+    1.05,
+    where=out.regime == "rolling",
+    color="0.9",
+    label="rolling (slip stopped)",
+)
+ax.fill_between(
+    deg, 0, 1.05, where=out.stuck, color="tab:red", alpha=0.25, label="stuck (adhesion)"
+)
 ax.set_xlabel("impact angle to the wall [deg]")
 ax.set_ylabel("ratio [-]")
 ax.set_ylim(0.0, 1.05)
