@@ -148,3 +148,23 @@ def test_plain_python_reference_is_eq_27():
     Vy = 7.52
     for V in (0.0, 5.0, 7.52, 7.6, 20.0, 50.0, 120.0, 1e4):
         assert restitution_reference(V, Vy) == pytest.approx(float(restitution_coefficient(V, Vy)), rel=1e-13)
+
+
+def test_machine_info_names_the_machine():
+    info = bench.machine_info()
+    assert info["cores"] >= 1 and 1 <= info["usable_cores"] <= info["cores"]
+    assert info["cpu"] and info["python"].count(".") == 2
+    import numpy
+
+    assert info["numpy"] == numpy.__version__
+
+
+@needs_suite
+def test_a_failing_suite_is_reported_with_status_1(tmp_path, capsys):
+    # a suite whose benchmarks fail: the front end shows pytest's output and exits 1, printing no table
+    (tmp_path / "conftest.py").write_text((SUITE / "conftest.py").read_text())
+    for name in bench.FILES.values():
+        (tmp_path / name).write_text("def test_broken():\n    assert False, 'broken on purpose'\n")
+    assert main(["bench", "--tiny", "--only", "2", "--suite", str(tmp_path), "--json", "-"]) == 1
+    err = capsys.readouterr().err
+    assert "broken on purpose" in err and "the suite failed" in err
