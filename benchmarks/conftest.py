@@ -208,9 +208,9 @@ def _entry(key, rec: Record) -> dict | None:
         mb = 1024.0**2
         for name, value in m.items():
             if name.endswith("_peak_bytes"):
-                rows.append((name.removesuffix("_peak_bytes").replace("_", " "), f"{value / mb:.3g} MB"))
-            elif name.endswith("_per_point"):
-                rows.append((name.replace("_", " "), f"{value:.3g} B"))
+                rows.append((f"{name.removesuffix('_peak_bytes')}: peak", f"{value / mb:.3g} MB"))
+            elif name.endswith("_peak_per_point"):
+                rows.append((f"{name.removesuffix('_peak_per_point')}: peak per point", f"{value:.3g} B"))
         if "sweep_chunked_peak_bytes" in m:
             headline = f"chunked sweep peak {m['sweep_chunked_peak_bytes'] / mb:.0f} MB"
             if "sweep_eager_peak_bytes" in m:
