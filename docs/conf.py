@@ -4,8 +4,11 @@ Build (warnings are errors, works offline)::
 
     sphinx-build -W --keep-going -b html docs docs/_build/html
 
-No intersphinx (no network at build time). MathJax is referenced by the
-rendered pages only (the browser loads it); nothing is fetched while building.
+No intersphinx (no network at build time). Math is typeset in the browser by
+the copy of MathJax 3 that ``sphinx-mathjax-offline`` ships and copies into
+``_static/mathjax``: the pages need no network to show their formulas. The
+gallery is built by sphinx-gallery from the scripts in ``examples/``, each run
+during the build.
 """
 
 from __future__ import annotations
@@ -35,14 +38,16 @@ extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.autosummary",
     "sphinx.ext.mathjax",
+    "sphinx-mathjax-offline",  # MathJax 3 served from _static/mathjax (no CDN)
     "numpydoc",
     "matplotlib.sphinxext.plot_directive",
+    "sphinx_gallery.gen_gallery",
     "paper_comparison",  # docs/_ext: writes _generated/comparison.rst at build time
     "dem_tables",  # docs/_ext: writes _generated/dem_*.rst from benchmarks/data/dem_runs.csv
 ]
 
 templates_path = ["_templates"]
-exclude_patterns = ["_build", "_generated", "Thumbs.db", ".DS_Store"]
+exclude_patterns = ["_build", "_generated", "Thumbs.db", ".DS_Store", "gallery/**/*.ipynb", "gallery/**/*.py"]
 root_doc = "index"
 language = "en"
 
@@ -62,7 +67,28 @@ math_number_all = False
 math_eqref_format = "({number})"
 math_numfig = False
 
-# -- plot directive (the gallery) ---------------------------------------------
+# -- sphinx-gallery: examples/*.py, run at build time -> gallery/ ---------------
+sphinx_gallery_conf = {
+    "examples_dirs": "../examples",  # relative to this file (the test copies docs/ and examples/ side by side)
+    "gallery_dirs": "gallery",
+    "filename_pattern": r"/plot_",  # run every example (not only the default plot_ prefix in a subfolder)
+    "ignore_pattern": r"__init__\.py",
+    "within_subsection_order": "FileNameSortKey",
+    "subsection_order": ["../examples/paper", "../examples/applications"],
+    "image_scrapers": ("matplotlib",),
+    "matplotlib_animations": False,
+    "remove_config_comments": True,
+    "download_all_examples": True,
+    "show_memory": False,
+    "show_signature": False,
+    "min_reported_time": 1.0,
+    "backreferences_dir": None,
+    "write_computation_times": False,
+    "first_notebook_cell": None,
+    "capture_repr": (),  # show what the scripts print, not the repr of a last Axes call
+}
+
+# -- plot directive (the how-to pages) -----------------------------------------
 plot_include_source = True
 plot_html_show_source_link = False
 plot_html_show_formats = False
@@ -71,15 +97,11 @@ plot_rcparams = {"savefig.bbox": "tight"}
 plot_pre_code = "import numpy as np\nimport matplotlib.pyplot as plt\nimport microimpact as mi\n"
 
 # -- HTML ---------------------------------------------------------------------
-html_theme = "alabaster"
+html_theme = "furo"
 html_title = f"microimpact {release}"
-html_theme_options = {
-    "description": "Elastic-plastic impact of micro-particles",
-    "fixed_sidebar": True,
-    "page_width": "1100px",
-    "sidebar_width": "230px",
-}
-html_sidebars = {"**": ["about.html", "navigation.html", "searchbox.html"]}
+html_theme_options = {"navigation_with_keys": True}
+html_static_path = ["_static"]
+html_css_files = ["microimpact.css"]
 html_show_sourcelink = False
 
 nitpicky = False

@@ -243,7 +243,7 @@ def test_public_modules_have_api_pages():
 
 # --------------------------------------------------------------------------- the build
 def _sphinx_missing() -> str | None:
-    for mod in ("sphinx", "numpydoc", "matplotlib"):
+    for mod in ("sphinx", "numpydoc", "matplotlib", "sphinx_gallery", "furo", "sphinx-mathjax-offline"):
         try:
             importlib.import_module(mod)
         except ImportError:
@@ -259,7 +259,10 @@ def test_docs_build_without_warnings(tmp_path):
     build starts clean, leaves the tree alone, and documents the installed package.
     """
     src = tmp_path / "docs"
-    shutil.copytree(DOCS, src, ignore=shutil.ignore_patterns("_build", "_generated", "generated", "__pycache__"))
+    shutil.copytree(
+        DOCS, src, ignore=shutil.ignore_patterns("_build", "_generated", "generated", "gallery", "__pycache__")
+    )
+    shutil.copytree(ROOT / "examples", tmp_path / "examples", ignore=shutil.ignore_patterns("__pycache__"))
     out = tmp_path / "html"
     env = dict(os.environ, MPLBACKEND="Agg")
     proc = subprocess.run(
@@ -289,7 +292,13 @@ def test_docs_build_without_warnings(tmp_path):
 
     first = compare_with_paper()[0]
     assert f"{first['computed']:.5g}" in comparison
-    gallery = (out / "gallery.html").read_text()
-    assert gallery.count("<img") >= 9
+    # the sphinx-gallery index shows a thumbnail per example, and each example page its figure(s)
+    gallery = (out / "gallery" / "index.html").read_text()
+    examples = sorted((ROOT / "examples").rglob("plot_*.py"))
+    assert len(examples) >= 13
+    assert gallery.count("<img") >= len(examples)
+    for ex in examples:
+        page = out / "gallery" / ex.parent.relative_to(ROOT / "examples") / f"{ex.stem}.html"
+        assert "sphx-glr-single-img" in page.read_text() or "sphx-glr-multi-img" in page.read_text(), page
     for name in ("theory", "api/index", "howto/cfd", "cli"):
         assert (out / f"{name}.html").is_file()

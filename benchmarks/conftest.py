@@ -1,0 +1,260 @@
+"""The benchmark suite of microimpact (pytest-benchmark): ratios taken in one run, and memory peaks.
+
+Run it with ``microimpact bench`` (a front end that prints the table) or directly::
+
+    python -m pytest benchmarks --size quick --ratios-json bench.json
+
+Each benchmark file times a subject and its baseline as separate pytest-benchmark tests of one
+group (best round kept: ``stats.min``). At the end of the session the ratios the project tracks
+are formed from those best times and printed as one table, and written as JSON with
+``--ratios-json``:
+
+1. ``outcome_vs_ode``: outcome and contact times in closed form against Newton's equation
+   integrated by an ODE solver (the seed's route), and their largest relative difference;
+2. ``restitution_vs_copy``: restitution alone against copying the array (memory bandwidth);
+3. ``impact_latency``: ``pair.impact(50.0)`` and ``pair.restitution(50.0)`` against plain-Python
+   functions computing the same (``benchmarks/_reference.py``, and the physics core's scalar
+   ``outcome`` where it exists);
+4. ``wall_vs_copy``: the wall interaction against copying its inputs;
+5. ``memory``: peaks of traced allocations (:mod:`tracemalloc`) per point of an array call and of
+   an eager against a chunked sweep;
+6. ``paper``: ``microimpact paper`` end to end (not in ``tiny`` mode).
+
+No benchmark asserts a timing; accuracies (closed form against ODE, every path against the
+reference restitution) are asserted.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import time
+from pathlib import Path
+
+import pytest
+
+#: Problem sizes of each mode (``--size``).
+SIZES = {
+    "full": dict(outcome=10**6, ode=50, restitution=10**7, wall=10**6, memory=10**6, sweep=10**7, paper=True),
+    "quick": dict(outcome=10**4, ode=10, restitution=10**5, wall=10**4, memory=10**5, sweep=10**5, paper=True),
+    "tiny": dict(outcome=2000, ode=2, restitution=20000, wall=1000, memory=10**4, sweep=2000, paper=False),
+}
+
+#: Targets the project tracks (the README lists the same).
+TARGETS = {
+    "outcome_vs_ode": "closed form >= 1e4x faster than the ODE, max rel. difference < 1e-8",
+    "restitution_vs_copy": "<= 5x the time of copying the array",
+    "impact_latency": "pair.impact(50.0) < 20 us",
+    "wall_vs_copy": "ratio to copying the inputs (reported)",
+    "memory": "chunked sweep peak < 500 MB at 1e7 points",
+    "paper": "microimpact paper end to end < 20 s",
+}
+
+TITLES = {
+    "outcome_vs_ode": "outcome + contact times, closed form vs ODE",
+    "restitution_vs_copy": "restitution alone vs copying the array",
+    "impact_latency": "one impact through the object API vs plain Python",
+    "wall_vs_copy": "wall interaction vs copying its inputs",
+    "memory": "memory peaks (tracemalloc)",
+    "paper": "microimpact paper, end to end",
+}
+
+ORDER = list(TARGETS)
+
+PAPER_PAIR = dict(radius=2.45e-6, density=1350.0, effective_modulus=1.31e9, limiting_pressure=156e6)
+
+
+def pytest_addoption(parser):
+    group = parser.getgroup("microimpact benchmarks")
+    group.addoption("--size", choices=sorted(SIZES), default="quick", help="problem sizes (default quick)")
+    group.addoption("--ratios-json", default=None, metavar="FILE", help="write the ratio table as JSON")
+
+
+class Record:
+    """Best times [s] and metrics of one session, grouped by benchmark key."""
+
+    def __init__(self, mode):
+        self.mode = mode
+        self.times: dict[str, dict[str, float]] = {}
+        self.metrics: dict[str, dict] = {}
+        self.notes: dict[str, list[str]] = {}
+
+    def time(self, key, variant, seconds):
+        self.times.setdefault(key, {})[variant] = float(seconds)
+
+    def metric(self, key, name, value):
+        self.metrics.setdefault(key, {})[name] = value
+
+    def note(self, key, text):
+        self.notes.setdefault(key, []).append(text)
+
+
+def pytest_configure(config):
+    config._microimpact_record = Record(config.getoption("--size"))
+
+
+@pytest.fixture(scope="session")
+def record(request) -> Record:
+    return request.config._microimpact_record
+
+
+@pytest.fixture(scope="session")
+def size(request) -> dict:
+    return SIZES[request.config.getoption("--size")]
+
+
+@pytest.fixture(scope="session")
+def pair():
+    from microimpact import ContactPair
+
+    return ContactPair.sphere_on_flat(**PAPER_PAIR, label="NH4Fl on silicon (seed Sec. 3)")
+
+
+@pytest.fixture
+def timed(benchmark, record):
+    """``timed(key, variant, fn, rounds=, iterations=)``: time ``fn`` with pytest-benchmark, keep its best.
+
+    The best round, per call (pytest-benchmark divides each round by ``iterations``), is
+    recorded under ``key``/``variant``. With ``--benchmark-disable``
+    the same rounds are timed here with :func:`time.perf_counter` instead.
+    """
+
+    def run(key, variant, fn, *, rounds=5, iterations=1, warmup_rounds=1):
+        benchmark.group = key
+        benchmark.name = variant
+        result = benchmark.pedantic(fn, rounds=rounds, iterations=iterations, warmup_rounds=warmup_rounds)
+        stats = getattr(getattr(benchmark, "stats", None), "stats", None)
+        if stats is not None:
+            best = stats.min
+        else:  # --benchmark-disable: pytest-benchmark ran fn once and kept no statistics
+            best = math.inf
+            for _ in range(rounds):
+                t0 = time.perf_counter()
+                for _ in range(iterations):
+                    fn()
+                best = min(best, (time.perf_counter() - t0) / iterations)
+        record.time(key, variant, best)
+        return result
+
+    return run
+
+
+# ----------------------------------------------------------------------------- the table
+
+
+def _fmt_t(seconds):
+    if seconds is None or not math.isfinite(seconds):
+        return "n/a"
+    for unit, scale in (("s", 1.0), ("ms", 1e-3), ("us", 1e-6), ("ns", 1e-9)):
+        if seconds >= scale:
+            return f"{seconds / scale:.3g} {unit}"
+    return f"{seconds / 1e-9:.3g} ns"
+
+
+def _entry(key, rec: Record) -> dict | None:
+    t = rec.times.get(key, {})
+    m = dict(rec.metrics.get(key, {}))
+    if not t and not m:
+        return None
+    rows, headline, met = [], "", None
+    if key == "outcome_vs_ode" and {"closed_per_impact", "ode_per_impact"} <= set(t):
+        ratio = t["ode_per_impact"] / t["closed_per_impact"]
+        worst = m.get("max_rel_diff", math.nan)
+        m["speed_ratio"] = ratio
+        met = bool(ratio >= 1e4 and worst < 1e-8)
+        headline = f"{ratio:.2g}x faster, max rel. diff. {worst:.1g}"
+        rows = [
+            (f"closed form, per impact ({m.get('n', '?'):.0e} speeds)", _fmt_t(t["closed_per_impact"])),
+            (f"ODE (DOP853, rtol 1e-12), per impact ({m.get('n_ode', '?')} speeds)", _fmt_t(t["ode_per_impact"])),
+            ("speed ratio", f"{ratio:.3g}"),
+            (f"max rel. difference ({m.get('worst_quantity', '?')})", f"{worst:.2g}"),
+        ]
+    elif key in ("restitution_vs_copy", "wall_vs_copy") and "copy" in t:
+        copy = t["copy"]
+        rows.append(("copy (np.copyto into preallocated arrays)", _fmt_t(copy)))
+        ratios = {}
+        for variant, s in t.items():
+            if variant == "copy":
+                continue
+            ratios[variant] = s / copy
+            rows.append((variant, f"{_fmt_t(s)} = {s / copy:.3g}x copy"))
+        m["ratios"] = ratios
+        if key == "restitution_vs_copy" and ratios:
+            best = min(ratios, key=ratios.get)
+            m["best"] = best
+            met = bool(ratios[best] <= 5.0) if rec.mode == "full" else None  # the target is set at 1e7
+            headline = f"{ratios[best]:.2g}x copy ({best})"
+        elif ratios:
+            (variant, r), *_ = ratios.items()
+            headline = f"{r:.3g}x copy"
+    elif key == "impact_latency" and "pair.impact(50.0)" in t:
+        api = t["pair.impact(50.0)"]
+        met = bool(api < 20e-6)
+        headline = f"{_fmt_t(api)}"
+        for variant, s in t.items():
+            rows.append((variant, _fmt_t(s)))
+        ratios = {}
+        if "core outcome (plain Python)" in t:
+            ratios["pair.impact / core outcome"] = api / t["core outcome (plain Python)"]
+        if {"pair.restitution(50.0)", "restitution_reference (plain Python)"} <= set(t):
+            ratios["pair.restitution / plain-Python e"] = (
+                t["pair.restitution(50.0)"] / t["restitution_reference (plain Python)"]
+            )
+        for name, r in ratios.items():
+            rows.append((name, f"{r:.3g}x"))
+        m["ratios"] = ratios
+    elif key == "memory":
+        mb = 1024.0**2
+        for name, value in m.items():
+            if name.endswith("_peak_bytes"):
+                rows.append((f"{name.removesuffix('_peak_bytes')}: peak", f"{value / mb:.3g} MB"))
+            elif name.endswith("_peak_per_point"):
+                rows.append((f"{name.removesuffix('_peak_per_point')}: peak per point", f"{value:.3g} B"))
+        if "sweep_chunked_peak_bytes" in m:
+            headline = f"chunked sweep peak {m['sweep_chunked_peak_bytes'] / mb:.0f} MB"
+            if "sweep_eager_peak_bytes" in m:
+                headline += f" (eager {m['sweep_eager_peak_bytes'] / mb:.0f} MB)"
+            met = bool(m["sweep_chunked_peak_bytes"] < 500 * mb) if rec.mode == "full" else None
+    elif key == "paper" and "end to end" in t:
+        s = t["end to end"]
+        met = bool(s < 20.0)
+        headline = _fmt_t(s)
+        rows = [("wall-clock time, subprocess", _fmt_t(s))]
+    if not headline:
+        headline = "incomplete: " + ", ".join(sorted(t)) if t else "no timings"
+    return {
+        "key": key,
+        "number": ORDER.index(key) + 1,
+        "title": TITLES[key],
+        "target": TARGETS[key],
+        "headline": headline,
+        "met": met,
+        "times_s": t,
+        "metrics": m,
+        "rows": rows,
+        "notes": rec.notes.get(key, []),
+    }
+
+
+def build_report(rec: Record) -> dict:
+    """The session's results as a JSON-able dict: machine, mode and one entry per benchmark."""
+    from microimpact.cli.bench import machine_info
+
+    results = [e for e in (_entry(k, rec) for k in ORDER) if e is not None]
+    return {"mode": rec.mode, "date": time.strftime("%Y-%m-%d"), "machine": machine_info(), "results": results}
+
+
+def pytest_terminal_summary(terminalreporter, exitstatus, config):
+    from microimpact.cli.bench import format_table
+
+    rec = config._microimpact_record
+    report = build_report(rec)
+    terminalreporter.section("microimpact: ratios")
+    terminalreporter.write_line(format_table(report))
+    path = config.getoption("--ratios-json")
+    if path:
+        path = Path(path)
+        tmp = path.with_name(path.name + f".tmp{os.getpid()}")
+        tmp.write_text(json.dumps(report, indent=2, default=float))
+        tmp.replace(path)

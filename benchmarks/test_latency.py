@@ -1,0 +1,43 @@
+"""3. One impact through the object API against plain-Python functions computing the same."""
+
+import warnings
+
+import pytest
+from _reference import core_outcome, restitution_reference
+
+KEY = "impact_latency"
+
+
+def test_pair_impact(timed, pair):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # 50 m/s is a large-strain impact: flagged and warned, silently here
+        timed(KEY, "pair.impact(50.0)", lambda: pair.impact(50.0), rounds=25, iterations=40)
+
+
+def test_core_outcome(timed, record, pair):
+    outcome = core_outcome()
+    if outcome is None:
+        record.note(KEY, "the physics core's scalar outcome is not there: not timed")
+        pytest.skip("microimpact.core.models has no default model yet")
+    args = (50.0, pair.effective_modulus, pair.effective_radius, pair.effective_mass, pair.limiting_pressure)
+    out = timed(KEY, "core outcome (plain Python)", lambda: outcome(*args), rounds=25, iterations=200)
+    from microimpact.core.quantities import OUTCOME_FIELDS
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        api = pair.impact(50.0)
+    e = out[OUTCOME_FIELDS.index("restitution")]
+    assert e == pytest.approx(float(api.restitution), rel=1e-12)
+
+
+def test_pair_restitution(timed, pair):
+    timed(KEY, "pair.restitution(50.0)", lambda: pair.restitution(50.0), rounds=15, iterations=20)
+
+
+def test_restitution_reference(timed, pair):
+    Vy = pair.yield_velocity
+    e = timed(
+        KEY, "restitution_reference (plain Python)", lambda: restitution_reference(50.0, Vy), rounds=25, iterations=2000
+    )
+    assert e == pytest.approx(float(pair.restitution(50.0)), rel=1e-12)
+    assert restitution_reference(0.5 * Vy, Vy) == 1.0
