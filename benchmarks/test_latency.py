@@ -3,7 +3,7 @@
 import warnings
 
 import pytest
-from _reference import core_outcome, restitution_reference
+from _reference import core_outcome, outcome_reference, restitution_reference
 
 KEY = "impact_latency"
 
@@ -41,3 +41,16 @@ def test_restitution_reference(timed, pair):
     )
     assert e == pytest.approx(float(pair.restitution(50.0)), rel=1e-12)
     assert restitution_reference(0.5 * Vy, Vy) == 1.0
+
+
+def test_outcome_reference(timed, pair):
+    """The plain-Python closed form returning the same 18 numbers: ``pair.impact(50.0)`` is timed against it."""
+    args = (50.0, pair.effective_modulus, pair.effective_radius, pair.effective_mass, pair.limiting_pressure)
+    ref = timed(KEY, "outcome_reference (plain Python)", lambda: outcome_reference(*args), rounds=25, iterations=200)
+    from microimpact.core.quantities import OUTCOME_FIELDS
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        api = pair.impact(50.0)
+    for name, x in zip(OUTCOME_FIELDS, ref):
+        assert float(getattr(api, name)) == x, name  # bitwise the same numbers

@@ -72,7 +72,8 @@ sphinx_gallery_conf = {
     "examples_dirs": "../examples",  # relative to this file (the test copies docs/ and examples/ side by side)
     "gallery_dirs": "gallery",
     "filename_pattern": r"/plot_",  # run every example (not only the default plot_ prefix in a subfolder)
-    "ignore_pattern": r"__init__\.py",
+    # fit_values_above_one.py is a command-line script (it writes a folder), shown in the fitting how-to
+    "ignore_pattern": r"__init__\.py|fit_values_above_one\.py",
     "within_subsection_order": "FileNameSortKey",
     "subsection_order": ["../examples/paper", "../examples/applications"],
     "image_scrapers": ("matplotlib",),

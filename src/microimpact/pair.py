@@ -8,6 +8,7 @@ delegates to the vectorized functions of :mod:`microimpact.contact`,
 
 from __future__ import annotations
 
+import html
 import math
 import warnings
 from dataclasses import dataclass, field, fields, replace
@@ -18,6 +19,7 @@ from . import contact, dynamics, impact
 from ._validation import check_poisson, check_positive, check_velocity
 from .core import models, quantities
 from .core.constants import LARGE_STRAIN_RATIO
+from .core.models import thornton_ning_2016 as _seed
 from .core.quantities import FLAG_FIELDS, OUTCOME_FIELDS
 from .dynamics import ImpactHistory
 from .materials import DEFAULT_K, PAPER_CASES, Material, effective_modulus, get_material, sphere_mass
@@ -171,6 +173,43 @@ class ImpactResult:
     def __len__(self):
         return int(np.size(self.velocity))
 
+    def _rows(self):
+        """(name, unit, description, value text) of every field, for the displays below."""
+        rows = []
+        for name in OUTCOME_FIELDS:
+            q = quantities.QUANTITIES[name]
+            x = np.asarray(getattr(self, name))
+            if x.dtype == bool:
+                text = str(bool(x)) if x.ndim == 0 else f"{int(x.sum())} of {x.size}"
+            elif x.size == 0:
+                text = "(empty)"
+            elif x.ndim == 0 or np.all(x == x.flat[0]):
+                text = f"{float(x.flat[0]):.6g}"
+            else:
+                text = f"{np.nanmin(x):.6g} .. {np.nanmax(x):.6g}"
+            rows.append((name, q.unit, q.description, text))
+        return rows
+
+    def __repr__(self) -> str:
+        n = int(np.size(self.velocity))
+        pick = {r[0]: r for r in self._rows()}
+        parts = [f"{k} = {pick[k][3]} {pick[k][1]}".rstrip() for k in ("velocity", "restitution", "contact_time")]
+        return f"ImpactResult({n} impact{'s' if n != 1 else ''}: " + ", ".join(parts) + ")"
+
+    def _repr_html_(self) -> str:
+        """A table of every field with its unit (notebooks)."""
+        n = int(np.size(self.velocity))
+        body = "".join(
+            f"<tr><td><code>{html.escape(name)}</code></td><td>{html.escape(text)}</td>"
+            f"<td>{html.escape(unit)}</td><td>{html.escape(desc)}</td></tr>"
+            for name, unit, desc, text in self._rows()
+        )
+        return (
+            f"<table><caption>ImpactResult: {n} impact{'s' if n != 1 else ''} (a range shows min .. max)"
+            "</caption><tr><th>field</th><th>value</th><th>unit</th><th>meaning</th></tr>"
+            f"{body}</table>"
+        )
+
 
 @dataclass(frozen=True)
 class ContactPair:
@@ -219,14 +258,14 @@ class ContactPair:
 
     def __post_init__(self):
         for name in ("effective_modulus", "effective_radius", "effective_mass"):
-            object.__setattr__(self, name, float(check_positive(name, getattr(self, name))))
+            object.__setattr__(self, name, check_positive(name, getattr(self, name), scalar=True))
         object.__setattr__(
             self,
             "limiting_pressure",
-            float(check_positive("limiting_pressure", self.limiting_pressure, allow_inf=True)),
+            check_positive("limiting_pressure", self.limiting_pressure, allow_inf=True, scalar=True),
         )
         if self.density is not None:
-            object.__setattr__(self, "density", float(check_positive("density", self.density)))
+            object.__setattr__(self, "density", check_positive("density", self.density, scalar=True))
 
     # ----------------------------------------------------------------- constructors
     @staticmethod
@@ -235,7 +274,7 @@ class ContactPair:
             if yield_strength is not None or k is not None:
                 raise ValueError("limiting_pressure was given together with k/yield_strength; give one or the other")
             return limiting_pressure
-        k = DEFAULT_K if k is None else float(check_positive("k", k))
+        k = DEFAULT_K if k is None else check_positive("k", k, scalar=True)
         if yield_strength is None:
             known = [m.yield_strength for m in (particle, surface) if m is not None and m.yield_strength]
             if not known:
@@ -244,7 +283,7 @@ class ContactPair:
                     "(p_y = k * Y), or a material with a yield strength"
                 )
             yield_strength = min(known)  # the softer body yields first
-        return k * float(check_positive("yield_strength", yield_strength))
+        return k * check_positive("yield_strength", yield_strength, scalar=True)
 
     @classmethod
     def sphere_on_flat(
@@ -294,13 +333,13 @@ class ContactPair:
         """
         if effective_modulus is None:
             raise ValueError("effective_modulus is needed for sphere_on_flat (or use from_materials)")
-        radius = float(check_positive("radius", radius))
+        radius = check_positive("radius", radius, scalar=True)
         if (density is None) == (mass is None):
             raise ValueError("give exactly one of density or mass")
         if density is not None:
             m = float(sphere_mass(radius, density))
         else:
-            m = float(check_positive("mass", mass))
+            m = check_positive("mass", mass, scalar=True)
             density = m / (4.0 / 3.0 * math.pi * radius**3)
         p_y = cls._limiting_pressure(limiting_pressure, k, yield_strength)
         return cls(effective_modulus, radius, m, p_y, density=density, label=label)
@@ -359,7 +398,7 @@ class ContactPair:
         """
         p, s = get_material(particle), get_material(surface)
         E = float(effective_modulus(p.youngs_modulus, p.poisson_ratio, s.youngs_modulus, s.poisson_ratio))
-        radius = float(check_positive("radius", radius))
+        radius = check_positive("radius", radius, scalar=True)
         m = float(sphere_mass(radius, p.density))
         p_y = cls._limiting_pressure(limiting_pressure, k, yield_strength, p, s)
         return cls(E, radius, m, p_y, density=p.density, label=label or f"{p.name} on {s.name}", particle=p, surface=s)
@@ -411,8 +450,8 @@ class ContactPair:
         """
         p, s = get_material(material1), get_material(material2)
         E = float(effective_modulus(p.youngs_modulus, p.poisson_ratio, s.youngs_modulus, s.poisson_ratio))
-        r1 = float(check_positive("radius1", radius1))
-        r2 = float(check_positive("radius2", radius2))
+        r1 = check_positive("radius1", radius1, scalar=True)
+        r2 = check_positive("radius2", radius2, scalar=True)
         m1, m2 = float(sphere_mass(r1, p.density)), float(sphere_mass(r2, s.density))
         p_y = cls._limiting_pressure(limiting_pressure, k, yield_strength, p, s)
         return cls(
@@ -861,6 +900,11 @@ class ContactPair:
         numpy scalar or ndarray
             Coefficient of restitution ``e`` [-], shaped like ``velocity``.
         """
+        if type(velocity) is float or type(velocity) is int:  # one speed: the core's scalar function itself
+            V = float(velocity)
+            if not 0.0 <= V < math.inf:
+                check_velocity("velocity", V)
+            return np.float64(_seed.restitution_at(V, self.yield_velocity))
         return _scalar_or_array(impact.restitution_coefficient(velocity, self.yield_velocity))
 
     def ning_loading_time(self) -> float:
@@ -890,6 +934,24 @@ class ContactPair:
             dynamics.deresiewicz_contact_time(
                 velocity, self.effective_modulus, self.effective_radius, self.effective_mass
             )
+        )
+
+    def _repr_html_(self) -> str:
+        """The pair's effective values and yield point as a table (notebooks)."""
+        rows = [
+            ("E*", self.effective_modulus, "Pa"),
+            ("R*", self.effective_radius, "m"),
+            ("m*", self.effective_mass, "kg"),
+            ("p_y", self.limiting_pressure, "Pa"),
+        ]
+        if self.density is not None:
+            rows.append(("density", self.density, "kg/m^3"))
+        if math.isfinite(self.limiting_pressure):
+            rows += [("V_y", self.yield_velocity, "m/s"), ("alpha_y", self.yield_approach, "m")]
+        body = "".join(f"<tr><td>{k}</td><td>{v:.6g}</td><td>{u}</td></tr>" for k, v, u in rows)
+        return (
+            f"<table><caption>ContactPair {html.escape(self.label or 'unnamed')}</caption>"
+            f"<tr><th>quantity</th><th>value</th><th>unit</th></tr>{body}</table>"
         )
 
     def describe(self) -> str:

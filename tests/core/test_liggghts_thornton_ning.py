@@ -35,7 +35,7 @@ try:
     settings.get_profile("ci")
 except InvalidArgument:
     settings.register_profile("ci", derandomize=True, deadline=None, max_examples=40)
-CI = settings.get_profile("ci")
+CI = settings(settings.get_profile("ci"), max_examples=40)
 
 M = get("liggghts_thornton_ning")
 CSV = Path(__file__).resolve().parents[2] / "benchmarks" / "data" / "dem_runs.csv"

@@ -56,7 +56,8 @@ class _Version(argparse.Action):
     def __call__(self, parser, namespace, values, option_string=None):
         from .. import __version__
 
-        parser.exit(0, f"microimpact {__version__}\n")
+        print(f"microimpact {__version__}")  # stdout, as argparse's own version action
+        parser.exit(0)
 
 
 def build_parser(only: str | None = None) -> argparse.ArgumentParser:

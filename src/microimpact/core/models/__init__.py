@@ -33,18 +33,28 @@ __all__ = ["available", "get", "parameters", "resolve_params", "DEFAULT"]
 DEFAULT = "thornton_ning_2016"
 
 
+_NAMES: list = []
+_MODULES: dict = {}
+
+
 def available() -> list[str]:
-    """Names of the models, the seed's first, then alphabetical."""
-    names = sorted(m.name for m in pkgutil.iter_modules(__path__) if not m.name.startswith("_"))
-    return sorted(names, key=lambda n: n != DEFAULT)
+    """Names of the models, the seed's first, then alphabetical (the files, read once per process)."""
+    if not _NAMES:
+        names = sorted(m.name for m in pkgutil.iter_modules(__path__) if not m.name.startswith("_"))
+        _NAMES.extend(sorted(names, key=lambda n: n != DEFAULT))
+    return list(_NAMES)
 
 
 def get(name: str = DEFAULT):
     """The module of model ``name`` (see :func:`available`); ValueError naming it if unknown."""
+    found = _MODULES.get(name) if isinstance(name, str) else None
+    if found is not None:
+        return found
     names = available()
     if not isinstance(name, str) or name not in names:
         raise ValueError(f"model must be one of {', '.join(names)}; got {name!r}")
-    return importlib.import_module(f"{__name__}.{name}")
+    found = _MODULES[name] = importlib.import_module(f"{__name__}.{name}")
+    return found
 
 
 def parameters(name: str = DEFAULT) -> dict:
@@ -59,6 +69,8 @@ def resolve_params(module, given: dict) -> tuple:
     ValueError naming the parameter when one is unknown, missing (no default), not a real number,
     or not finite.
     """
+    if not given and not module.PARAMETERS:  # the common case, on the path of one impact
+        return ()
     names = [p[0] for p in module.PARAMETERS]
     unknown = sorted(set(given) - set(names))
     if unknown:

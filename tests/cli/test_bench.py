@@ -15,7 +15,7 @@ import pytest
 
 from microimpact.cli import bench, main
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 SUITE = ROOT / "benchmarks"
 
 needs_suite = pytest.mark.skipif(

@@ -45,7 +45,7 @@ def test_broken_pipe_is_a_quiet_success(monkeypatch):
         raise BrokenPipeError
 
     parser = cli.build_parser()
-    monkeypatch.setattr(cli, "build_parser", lambda: parser)
+    monkeypatch.setattr(cli, "build_parser", lambda **kw: parser)
     parser._subparsers._group_actions[0].choices["materials"].set_defaults(func=func)
     assert main(["materials"]) == 0
 

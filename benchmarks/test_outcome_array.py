@@ -1,0 +1,54 @@
+"""7. The full outcome with times over an array of speeds against copying the array; threads at 1e3."""
+
+import warnings
+
+import numpy as np
+
+KEY = "outcome_vs_copy"
+
+
+def _speeds(n):
+    return np.linspace(1.0, 120.0, n)
+
+
+def test_copy(timed, size):
+    V = _speeds(size["restitution"])
+    out = np.empty_like(V)
+    timed(KEY, "copy", lambda: np.copyto(out, V), rounds=5)
+
+
+def test_outcome(timed, size, pair):
+    V = _speeds(size["restitution"])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        pair.impact(V[:100_000])  # loads the compiled loops
+        timed(KEY, "pair.impact (18 fields)", lambda: pair.impact(V, warn=False), rounds=3)
+
+
+def test_threads_at_1e3(timed, record, pair):
+    """The compiled loop over 1e3 speeds: the default (serial below PARALLEL_MIN) against forced threads."""
+    from microimpact.core import arrays
+    from microimpact.core.models import thornton_ning_2016 as seed
+
+    V = _speeds(1000)
+    args = (
+        V,
+        *(
+            np.float64(x)
+            for x in (pair.effective_modulus, pair.effective_radius, pair.effective_mass, pair.limiting_pressure)
+        ),
+    )
+
+    def run():
+        return arrays.evaluate(seed.outcome, *args, nout=18, params=(), backend="numba")
+
+    run()
+    timed("threads_1e3", "default (serial)", run, rounds=20, iterations=20)
+    old = arrays.PARALLEL_MIN
+    arrays.PARALLEL_MIN = 1
+    try:
+        run()
+        timed("threads_1e3", "threads forced", run, rounds=20, iterations=20)
+    finally:
+        arrays.PARALLEL_MIN = old
+    record.metric("threads_1e3", "parallel_min", arrays.PARALLEL_MIN)
