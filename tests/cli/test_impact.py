@@ -130,3 +130,43 @@ def test_materials_command(capsys):
     assert rc == 0 and "nh4fl" in out and "fly_ash" in out
     rc, out, _ = run(["materials", "silicon"], capsys)
     assert "Hopcroft" in out
+
+
+def test_model_option_gives_the_model_outcome(capsys):
+    """``--model NAME --param k=v`` evaluates that model: the linear spring-dashpot returns its e_n."""
+    import json
+
+    from microimpact.cli import main
+
+    rc = main(["impact", "10", "50", "--model", "linear_spring_dashpot", "--param", "stiffness=1000",
+               "--param", "restitution=0.7", "--json"])  # fmt: skip
+    doc = json.loads(capsys.readouterr().out)
+    assert rc == 0 and doc["model"]["name"] == "linear_spring_dashpot"
+    assert doc["results"]["restitution"] == pytest.approx([0.7, 0.7], rel=1e-14)
+    assert doc["results"]["elastic_stage_time"] == [None, None]  # not defined by that model: NaN -> null
+
+
+@pytest.mark.parametrize(
+    "argv, words",
+    [
+        (["--model", "nope"], "model must be one of"),
+        (["--model", "hertz_viscoelastic"], "dissipative_constant"),
+        (["--model", "linear_spring_dashpot", "--param", "stiffness"], "NAME=VALUE"),
+        (["--param", "x=1"], "has no parameter 'x'"),
+    ],
+)
+def test_model_option_refuses_bad_input(capsys, argv, words):
+    from microimpact.cli import main
+
+    rc = main(["impact", "50", *argv])
+    err = capsys.readouterr().err
+    assert rc == 2 and words in err and len(err.strip().splitlines()) == 1
+
+
+def test_model_list(capsys):
+    from microimpact.cli import main
+    from microimpact.models import available
+
+    assert main(["impact", "1", "--model", "list"]) == 0
+    out = capsys.readouterr().out
+    assert all(f"{name}:" in out for name in available())

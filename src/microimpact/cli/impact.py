@@ -9,6 +9,7 @@ import warnings
 import numpy as np
 
 from .._validation import check_velocity
+from ..core import models
 from ..io import write_json
 from ..pair import RESULT_FIELDS, LargeStrainWarning
 from ._common import add_pair_arguments, pair_from_args, parse_values
@@ -43,8 +44,38 @@ def register(sub) -> None:
     )
     p.add_argument("velocities", nargs="+", metavar="V", help="impact speed(s) [m/s], e.g. 30 50 70 or 1:120:12")
     add_pair_arguments(p)
+    p.add_argument(
+        "--model",
+        default=models.DEFAULT,
+        metavar="NAME",
+        help=f"impact model (default {models.DEFAULT}); `microimpact impact --model list 1` lists them",
+    )
+    p.add_argument(
+        "--param",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="a parameter of the model (repeat for several); fields a model does not define print as nan",
+    )
     p.add_argument("--json", action="store_true", help="print JSON (SI units) instead of a table")
     p.set_defaults(func=run)
+
+
+def parse_params(items) -> dict:
+    """``["name=value", ...]`` as ``{name: float}``; ValueError naming ``--param`` and the item."""
+    out = {}
+    for item in items:
+        name, sep, value = item.partition("=")
+        name = name.strip()
+        if not sep or not name:
+            raise ValueError(f"--param must be NAME=VALUE, got {item!r}")
+        if name in out:
+            raise ValueError(f"--param {name} was given twice")
+        try:
+            out[name] = float(value)
+        except ValueError:
+            raise ValueError(f"--param {name} must be a number, got {value!r}") from None
+    return out
 
 
 def _fmt(value, scale, fmt):
@@ -71,12 +102,21 @@ def format_table(result) -> str:
 
 
 def run(args) -> int:
+    if args.model == "list":
+        for name in models.available():
+            print(f"{name}: {models.get(name).TITLE}")
+            for pname, (unit, desc, default) in models.parameters(name).items():
+                print(f"    {pname} [{unit}]: {desc}" + ("" if math.isnan(default) else f" (default {default:g})"))
+        return 0
+    module = models.get(args.model)  # ValueError naming the models when unknown
+    params = parse_params(args.param)
+    models.resolve_params(module, params)  # every input checked before anything is computed
     V = parse_values(args.velocities, "velocity", bytes_per_value=BYTES_PER_SPEED)
     check_velocity("velocity", V)
     pair = pair_from_args(args)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", LargeStrainWarning)
-        result = pair.impact(V)
+        result = pair.impact(V, model=args.model, **params)
     flagged = np.atleast_1d(result.large_strain)
     if args.json:
         data = {k: np.atleast_1d(v).tolist() for k, v in result.to_dict().items()}
@@ -90,12 +130,15 @@ def run(args) -> int:
                 "density": pair.density,
                 "yield_velocity": pair.yield_velocity,
             },
+            "model": {"name": args.model, "params": params},
             "units": {k: u for k, (u, _) in RESULT_FIELDS.items()},
             "results": data,
         }
         write_json(doc)  # NaN/inf -> null: always valid JSON
     else:
         print(pair.describe())
+        if args.model != models.DEFAULT:
+            print(f"model: {args.model}" + "".join(f", {k} = {v:g}" for k, v in params.items()))
         print()
         print(format_table(result))
     if flagged.any():

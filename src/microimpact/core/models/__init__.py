@@ -57,7 +57,7 @@ def get(name: str = DEFAULT):
     return found
 
 
-def parameters(name: str = DEFAULT) -> dict:
+def parameters(name: str = DEFAULT) -> dict:  # noqa: D401
     """``{parameter: (unit, description, default)}`` of model ``name`` (``nan`` default: required)."""
     mod = get(name)
     return {p[0]: (p[1], p[2], d) for p, d in zip(mod.PARAMETERS, mod.DEFAULTS)}
