@@ -80,3 +80,10 @@ def dem_outcome(V, e, max_approach, plastic_approach, max_force, R, tL, tU):
     1.0 where no energy is lost (``e == 1``)."""
     n = math.nan
     return pack(V, n, n, 1.0 if e == 1.0 else 0.0, e, max_approach, plastic_approach, max_force, n, R, n, n, tL, tU)
+
+
+def no_parameters(name, params):
+    """``validate`` of a model with no parameters of its own: ``params`` must be empty."""
+    if len(params):
+        raise ValueError(f"model {name!r} takes no parameters, got {params!r}")
+    return ()

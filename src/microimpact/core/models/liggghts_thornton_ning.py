@@ -123,6 +123,7 @@ from .._jit import jitable
 from ..constants import LARGE_STRAIN_RATIO
 from ..special import BETA_25_12
 from . import thornton_ning_2016 as seed
+from ._common import no_parameters
 
 NAME = "liggghts_thornton_ning"
 TITLE = (
@@ -338,6 +339,4 @@ def ends_at_zero_force(params):
 
 def validate(params):
     """No parameters of its own: ``params`` must be empty."""
-    if len(params):
-        raise ValueError(f"model {NAME!r} takes no parameters, got {params!r}")
-    return ()
+    return no_parameters(NAME, params)

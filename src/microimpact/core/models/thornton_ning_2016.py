@@ -22,6 +22,7 @@ from .. import hertz
 from .._jit import jitable
 from ..constants import LARGE_STRAIN_RATIO
 from ..special import BETA_25_12, hertz_beta
+from ._common import no_parameters
 
 NAME = "thornton_ning_2016"
 TITLE = "Elastic-plastic impact without adhesion (Aerosol Sci. Tech. 50(4), 2016; Thornton & Ning 1998)"
@@ -297,6 +298,4 @@ def ends_at_zero_force(params):
 
 def validate(params):
     """No parameters of its own: ``params`` must be empty."""
-    if len(params):
-        raise ValueError(f"model {NAME!r} takes no parameters, got {params!r}")
-    return ()
+    return no_parameters(NAME, params)
