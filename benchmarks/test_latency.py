@@ -14,6 +14,11 @@ def test_pair_impact(timed, pair):
         timed(KEY, "pair.impact(50.0)", lambda: pair.impact(50.0), rounds=25, iterations=40)
 
 
+def test_pair_impact_no_warning(timed, pair):
+    """The same without emitting the large-strain warning (50 m/s is flagged): the computation alone."""
+    timed(KEY, "pair.impact(50.0, warn=False)", lambda: pair.impact(50.0, warn=False), rounds=25, iterations=40)
+
+
 def test_core_outcome(timed, record, pair):
     outcome = core_outcome()
     if outcome is None:

@@ -25,30 +25,30 @@ def test_outcome(timed, size, pair):
         timed(KEY, "pair.impact (18 fields)", lambda: pair.impact(V, warn=False), rounds=3)
 
 
-def test_threads_at_1e3(timed, record, pair):
-    """The compiled loop over 1e3 speeds: the default (serial below PARALLEL_MIN) against forced threads."""
+def _run_1e3(pair):
     from microimpact.core import arrays
     from microimpact.core.models import thornton_ning_2016 as seed
 
     V = _speeds(1000)
-    args = (
-        V,
-        *(
-            np.float64(x)
-            for x in (pair.effective_modulus, pair.effective_radius, pair.effective_mass, pair.limiting_pressure)
-        ),
+    E, R, m, p = (
+        np.float64(x)
+        for x in (pair.effective_modulus, pair.effective_radius, pair.effective_mass, pair.limiting_pressure)
     )
+    return lambda: arrays.evaluate(seed.outcome, V, E, R, m, p, nout=18, params=(), backend="numba")
 
-    def run():
-        return arrays.evaluate(seed.outcome, *args, nout=18, params=(), backend="numba")
 
+def test_serial_at_1e3(timed, pair):
+    """The compiled loop over 1e3 speeds as the library runs it (serial below PARALLEL_MIN)."""
+    run = _run_1e3(pair)
     run()
     timed("threads_1e3", "default (serial)", run, rounds=20, iterations=20)
-    old = arrays.PARALLEL_MIN
-    arrays.PARALLEL_MIN = 1
-    try:
-        run()
-        timed("threads_1e3", "threads forced", run, rounds=20, iterations=20)
-    finally:
-        arrays.PARALLEL_MIN = old
-    record.metric("threads_1e3", "parallel_min", arrays.PARALLEL_MIN)
+
+
+def test_threads_at_1e3(timed, pair, monkeypatch):
+    """The same with the multi-threaded loop forced."""
+    from microimpact.core import arrays
+
+    monkeypatch.setattr(arrays, "PARALLEL_MIN", 1)
+    run = _run_1e3(pair)
+    run()
+    timed("threads_1e3", "threads forced", run, rounds=20, iterations=20)

@@ -742,28 +742,22 @@ class ContactPair:
     @property
     def yield_velocity(self) -> float:
         """``V_y`` [m/s], the speed below which impacts are elastic (eq. 28, general energy form)."""
-        return float(
-            impact.yield_velocity(
-                self.limiting_pressure, self.effective_modulus, self.effective_radius, self.effective_mass
-            )
-        )
+        return _seed.yield_point(*self._args)[2]  # the core's scalar function: no array round trip
 
     @property
     def yield_approach(self) -> float:
         """``alpha_y`` [m] (eq. 5)."""
-        return float(contact.yield_approach(self.limiting_pressure, self.effective_modulus, self.effective_radius))
+        return _seed.yield_point(*self._args)[0]
 
     @property
     def yield_force(self) -> float:
         """``P_y`` [N] (eq. 7)."""
-        return float(contact.yield_force(self.limiting_pressure, self.effective_modulus, self.effective_radius))
+        return _seed.yield_point(*self._args)[1]
 
     @property
     def yield_contact_radius(self) -> float:
         """``a_y`` [m] (eq. 4)."""
-        return float(
-            contact.yield_contact_radius(self.limiting_pressure, self.effective_modulus, self.effective_radius)
-        )
+        return _seed.yield_contact_radius(self.limiting_pressure, self.effective_modulus, self.effective_radius)
 
     @property
     def _args(self):

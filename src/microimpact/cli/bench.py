@@ -27,7 +27,17 @@ from .._optional import MissingExtraError
 __all__ = ["BENCHMARKS", "FILES", "find_suite", "machine_info", "format_table", "register", "run"]
 
 #: The suite's benchmarks, in the order of their numbers (``--only``).
-BENCHMARKS = ["outcome_vs_ode", "restitution_vs_copy", "impact_latency", "wall_vs_copy", "memory", "paper"]
+BENCHMARKS = [
+    "outcome_vs_ode",
+    "restitution_vs_copy",
+    "impact_latency",
+    "wall_vs_copy",
+    "memory",
+    "paper",
+    "outcome_vs_copy",
+    "threads_1e3",
+    "startup",
+]
 #: The file of the suite that holds each.
 FILES = {
     "outcome_vs_ode": "test_outcome_vs_ode.py",
@@ -36,6 +46,9 @@ FILES = {
     "wall_vs_copy": "test_wall.py",
     "memory": "test_memory.py",
     "paper": "test_paper.py",
+    "outcome_vs_copy": "test_outcome_array.py",
+    "threads_1e3": "test_outcome_array.py",
+    "startup": "test_startup.py",
 }
 
 
@@ -178,7 +191,7 @@ def register(sub) -> None:
     size = p.add_mutually_exclusive_group()
     size.add_argument("--quick", action="store_true", help="sizes 100x smaller (about a minute)")
     size.add_argument("--tiny", action="store_true", help="smallest sizes, no paper run (a smoke test)")
-    p.add_argument("--only", default=None, metavar="N,N", help="comma-separated benchmark numbers (1-6); default all")
+    p.add_argument("--only", default=None, metavar="N,N", help="comma-separated benchmark numbers (1-9); default all")
     p.add_argument(
         "--json",
         default="microimpact-bench.json",
@@ -198,7 +211,8 @@ def run(args) -> int:
             raise MissingExtraError(f"{mod} is needed to run the benchmarks: pip install 'microimpact[bench]'")
     with tempfile.TemporaryDirectory() as tmp:
         report_path = Path(tmp) / "ratios.json"
-        cmd = [sys.executable, "-m", "pytest", *(str(suite / FILES[BENCHMARKS[i - 1]]) for i in only)]
+        files = dict.fromkeys(str(suite / FILES[BENCHMARKS[i - 1]]) for i in only)  # each file once
+        cmd = [sys.executable, "-m", "pytest", *files]
         cmd += ["-q", "-p", "no:cacheprovider", "--rootdir", str(suite), "-c", os.devnull]
         cmd += ["--size", mode, "--ratios-json", str(report_path), "--benchmark-disable-gc", "--benchmark-sort=name"]
         print(f"running the benchmark suite in {suite} ({mode} sizes) ...", file=sys.stderr, flush=True)
