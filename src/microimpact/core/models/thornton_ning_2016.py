@@ -83,12 +83,16 @@ def normalized_outcome(v):
 
 @jitable
 def restitution(v):
-    """Restitution coefficient at ``v = V/V_y`` [-] (eq. 27): 1 for ``v <= 1``, 0 at ``v = inf``."""
-    if v <= 1.0:
-        return 1.0
-    if v == math.inf:
-        return 0.0
-    return plastic_stage(v)[4]
+    """Restitution coefficient at ``v = V/V_y`` [-] (eq. 27): 1 for ``v <= 1``, 0 at ``v = inf``.
+
+    Written without early returns (the plastic formula on ``max(v, 1)``, then a select), so that
+    the compiled loop vectorises: at ``v = 1`` the formula gives 1 exactly and at ``v = inf`` it
+    gives 0, and for ``v > 1`` these are the operations of :func:`plastic_stage`.
+    """
+    vp = v if v > 1.0 else 1.0
+    q = math.sqrt((24.0 - 4.0 / (vp * vp)) / 5.0)
+    e = 0.5 * q / math.sqrt(math.sqrt((1.0 + vp * q) / 3.0))
+    return e if v > 1.0 else 1.0
 
 
 @jitable
@@ -106,7 +110,8 @@ def energy_loss(e):
 @jitable
 def normalized_velocity(V, V_y):
     """``v = V/V_y``; 0 where ``V_y = inf`` (``p_y = inf``: every impact elastic, even ``V = inf``)."""
-    return 0.0 if V_y == math.inf else V / V_y
+    r = V / V_y  # computed first, then selected: no branch in the compiled loop
+    return 0.0 if V_y == math.inf else r
 
 
 @jitable
