@@ -334,7 +334,7 @@ def sweep(
     '1'
     >>> two = sweep(np.array([30.0, 50.0]), model=["thornton_ning_2016", "liggghts_thornton_ning"])
     >>> two.restitution.sel(model="liggghts_thornton_ning").values.round(3)
-    array([0.781, 0.69 ])
+    array([0.784, 0.69 ])
     """
     xr = require("xarray", "sweeps")
     names, params = _models_and_params(model, model_params)
