@@ -36,7 +36,14 @@ from .core import models as _models
 from .core import quantities
 from .pair import ContactPair, LargeStrainWarning
 
-__all__ = ["compare_models", "default_models", "COMPARED_FIELDS", "MODEL_COORDINATES", "DEFAULT_REFERENCE_VELOCITY"]
+__all__ = [
+    "compare_models",
+    "default_models",
+    "seed_large_strain_velocity",
+    "COMPARED_FIELDS",
+    "MODEL_COORDINATES",
+    "DEFAULT_REFERENCE_VELOCITY",
+]
 
 #: Calibration speed [m/s] with the default speeds (1-120 m/s): the middle of the seed's range.
 DEFAULT_REFERENCE_VELOCITY = 50.0
@@ -117,8 +124,8 @@ def compare_models(pair=None, velocity=None, models=None, params=None, *, refere
         contact radius ``(R* alpha*)^(1/2)`` exceeds ``0.3 R*``, the seed's small-strain limit;
         for the DEM laws it is that geometry only). Coordinates along ``model``: ``title``,
         ``calibrated`` (bool) and ``parameters`` (text). ``attrs``: the pair's effective
-        values, its ``yield_velocity`` [m/s], ``seed_large_strain_velocity`` [m/s] (first speed
-        of the comparison where the seed flags large strain; NaN if none),
+        values, its ``yield_velocity`` [m/s], ``seed_large_strain_velocity`` [m/s]
+        (:func:`seed_large_strain_velocity`),
         ``reference_velocity`` [m/s] and a ``calibration`` sentence naming the calibrated models.
 
     Raises
@@ -182,9 +189,7 @@ def compare_models(pair=None, velocity=None, models=None, params=None, *, refere
             res = pair.impact(V, model=n, **used[n])
             for f in COMPARED_FIELDS:
                 data[f][i] = np.asarray(getattr(res, f))
-    seed_flags = pair.impact(V, warn=False).large_strain
-    seed_flags = np.atleast_1d(seed_flags)
-    V_ls = float(V[seed_flags][0]) if seed_flags.any() else math.nan
+    V_ls = seed_large_strain_velocity(pair)
 
     unit, desc = quantities.table(["velocity"])["velocity"]
     coords = {
@@ -233,6 +238,30 @@ def compare_models(pair=None, velocity=None, models=None, params=None, *, refere
         "calibration": note,
     }
     return xr.Dataset(variables, coords=coords, attrs=attrs)
+
+
+def seed_large_strain_velocity(pair) -> float:
+    """Impact speed [m/s] above which the seed's model leaves its small-strain range (``a*/R* > 0.3``).
+
+    The root of ``(R* alpha*(V))^(1/2) / R* = 0.3`` (:data:`~microimpact.core.constants.LARGE_STRAIN_RATIO`)
+    with the seed's ``alpha*`` (eq. 22), which grows with ``V``; ``inf`` if not reached below 1e6 m/s.
+    """
+    from scipy.optimize import brentq
+
+    from .core.constants import LARGE_STRAIN_RATIO
+
+    R = pair.effective_radius
+
+    def excess(V):
+        return float(pair.impact(float(V), warn=False).max_contact_radius) / R - LARGE_STRAIN_RATIO
+
+    hi = 1e6
+    if excess(hi) < 0.0:
+        return math.inf
+    lo = 1e-9
+    if excess(lo) > 0.0:
+        return 0.0
+    return float(brentq(excess, lo, hi, xtol=1e-12, rtol=1e-13))
 
 
 def _pair(pair):

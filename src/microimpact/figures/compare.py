@@ -145,6 +145,8 @@ def plot_comparison(comparison=None, ax=None, *, legend=True, **kwargs):
         for i, name in enumerate(names):
             st = MODEL_STYLES.get(name) or _style.series_style(i)
             label = MODEL_LABELS.get(name, name) + (" (cal.)" if calibrated[i] else "")
+            if V.size <= 12:  # a few speeds: mark them
+                st = {**st, "marker": _style.MARKERS[i % len(_style.MARKERS)], "markersize": 3.5}
             for a, (var, scale, _) in zip(axes, panels):
                 (line,) = a.plot(V, np.asarray(ds[var].values[i], dtype=float) * scale, label=label, **st)
             handles.append(line)
