@@ -108,8 +108,9 @@ def compare_models(pair=None, velocity=None, models=None, params=None, *, refere
         Model names (:func:`microimpact.models.available`); default :func:`default_models`.
     params : dict, optional
         ``{model name: {parameter: value}}``. A DEM law named without its parameters is
-        calibrated to the seed's model at ``reference_velocity`` (see the module's notes); a
-        parameter given here is used as it is, the others take the model's defaults.
+        calibrated to the seed's model at ``reference_velocity`` (see the module's notes), with
+        the ``limit_force`` convention given here if any; otherwise the parameters given are
+        used as they are and the others take the model's defaults.
     reference_velocity : float, optional
         Calibration speed [m/s], above the pair's yield velocity; default the median of
         ``velocity``, or 50 m/s with the default speeds.
@@ -176,9 +177,23 @@ def compare_models(pair=None, velocity=None, models=None, params=None, *, refere
     used = {}
     for n in names:
         p = dict(given.get(n, {}))
+        known = _models.parameters(n)
+        unknown = sorted(set(p) - set(known))
+        if unknown:
+            raise ValueError(
+                f"model {n!r} has no parameter {unknown[0]!r}; its parameters: {', '.join(known) or 'none'}"
+            )
         if n in calibrated:
-            cal = _calibrate.calibrate(pair, n, ref, plasticity=(n == "luding_hysteretic"))
-            p = {**cal.as_dict(), **p}
+            other = sorted(set(p) - {"limit_force"})
+            if other:
+                need = [q for q, (_, _, d) in _models.parameters(n).items() if math.isnan(d)]
+                raise ValueError(
+                    f"model {n!r}: give all of {', '.join(need)} or none of them (then calibrated to the seed; "
+                    f"only limit_force may be chosen with a calibration), got {other[0]!r} alone"
+                )
+            options = {"limit_force": int(p["limit_force"])} if "limit_force" in p else {}
+            cal = _calibrate.calibrate(pair, n, ref, plasticity=(n == "luding_hysteretic"), **options)
+            p = cal.as_dict()
         mod = _models.get(n)
         used[n] = dict(zip([q[0] for q in mod.PARAMETERS], _models.resolve_params(mod, p)))
 
