@@ -507,7 +507,7 @@ def _params_text(names, params) -> str:
     for n in names:
         labels = [p[0] for p in models.get(n).PARAMETERS]
         if labels:
-            parts.append(f"{n}: " + ", ".join(f"{k} = {v:.17g}" for k, v in zip(labels, params[n])))
+            parts.append(f"{n}: " + ", ".join(f"{k} = {float(v)!r}" for k, v in zip(labels, params[n])))
     return "; ".join(parts) or "none"
 
 
