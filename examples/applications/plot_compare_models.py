@@ -25,7 +25,12 @@ for name, params in zip(ds["model"].values, ds["parameters"].values):
 # below the yield velocity; Luding's spring with a plasticity depth follows the
 # seed best among the DEM laws.
 
-print(ds["restitution"].sel(velocity=[10.0, 30.0, 100.0], method="nearest").round(3).to_pandas())
+print(
+    ds["restitution"]
+    .sel(velocity=[10.0, 30.0, 100.0], method="nearest")
+    .round(3)
+    .to_pandas()
+)
 
 # %%
 # The figure: restitution, energy loss and contact time against impact speed.
