@@ -55,7 +55,13 @@ __all__ = [
     "hertz_force_along",
     "ImpactHistory",
     "integrate_impact",
+    "integrate_model",
+    "CLOSED_FORM_HISTORY",
 ]
+
+#: Models whose time history exists in closed form (:func:`impact_history`); the others are
+#: integrated numerically (:func:`integrate_model`).
+CLOSED_FORM_HISTORY = (_seed.NAME,)
 
 
 def incomplete_beta(u, a=0.4, b=0.5):
@@ -658,6 +664,11 @@ class ImpactHistory:
         The pair [Pa, m, kg, Pa].
     method : str
         ``"closed"`` (closed form) or ``"ode"`` (numerical integration).
+    model : str
+        Name of the impact model (:func:`microimpact.models.available`); for a model other than
+        the seed's, ``stage`` is 1 while loading and 3 while unloading, and
+        ``elastic_stage_time``, ``plastic_stage_time``, ``yield_velocity`` are those of the
+        model's outcome (NaN where it does not define them).
     """
 
     time: np.ndarray
@@ -681,6 +692,7 @@ class ImpactHistory:
     effective_mass: float
     limiting_pressure: float
     method: str = "closed"
+    model: str = _seed.NAME
 
     def __post_init__(self):
         for name in HISTORY_COLUMNS:
@@ -693,8 +705,8 @@ class ImpactHistory:
     @classmethod
     def from_dict(cls, data: dict, method: str = "closed") -> ImpactHistory:
         """Build from the dict of :func:`impact_history` or :func:`integrate_impact` (extra keys ignored)."""
-        keys = [f.name for f in fields(cls) if f.name != "method"]
-        return cls(**{k: data[k] for k in keys}, method=data.get("method", method))
+        keys = [f.name for f in fields(cls) if f.name not in ("method", "model")]
+        return cls(**{k: data[k] for k in keys}, method=data.get("method", method), model=data.get("model", _seed.NAME))
 
     def __len__(self):
         return int(self.time.size)
@@ -721,7 +733,10 @@ class ImpactHistory:
         """
         from .io import write_csv
 
-        comments = [f"microimpact impact history ({self.method}; seed eqs. 17-26)"]
+        if self.model == _seed.NAME:
+            comments = [f"microimpact impact history ({self.method}; seed eqs. 17-26)"]
+        else:
+            comments = [f"microimpact impact history ({self.method}; model {self.model})"]
         for name, (unit, desc) in HISTORY_SCALARS.items():
             comments.append(f"{name} = {getattr(self, name):.17g} {unit}  ({desc})")
         comments.append("stage: " + "; ".join(f"{k} = {v}" for k, v in STAGE_NAMES.items()))
@@ -740,12 +755,12 @@ def _event(fun, direction):
     return fun
 
 
-def _integrate_phase(rhs, t0, y0, span, events, method, rtol, atol):
+def _integrate_phase(rhs, t0, y0, span, events, method, rtol, atol, tries=60):
     """Integrate until a terminal event; extend the span if none occurred. Returns (pieces, event index, t, y)."""
     from scipy.integrate import solve_ivp  # imported here: the ODE is only the cross-check
 
     pieces = []
-    for _ in range(60):
+    for _ in range(tries):
         sol = solve_ivp(rhs, (t0, t0 + span), y0, method=method, rtol=rtol, atol=atol, events=events, dense_output=True)
         if not sol.success:  # pragma: no cover - solver failure
             raise RuntimeError(f"integration failed: {sol.message}")
@@ -917,6 +932,235 @@ def integrate_impact(
                 approach[sel] = L * y[0]
                 vel[sel] = V * y[1]
                 force[sel] = [force_of[k](x) for x in approach[sel]]
+            idx = np.setdiff1d(idx, sel)
+    out.update(time=t, approach=approach, approach_velocity=vel, force=force, stage=stage)
+    return out
+
+
+def _model_and_params(model, params):
+    """The model module and its parameter tuple, from a name (or module) and a dict (or tuple)."""
+    from .core import models as _models
+
+    mod = _models.get(model) if isinstance(model, str) else _models.get(getattr(model, "NAME", model))
+    if params is None:
+        params = {}
+    if isinstance(params, dict):
+        return mod, _models.resolve_params(mod, params)
+    return mod, tuple(mod.validate(tuple(params)))
+
+
+def _model_run(mod, V, E, R, m, p_y, params, T, rtol, atol, method):
+    """Integrate ``m* alpha'' = -P`` with the model's force law in ``tau = t/T``, ``x = alpha/(V T)``,
+    ``u = alpha'/V``: loading to the maximum approach, then unloading to the end of the contact.
+
+    Returns ``(pieces, t_L, x_star, t_c, x_end, u_end, nfev)`` (scaled); ``t_c`` is None where the
+    particle has not left after many loading times (it sticks).
+    """
+    X = V * T
+    c = T / (m * V)  # u' = -P c
+    f = mod.force
+
+    def rhs1(t, y):
+        a = y[0] * X if y[0] > 0.0 else 0.0  # loading starts at zero approach
+        return [y[1], -f(a, y[1] * V, a, E, R, m, p_y, params) * c]
+
+    pieces, _, tL, y, nfev = _integrate_phase(
+        rhs1, 0.0, [0.0, 1.0], 2.0, [_event(lambda t, y: y[1], -1)], method, rtol, atol
+    )
+    pieces = [(a, b, s, 1) for a, b, s in pieces]
+    x_star = float(y[0])
+    amax = x_star * X
+
+    def rhs2(t, y):
+        return [y[1], -f(y[0] * X, y[1] * V, amax, E, R, m, p_y, params) * c]
+
+    sep = mod.separation_approach(E, R, m, p_y, params) / X if hasattr(mod, "separation_approach") else 0.0
+    events = [_event(lambda t, y: y[0] - sep, -1)]
+    if mod.ends_at_zero_force(params):
+        g = mod.signed_force
+        events.append(_event(lambda t, y: g(y[0] * X, y[1] * V, amax, E, R, m, p_y, params), -1))
+    try:
+        pc, which, tc, y, nf = _integrate_phase(rhs2, tL, [x_star, 0.0], 2.0 * tL, events, method, rtol, atol, tries=8)
+    except RuntimeError:  # no separation within ~500 loading times: the particle sticks
+        return pieces, tL, x_star, None, None, 0.0, nfev
+    if which == 1:
+        # A force clipped at zero (or vanishing with zero slope, as the seed's unloading) does not
+        # change sign, so the solver's root finder may stop anywhere where it is already zero:
+        # bisect, within the last step, for the first time the force is no longer positive.
+        sol = pc[-1][2]
+        steps = np.asarray(getattr(sol, "ts", [pc[-1][0]]), dtype=float)
+        before = steps[steps < tc]
+        lo, hi = (float(before[-1]) if before.size else pc[-1][0]), tc
+
+        def positive(t):
+            x, u = sol(t)
+            return events[1](t, (x, u)) > 0.0
+
+        if positive(lo):
+            for _ in range(200):
+                mid = 0.5 * (lo + hi)
+                if not lo < mid < hi:
+                    break
+                lo, hi = (mid, hi) if positive(mid) else (lo, mid)
+            tc, y = hi, sol(hi)
+    pieces += [(a, b, s, 3) for a, b, s in pc]
+    return pieces, tL, x_star, tc, float(y[0]), float(y[1]), nfev + nf
+
+
+def integrate_model(
+    model,
+    velocity,
+    effective_modulus,
+    effective_radius,
+    effective_mass,
+    limiting_pressure,
+    params=None,
+    *,
+    rtol=1e-12,
+    atol=1e-14,
+    method="DOP853",
+    n=None,
+    times=None,
+):
+    """One impact of any model by integrating Newton's equation with the model's own force law.
+
+    ``m* d2alpha/dt2 = -P(alpha, dalpha/dt, alpha_max)``, ``alpha(0) = 0``, ``dalpha/dt(0) = V``,
+    with ``P`` the model file's ``force`` (:mod:`microimpact.core.models`). The loading ends at the
+    maximum approach (``dalpha/dt = 0``, located by a terminal event of
+    :func:`scipy.integrate.solve_ivp`), from where ``alpha_max`` is frozen; the contact ends where
+    the approach falls to the model's ``separation_approach`` (0 unless the model defines one) or,
+    when ``ends_at_zero_force(params)``, where its ``signed_force`` vanishes, whichever comes first.
+    The same phase integrator as :func:`integrate_impact` (the seed's three-stage route, which
+    locates the yield point too); here the equation is scaled by the loading time of a first,
+    loose run, so that the tolerances act on numbers of order one. It is the independent check of
+    every model's closed form (:meth:`ContactPair.impact <microimpact.pair.ContactPair.impact>`).
+
+    Parameters
+    ----------
+    model : str
+        Name of the model (:func:`microimpact.models.available`).
+    velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure : float
+        ``V`` [m/s] (positive, finite), ``E*`` [Pa], ``R*`` [m], ``m*`` [kg], ``p_y`` [Pa].
+    params : dict or tuple, optional
+        The model's parameters by name (defaults filled in) or as its tuple.
+    rtol, atol : float
+        Tolerances of the solver (``atol`` on the scaled variables).
+    method : str
+        A :func:`~scipy.integrate.solve_ivp` method; ``"DOP853"`` (default) or ``"Radau"``.
+    n, times : optional
+        If either is given, also return the history on that grid, as :func:`impact_history`.
+
+    Returns
+    -------
+    dict
+        The scalars of :data:`HISTORY_SCALARS` (``rebound_velocity`` [m/s], ``max_approach``,
+        ``plastic_approach`` (the approach where the contact ends) [m], ``max_force`` [N],
+        ``loading_time``, ``unloading_time``, ``contact_time`` [s]; ``elastic_stage_time``,
+        ``plastic_stage_time`` and ``yield_velocity`` from the model's outcome, NaN where it
+        does not define them), ``model``, ``method`` = ``"ode"``, ``nfev``, and with ``n`` or
+        ``times`` the arrays ``time``, ``approach``, ``approach_velocity``, ``force`` and
+        ``stage`` (1 loading, 3 unloading, 0 apart).
+
+    Raises
+    ------
+    ValueError
+        Bad inputs or parameters (named), or a particle that does not leave the surface (an
+        adhesive or strongly damped model below its sticking speed: ``e = 0``, no finite history).
+
+    Examples
+    --------
+    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350
+    >>> r = integrate_model("liggghts_thornton_ning", 50.0, 1.31e9, 2.45e-6, m, 156e6)
+    >>> round(r["rebound_velocity"] / 50.0, 4)  # the model's closed form: 0.6905
+    0.6905
+    """
+    mod, p = _model_and_params(model, params)
+    V, E, R, m, p_y = _scalar_pair(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)
+    if n is not None or times is not None:  # check the grid before integrating
+        _time_grid(1001 if n is None else n, times, (), 1.0)
+    stuck = ValueError(
+        f"with model {mod.NAME!r} the particle does not leave the surface at velocity {V:g} m/s "
+        "(e = 0, contact_time = inf): there is no finite history"
+    )
+    closed = dict(zip(quantities.OUTCOME_FIELDS, mod.outcome(V, E, R, m, p_y, p)))
+    if closed["contact_time"] == np.inf:  # the model's own solution says it sticks
+        raise stuck
+    # a loose run in Hertz's time scale, then the precise one scaled by its loading time
+    T0 = float(hertz.time_scale(V, E, R, m))
+    rough = _model_run(mod, V, E, R, m, p_y, p, T0, 1e-7, 1e-9, method)
+    if rough[3] is None:
+        raise stuck
+    T = T0 * rough[1]
+    pieces, tL, x_star, tc, x_end, u_end, nfev = _model_run(mod, V, E, R, m, p_y, p, T, rtol, atol, method)
+    if tc is None:  # pragma: no cover - the loose run would have seen it
+        raise stuck
+    X = V * T
+    amax = x_star * X
+    f = mod.force
+
+    def force_at(tau):
+        for a, b, sol, st in pieces:
+            if a <= tau <= b:
+                x, u = sol(tau)
+                if st == 1:
+                    al = max(x, 0.0) * X
+                    return f(al, u * V, al, E, R, m, p_y, p)
+                return f(x * X, u * V, amax, E, R, m, p_y, p)
+        return 0.0
+
+    # the largest force: on a grid, refined around its best point
+    from scipy.optimize import minimize_scalar
+
+    grid = np.concatenate([np.linspace(0.0, tL, 257), np.linspace(tL, tc, 257)[1:]])
+    vals = np.array([force_at(t) for t in grid])
+    i = int(np.argmax(vals))
+    P_star = float(vals[i])
+    lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
+    if hi > lo:
+        r = minimize_scalar(lambda t: -force_at(t), bounds=(lo, hi), method="bounded", options={"xatol": 1e-12})
+        P_star = max(P_star, -float(r.fun))
+    V_r = -V * u_end
+    a_end = x_end * X
+    out = {
+        "velocity": V,
+        "rebound_velocity": V_r,
+        "max_approach": amax,
+        "plastic_approach": a_end,
+        "max_force": P_star,
+        "elastic_stage_time": closed["elastic_stage_time"],
+        "plastic_stage_time": closed["plastic_stage_time"],
+        "loading_time": T * tL,
+        "unloading_time": T * (tc - tL),
+        "contact_time": T * tc,
+        "yield_velocity": closed["yield_velocity"],
+        "effective_modulus": E,
+        "effective_radius": R,
+        "effective_mass": m,
+        "limiting_pressure": p_y,
+        "model": mod.NAME,
+        "method": "ode",
+        "nfev": nfev,
+    }
+    if n is None and times is None:
+        return out
+    t = _time_grid(1001 if n is None else n, times, (T * tL,), T * tc)
+    stage = np.where(t <= T * tL, 1, 3)
+    stage = np.where((t < 0.0) | (t > T * tc), 0, stage).astype(np.int8)
+    approach, vel = _free_flight(t, V, T * tc, a_end, V_r)
+    force = np.zeros_like(t)
+    tau = t / T
+    for k in (1, 3):
+        idx = np.flatnonzero(stage == k)
+        last_b = max(p_[1] for p_ in pieces if p_[3] == k)
+        for a, b, sol, st in pieces:
+            if st != k or idx.size == 0:
+                continue
+            sel = idx[(tau[idx] >= a) & ((tau[idx] <= b) | (b == last_b))]
+            if sel.size:
+                y = sol(np.clip(tau[sel], a, b))
+                approach[sel] = X * y[0]
+                vel[sel] = V * y[1]
+                force[sel] = [force_at(min(max(x, a), b)) for x in tau[sel]]
             idx = np.setdiff1d(idx, sel)
     out.update(time=t, approach=approach, approach_velocity=vel, force=force, stage=stage)
     return out

@@ -120,7 +120,7 @@ def _evaluate(group, p, spec):
         return {"yield_velocity": impact.yield_velocity(p_y, E, R, m)}
     if group == "impact":
         V = check_velocity("velocity", p["velocity"])
-        return impact.outcome_arrays(models.get(spec["model"]), V, *check_pair(E, R, m, p_y), ())
+        return impact.outcome_arrays(models.get(spec["model"]), V, *check_pair(E, R, m, p_y), spec.get("params", ()))
     raise ValueError(f"unknown group {group!r}")  # pragma: no cover
 
 
@@ -232,10 +232,12 @@ def sweep(
     surface_poisson=None,
     effective_modulus=None,
     base=None,
+    model=None,
+    model_params=None,
     chunks=None,
     progress=False,
 ):
-    """Impact outcome and contact times over every combination of the swept inputs.
+    """Impact outcome and contact times over every combination of the swept inputs (and models).
 
     Each argument given as a 1-D array becomes a dimension of the result, with
     that array as its coordinate; a scalar overrides the base pair without
@@ -265,6 +267,17 @@ def sweep(
         The pair the sweep starts from: a :class:`~microimpact.pair.ContactPair`
         or a paper case name (``"silicon"``, ``"mica"``); default the seed's
         NH4Fl-on-silicon case.
+    model : str or list of str, optional
+        The impact model (:func:`microimpact.models.available`; default the seed's,
+        ``"thornton_ning_2016"``). A list makes a first dimension ``model`` whose coordinate
+        holds the names (strings); a string is kept as a scalar coordinate. Fields a model does
+        not define are NaN (see its model file).
+    model_params : dict, optional
+        The models' own parameters, ``{model name: {parameter: value}}``
+        (:func:`microimpact.models.parameters`); parameters left out take the model's
+        defaults, and a model whose parameter has no default needs it here. They are recorded
+        in ``attrs["model_parameters"]``. To match a DEM law to the seed first, take its
+        parameters from :func:`microimpact.calibrate.calibrate` (``.as_dict()``).
     chunks : int, dict or "auto", optional
         Evaluate lazily with dask in blocks of this size along each dimension
         (an int applies to every swept dimension; a dict maps dimension names to
@@ -280,7 +293,8 @@ def sweep(
     Returns
     -------
     xarray.Dataset
-        Dimensions: the swept inputs, in the order of :data:`SWEEP_DIMENSIONS`.
+        Dimensions: ``model`` when several models are given, then the swept inputs, in the
+        order of :data:`SWEEP_DIMENSIONS`.
         Data variables (units and ``long_name`` in ``attrs``): ``restitution``,
         ``rebound_velocity``, ``energy_loss``, ``max_approach``,
         ``plastic_approach``, ``max_force``, ``unloading_radius``,
@@ -318,8 +332,32 @@ def sweep(
     array([0.813, 0.725, 0.67 ])
     >>> ds.restitution.attrs["units"]
     '1'
+    >>> two = sweep(np.array([30.0, 50.0]), model=["thornton_ning_2016", "liggghts_thornton_ning"])
+    >>> two.restitution.sel(model="liggghts_thornton_ning").values.round(3)
+    array([0.784, 0.69 ])
     """
     xr = require("xarray", "sweeps")
+    names, params = _models_and_params(model, model_params)
+    if not isinstance(model, str) and model is not None:
+        return _sweep_models(
+            names,
+            params,
+            dict(
+                velocity=velocity,
+                limiting_pressure=limiting_pressure,
+                particle_modulus=particle_modulus,
+                surface_modulus=surface_modulus,
+                density=density,
+                radius=radius,
+                particle_poisson=particle_poisson,
+                surface_poisson=surface_poisson,
+                effective_modulus=effective_modulus,
+                base=base,
+                chunks=chunks,
+                progress=progress,
+            ),
+        )
+    name = names[0]
     pair = _base_pair(base)
     given = {
         "velocity": velocity,
@@ -346,13 +384,16 @@ def sweep(
         )
     # Inputs not swept: floats. Everything else is the base pair's (ContactPair.effective_values).
     fixed = {k: float(v) for k, v in values.items() if v.ndim == 0}
-    spec = {"pair": pair, "model": models.DEFAULT}
+    spec = {"pair": pair, "model": name, "params": params[name]}
     # Refuse bad combinations now, not inside a dask task (one value of each input is enough).
     pair.effective_values(**{k: v.reshape(-1)[:1] for k, v in values.items() if k != "velocity"})
     attrs = {
         "title": "microimpact parameter sweep",
         "model": "elastic-plastic impact of a sphere on a flat, Aerosol Sci. Tech. 50(4):321-330 (2016), "
-        "closed forms (eqs. 5-33)",
+        "closed forms (eqs. 5-33)"
+        if name == models.DEFAULT
+        else f"{name}: {models.get(name).TITLE}",
+        "model_parameters": _params_text(names, params),
         "base_pair": pair.label or "unnamed",
         "base_effective_modulus": pair.effective_modulus,
         "base_effective_radius": pair.effective_radius,
@@ -412,6 +453,8 @@ def sweep(
     for k, v in values.items():
         unit, desc = SWEEP_DIMENSIONS[k]
         ds_coords[k] = ((k,) if v.ndim == 1 else (), v, {"units": unit, "long_name": desc})
+    if model is not None:
+        ds_coords["model"] = ((), name, {"long_name": MODEL_COORDINATE})
     ordered = {f: data[f] for f in SWEEP_VARIABLES if f in data}
     ds = xr.Dataset(ordered, coords=ds_coords, attrs=attrs)
     if compute_now:
@@ -419,6 +462,82 @@ def sweep(
         with diagnostics.ProgressBar(out=sys.stderr):
             ds = ds.compute()
     return ds
+
+
+#: ``long_name`` of the ``model`` coordinate.
+MODEL_COORDINATE = "impact model (microimpact.models.available())"
+
+
+def _models_and_params(model, model_params):
+    """The model names (a list) and ``{name: parameter tuple}``, checked (ValueError naming what is wrong)."""
+    if model is None:
+        names = [models.DEFAULT]
+    elif isinstance(model, str):
+        names = [model]
+    else:
+        try:
+            names = list(model)
+        except TypeError:
+            raise ValueError(f"model must be a model name or a list of names, got {model!r}") from None
+        if not names:
+            raise ValueError("model must name at least one model")
+    for n in names:
+        models.get(n)  # ValueError listing the known models
+    dup = sorted({n for n in names if names.count(n) > 1})
+    if dup:
+        raise ValueError(f"model {dup[0]!r} is given more than once")
+    given = {} if model_params is None else model_params
+    if not isinstance(given, dict):
+        raise ValueError(f"model_params must be a dict {{model name: {{parameter: value}}}}, got {given!r}")
+    extra = sorted(set(given) - set(names))
+    if extra:
+        raise ValueError(f"model_params names the model {extra[0]!r}, which is not swept (models: {', '.join(names)})")
+    out = {}
+    for n in names:
+        p = given.get(n, {})
+        if not isinstance(p, dict):
+            raise ValueError(f"model_params[{n!r}] must be a dict {{parameter: value}}, got {p!r}")
+        out[n] = models.resolve_params(models.get(n), p)
+    return names, out
+
+
+def _params_text(names, params) -> str:
+    """``"name: p = v, ...; name2: ..."`` for the attributes (models without parameters left out)."""
+    parts = []
+    for n in names:
+        labels = [p[0] for p in models.get(n).PARAMETERS]
+        if labels:
+            parts.append(f"{n}: " + ", ".join(f"{k} = {float(v)!r}" for k, v in zip(labels, params[n])))
+    return "; ".join(parts) or "none"
+
+
+def _sweep_models(names, params, kwargs):
+    """One sweep per model, joined along a first dimension ``model`` (lazy stays lazy)."""
+    xr = require("xarray", "sweeps")
+    sizes = [np.size(v) for k, v in kwargs.items() if k in SWEEP_DIMENSIONS and v is not None]
+    npoints = len(names) * math.prod(sizes)
+    if kwargs["chunks"] is None and not kwargs["progress"]:
+        check_memory(
+            npoints * _BYTES_PER_POINT,
+            f"a sweep of {npoints} points without chunks",
+            "give chunks= (or --chunks) to evaluate lazily in blocks",
+        )
+    parts = []
+    for n in names:
+        labels = [p[0] for p in models.get(n).PARAMETERS]
+        ds = sweep(**kwargs, model=n, model_params={n: dict(zip(labels, params[n]))}).drop_vars("model")
+        for f in _IMPACT_FIELDS:  # the other variables do not depend on the model
+            ds[f] = ds[f].expand_dims(model=[n])
+        parts.append(ds)
+    titles = [p_.attrs["model"] for p_ in parts]
+    out = xr.concat(parts, dim="model", data_vars="minimal", coords="minimal", compat="override", join="override")
+    out = out.transpose("model", ...)
+    out["model"].attrs["long_name"] = MODEL_COORDINATE
+    out.attrs["model"] = "; ".join(
+        f"{n}: {models.get(n).TITLE}" if n == models.DEFAULT else t for n, t in zip(names, titles)
+    )
+    out.attrs["model_parameters"] = _params_text(names, params)
+    return out
 
 
 def _lazy_group(group, fields, dims, coords, block, fixed, spec):

@@ -35,7 +35,7 @@ import warnings
 from .._optional import MissingExtraError
 
 #: Subcommand modules, in the order ``--help`` lists them.
-COMMANDS = ["impact", "history", "paper", "sweep", "fit", "export", "bench", "materials", "oblique"]
+COMMANDS = ["impact", "history", "compare", "paper", "sweep", "fit", "export", "bench", "materials", "oblique"]
 
 
 class Parser(argparse.ArgumentParser):

@@ -24,6 +24,9 @@ __all__ = [
     "check_outputs",
     "check_input_file",
     "show_progress",
+    "add_model_arguments",
+    "parse_models",
+    "parse_model_params",
 ]
 
 #: Options of :func:`add_pair_arguments`: dest -> option as typed.
@@ -267,3 +270,75 @@ def pair_from_args(args) -> ContactPair:
     if changed:
         changes["label"] = f"{pair.label}, with {', '.join(changed)}"
     return pair.replace(**changes) if changes else pair
+
+
+def add_model_arguments(parser: argparse.ArgumentParser, *, many: bool = True, default: str | None = None) -> None:
+    """``--model NAME[,NAME...]`` and ``--param MODEL:NAME=VALUE`` (repeatable)."""
+    from ..core.models import available
+
+    g = parser.add_argument_group("impact models", f"Models: {', '.join(available())}.")
+    g.add_argument(
+        "--model",
+        metavar="NAME[,NAME...]" if many else "NAME",
+        default=default,
+        help=("impact model(s), comma-separated" if many else "impact model")
+        + f" (default: {default or 'the seed, thornton_ning_2016'})",
+    )
+    g.add_argument(
+        "--param",
+        action="append",
+        default=[],
+        metavar="MODEL:NAME=VALUE",
+        help="a model parameter, e.g. linear_spring_dashpot:restitution=0.7 (repeat for more; "
+        "MODEL: may be left out when one model is named)",
+    )
+
+
+def parse_models(text) -> list[str] | None:
+    """The names of ``--model a,b`` (checked), or None when the option was not given."""
+    if text is None:
+        return None
+    from ..core.models import get
+
+    names = [t.strip() for t in str(text).split(",") if t.strip()]
+    if not names:
+        raise ValueError(f"--model: no model named in {text!r}")
+    for n in names:
+        try:
+            get(n)
+        except ValueError as exc:
+            raise ValueError(f"--model: {exc}") from None
+    dup = sorted({n for n in names if names.count(n) > 1})
+    if dup:
+        raise ValueError(f"--model names {dup[0]!r} more than once")
+    return names
+
+
+def parse_model_params(texts, names) -> dict:
+    """``{model: {parameter: value}}`` from ``--param MODEL:NAME=VALUE`` options, for the models ``names``."""
+    from ..core.models import parameters
+
+    out: dict = {}
+    for text in texts or []:
+        head, eq, value = str(text).partition("=")
+        if not eq:
+            raise ValueError(f"--param must be MODEL:NAME=VALUE, got {text!r}")
+        model, colon, name = head.strip().rpartition(":")
+        if not colon:
+            if len(names) != 1:
+                raise ValueError(f"--param {text!r} must name its model (MODEL:NAME=VALUE) when several are compared")
+            model = names[0]
+        model, name = model.strip(), name.strip()
+        if model not in names:
+            raise ValueError(
+                f"--param {text!r} names the model {model!r}, which is not among --model {','.join(names)}"
+            )
+        known = parameters(model)
+        if name not in known:
+            raise ValueError(
+                f"--param {text!r}: model {model!r} has no parameter {name!r}; its parameters: {', '.join(known) or 'none'}"
+            )
+        if name in out.get(model, {}):
+            raise ValueError(f"--param {model}:{name} is given more than once")
+        out.setdefault(model, {})[name] = parse_float(value.strip(), f"--param {model}:{name}")
+    return out

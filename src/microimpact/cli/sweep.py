@@ -21,7 +21,15 @@ from ..core import quantities
 from ..materials import PAPER_CASES, list_materials
 from ..pair import ContactPair
 from ..sweep import SWEEP_DIMENSIONS
-from ._common import check_outputs, parse_float, parse_values, show_progress
+from ._common import (
+    add_model_arguments,
+    check_outputs,
+    parse_float,
+    parse_model_params,
+    parse_models,
+    parse_values,
+    show_progress,
+)
 
 # option dest -> (unit, help); the dest is the sweep() keyword.
 SWEEP_OPTIONS = quantities.table(SWEEP_DIMENSIONS)
@@ -59,6 +67,7 @@ def register(sub) -> None:
         "--yield-strength", metavar="PA", help="yield strength Y [Pa]: p_y = k Y when --limiting-pressure is not given"
     )
     b.add_argument("--k", metavar="K", help="p_y / Y (default 2.2)")
+    add_model_arguments(p)
     o = p.add_argument_group("output")
     o.add_argument("--out", required=True, metavar="FILE", help="FILE.nc (NetCDF) or FILE.csv")
     o.add_argument(
@@ -166,13 +175,17 @@ def run(args) -> int:
         v = parse_values(texts, "--" + dest.replace("_", "-"), unique=True)
         # velocity always becomes a dimension; other inputs only when two or more values are given
         values[dest] = v if (v.size > 1 or dest == "velocity") else float(v[0])
-    npoints = int(np.prod([np.size(v) for v in values.values()]))
+    names = parse_models(args.model)
+    params = parse_model_params(args.param, names or ["thornton_ning_2016"])
+    npoints = int(np.prod([np.size(v) for v in values.values()])) * len(names or [0])
     if kind == ".csv":  # about 20 numbers of about 22 characters per row
         _check_disk(out, npoints * 520)
     else:
         _check_disk(out, npoints * 8 * 22)
     pair = _base_pair(args, values)
-    ds = sweep(**values, base=pair, chunks=chunks)
+    if names is not None:  # two or more models make a dimension; one is a scalar coordinate
+        values["model"] = names if len(names) > 1 else names[0]
+    ds = sweep(**values, base=pair, model_params=params or None, chunks=chunks)
     progress = show_progress(args)
     if not args.no_progress:
         dims = " x ".join(f"{d} {n}" for d, n in ds.sizes.items())

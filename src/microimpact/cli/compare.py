@@ -1,0 +1,159 @@
+"""``microimpact compare``: several impact models for one pair, as a table, JSON, NetCDF/CSV and a figure."""
+
+from __future__ import annotations
+
+import math
+import pathlib
+
+import numpy as np
+
+from .._validation import check_velocity
+from ..io import write_json
+from ._common import (
+    add_model_arguments,
+    add_pair_arguments,
+    check_outputs,
+    pair_from_args,
+    parse_float,
+    parse_model_params,
+    parse_models,
+    parse_values,
+)
+
+#: Memory per speed and model [bytes]: ten result arrays, their temporaries and the text.
+BYTES_PER_SPEED = 4000
+
+
+def register(sub) -> None:
+    p = sub.add_parser(
+        "compare",
+        help="restitution, energy loss and contact time of several impact models for one pair",
+        description="Compare impact models for one pair: e(V), energy loss 1-e^2 and contact time, as a "
+        "table (default), JSON, a NetCDF or CSV file and a figure. DEM laws named without their "
+        "parameters are calibrated to the seed's model at --reference-velocity (microimpact.calibrate); "
+        "the output says which. Speeds: numbers, comma lists or ranges start:stop:count [m/s].",
+    )
+    p.add_argument(
+        "velocities",
+        nargs="*",
+        metavar="V",
+        help="impact speed(s) [m/s], e.g. 10 30 50 or 1:120:240 (default: 10 20 30 50 70 100)",
+    )
+    add_pair_arguments(p)
+    add_model_arguments(p)
+    p.add_argument(
+        "--reference-velocity",
+        metavar="M/S",
+        help="calibration speed of the DEM laws [m/s] (default: the median speed)",
+    )
+    o = p.add_argument_group("output")
+    o.add_argument("--json", action="store_true", help="print JSON (SI units) instead of a table")
+    o.add_argument("--out", metavar="FILE", help="also write the Dataset to FILE.nc (NetCDF) or FILE.csv")
+    o.add_argument("--plot", metavar="FILE", help="also draw the comparison to this image (png, pdf, svg)")
+    p.set_defaults(func=run)
+
+
+def format_table(ds) -> str:
+    """The comparison as an aligned text table, one row per model and speed (``*``: a*/R* > 0.3)."""
+    header = ["model", "V [m/s]", "e", "1-e^2", "t_c [ns]"]
+    rows = [header]
+    for i, name in enumerate(ds["model"].values):
+        for j, V in enumerate(ds["velocity"].values):
+            e = float(ds["restitution"].values[i, j])
+            loss = float(ds["energy_loss"].values[i, j])
+            tc = float(ds["contact_time"].values[i, j]) * 1e9
+            flag = " *" if bool(ds["large_strain"].values[i, j]) else ""
+            rows.append([str(name), f"{V:.4g}", _f(e, "{:.5f}"), _f(loss, "{:.4f}"), _f(tc, "{:.4f}") + flag])
+    widths = [max(len(r[k]) for r in rows) for k in range(len(header))]
+    lines = ["  ".join(c.ljust(w) if k == 0 else c.rjust(w) for k, (c, w) in enumerate(zip(r, widths))) for r in rows]
+    lines.insert(1, "  ".join("-" * w for w in widths))
+    return "\n".join(lines)
+
+
+def _f(x, fmt):
+    if math.isnan(x):
+        return "nan"
+    if math.isinf(x):
+        return "inf"
+    return fmt.format(x)
+
+
+def _describe(ds) -> list[str]:
+    lines = [
+        f"pair: {ds.attrs['pair']}",
+        f"  E* = {ds.attrs['effective_modulus']:.6g} Pa   R* = {ds.attrs['effective_radius']:.6g} m   "
+        f"m* = {ds.attrs['effective_mass']:.6g} kg   p_y = {ds.attrs['limiting_pressure']:.6g} Pa   "
+        f"V_y = {ds.attrs['yield_velocity']:.6g} m/s",
+        "models:",
+    ]
+    for name, cal, params in zip(ds["model"].values, ds["calibrated"].values, ds["parameters"].values):
+        lines.append(f"  {name}{' (calibrated)' if cal else ''}: {params}")
+    lines.append(f"calibration: {ds.attrs['calibration']}")
+    return lines
+
+
+def run(args) -> int:
+    texts = args.velocities or ["10,20,30,50,70,100"]
+    V = parse_values(texts, "velocity", bytes_per_value=BYTES_PER_SPEED * 8, unique=True)
+    check_velocity("velocity", V)
+    if not np.all(V > 0.0):
+        raise ValueError(f"velocity must be positive (no impact at 0), got {float(V[V <= 0.0][0])!r}")
+    out = pathlib.Path(args.out) if args.out else None
+    if out is not None and out.suffix.lower() not in (".nc", ".csv"):
+        raise ValueError(f"--out must end in .nc (NetCDF) or .csv, got {args.out!r}")
+    check_outputs(files=[out], figures=[args.plot])
+    names = parse_models(args.model)
+    from ..compare import default_models
+
+    params = parse_model_params(args.param, names or default_models())
+    if names is None:
+        names = default_models(params)
+    ref = None
+    if args.reference_velocity is not None:
+        ref = parse_float(args.reference_velocity, "--reference-velocity")
+    pair = pair_from_args(args)
+
+    from ..compare import compare_models
+
+    ds = compare_models(pair, V, names, params or None, reference_velocity=ref)
+
+    if out is not None:
+        from ..sweep import sweep_to_csv, sweep_to_netcdf
+
+        (sweep_to_netcdf if out.suffix.lower() == ".nc" else sweep_to_csv)(ds, out)
+    if args.plot:
+        from ..figures.compare import plot_comparison
+        from ..io import save_figure
+
+        axes = plot_comparison(ds)
+        save_figure(axes[0].figure, args.plot, dpi=300)
+    if args.json:
+        doc = {
+            "pair": {k: ds.attrs[k] for k in ("pair", "effective_modulus", "effective_radius", "effective_mass")}
+            | {k: ds.attrs[k] for k in ("limiting_pressure", "yield_velocity")},
+            "calibration": ds.attrs["calibration"],
+            "reference_velocity": ds.attrs["reference_velocity"],
+            "models": {
+                str(n): {"title": str(t), "calibrated": bool(c), "parameters": str(p)}
+                for n, t, c, p in zip(
+                    ds["model"].values, ds["title"].values, ds["calibrated"].values, ds["parameters"].values
+                )
+            },
+            "velocity": ds["velocity"].values.tolist(),
+            "units": {k: ds[k].attrs["units"] for k in ("velocity", *ds.data_vars)},
+            "results": {
+                str(n): {k: np.asarray(ds[k].values[i]).tolist() for k in ds.data_vars}
+                for i, n in enumerate(ds["model"].values)
+            },
+        }
+        write_json(doc)
+    else:
+        print("\n".join(_describe(ds)))
+        print()
+        print(format_table(ds))
+        if bool(ds["large_strain"].values.any()):
+            print("* contact radius above 0.3 R*: outside the seed's small-strain range")
+        written = [str(p) for p in (out, args.plot) if p is not None]
+        if written:
+            print(f"wrote {', '.join(written)}")
+    return 0

@@ -1,0 +1,317 @@
+"""Several impact models side by side for one pair: ``e(V)``, energy loss and contact time.
+
+:func:`compare_models` evaluates the models of :mod:`microimpact.core.models` (each its own closed
+form or built-in quadrature, :meth:`ContactPair.impact <microimpact.pair.ContactPair.impact>`) for
+one :class:`~microimpact.pair.ContactPair` over a set of impact speeds, and returns the result as a
+labelled :class:`xarray.Dataset` with dimensions ``model`` x ``velocity``. Units and descriptions
+come from the one table of quantities (:mod:`microimpact.core.quantities`).
+
+Parameters of the models
+------------------------
+A model whose parameters all have defaults (the seed's ``thornton_ning_2016``,
+``liggghts_thornton_ning``) needs nothing. The DEM laws whose parameters have no default
+(``linear_spring_dashpot``, ``hertz_viscoelastic``, ``hertz_tsuji``, ``luding_hysteretic``) are,
+unless their parameters are given, **calibrated to the seed's model at a reference speed**
+(:func:`microimpact.calibrate.calibrate`: the seed's ``e`` matched to 1e-10, and where the law
+has a free stiffness the seed's contact time too; ``luding_hysteretic`` with Luding's
+``plasticity_depth``, the variant whose ``e`` falls with speed). The Dataset records which models
+were calibrated, at which speed, and every parameter used. The adhesive
+``jkr_elastic_adhesive`` cannot be calibrated to a model without adhesion: it is compared only
+when its ``surface_energy`` is given.
+
+xarray is needed (``pip install 'microimpact[sweep]'``).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+
+from . import calibrate as _calibrate
+from ._optional import require
+from ._validation import check_velocity
+from .core import models as _models
+from .core import quantities
+from .pair import ContactPair, LargeStrainWarning
+
+__all__ = [
+    "compare_models",
+    "default_models",
+    "seed_large_strain_velocity",
+    "COMPARED_FIELDS",
+    "MODEL_COORDINATES",
+    "DEFAULT_REFERENCE_VELOCITY",
+]
+
+#: Calibration speed [m/s] with the default speeds (1-120 m/s): the middle of the seed's range.
+DEFAULT_REFERENCE_VELOCITY = 50.0
+
+#: Data variables of a comparison (dims ``model`` x ``velocity``): name -> (unit, description).
+COMPARED_FIELDS: dict[str, tuple[str, str]] = quantities.table(
+    (
+        "restitution",
+        "energy_loss",
+        "contact_time",
+        "loading_time",
+        "unloading_time",
+        "rebound_velocity",
+        "max_approach",
+        "plastic_approach",
+        "max_force",
+        "large_strain",
+    )
+)
+
+#: Coordinates along ``model``: name -> description.
+MODEL_COORDINATES = {
+    "title": "the model's law and source",
+    "calibrated": "True where the parameters were calibrated to the seed's model at reference_velocity",
+    "parameters": "the model's parameters as used, 'name = value' [SI units of the model file]",
+}
+
+
+def default_models(params=None) -> list[str]:
+    """The models :func:`compare_models` compares by default.
+
+    Every model of :func:`microimpact.models.available` whose parameters have defaults or can be
+    calibrated to the seed (:data:`microimpact.calibrate.DEM_MODELS`), and any other model named in
+    ``params`` (``jkr_elastic_adhesive`` with its ``surface_energy``).
+    """
+    params = params or {}
+    out = []
+    for name in _models.available():
+        needs = [p for p, (_, _, d) in _models.parameters(name).items() if math.isnan(d)]
+        if not needs or name in _calibrate.DEM_MODELS or name in params:
+            out.append(name)
+    return out
+
+
+def _needs_calibration(name, given) -> bool:
+    """True when model ``name`` lacks a parameter with no default and can be calibrated."""
+    missing = [p for p, (_, _, d) in _models.parameters(name).items() if math.isnan(d) and p not in given]
+    return bool(missing) and name in _calibrate.DEM_MODELS
+
+
+def compare_models(pair=None, velocity=None, models=None, params=None, *, reference_velocity=None):
+    """Restitution, energy loss and contact time of several impact models for one pair.
+
+    Parameters
+    ----------
+    pair : ContactPair or str, optional
+        The particle and surface, or a paper case name; default the seed's NH4Fl-on-silicon case.
+    velocity : float or 1-D array_like, optional
+        Impact speeds ``V`` [m/s], positive and finite; default 1 to 120 m/s (the seed's range),
+        240 points, plus the pair's yield velocity.
+    models : str or list of str, optional
+        Model names (:func:`microimpact.models.available`); default :func:`default_models`.
+    params : dict, optional
+        ``{model name: {parameter: value}}``. A DEM law named without its parameters is
+        calibrated to the seed's model at ``reference_velocity`` (see the module's notes), with
+        the ``limit_force`` convention given here if any; otherwise the parameters given are
+        used as they are and the others take the model's defaults.
+    reference_velocity : float, optional
+        Calibration speed [m/s], above the pair's yield velocity; default the median of
+        ``velocity``, or 50 m/s with the default speeds.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensions ``model`` (string coordinate) and ``velocity`` [m/s]. Data variables
+        (units and ``long_name`` in ``attrs``): ``restitution``, ``energy_loss``,
+        ``contact_time``, ``loading_time``, ``unloading_time``, ``rebound_velocity``,
+        ``max_approach``, ``plastic_approach``, ``max_force``, ``large_strain`` (bool: the
+        contact radius ``(R* alpha*)^(1/2)`` exceeds ``0.3 R*``, the seed's small-strain limit;
+        for the DEM laws it is that geometry only). Coordinates along ``model``: ``title``,
+        ``calibrated`` (bool) and ``parameters`` (text). ``attrs``: the pair's effective
+        values, its ``yield_velocity`` [m/s], ``seed_large_strain_velocity`` [m/s]
+        (:func:`seed_large_strain_velocity`),
+        ``reference_velocity`` [m/s] and a ``calibration`` sentence naming the calibrated models.
+
+    Raises
+    ------
+    ValueError
+        Unknown model or parameter (named), a model that needs a parameter without a default
+        and cannot be calibrated (named), a bad speed, or a calibration that cannot be made
+        (a reference speed at or below the yield velocity, where the seed's ``e`` is 1).
+
+    Examples
+    --------
+    >>> import microimpact as mi
+    >>> ds = mi.compare_models("silicon", [10.0, 50.0], ["thornton_ning_2016", "liggghts_thornton_ning"])
+    >>> ds.restitution.values.round(3)
+    array([[0.985, 0.725],
+           [0.981, 0.69 ]])
+    >>> ds.contact_time.attrs["units"]
+    's'
+    """
+    xr = require("xarray", "model comparisons")
+    pair = _pair(pair)
+    if velocity is None:
+        Vy = pair.yield_velocity
+        V = np.unique(np.concatenate([np.linspace(1.0, 120.0, 240), [Vy] if 1.0 < Vy < 120.0 else []]))
+    else:
+        V = np.atleast_1d(check_velocity("velocity", velocity)).astype(float)
+        if V.ndim != 1:
+            raise ValueError(f"velocity must be a number or a 1-D array, got shape {V.shape}")
+        if not np.all(V > 0.0):
+            raise ValueError(f"velocity must be positive (no impact at 0), got {float(V[V <= 0.0][0])!r}")
+    names = _names(models, params)
+    given = _given(params, names)
+
+    if reference_velocity is not None:
+        ref = reference_velocity
+    else:
+        ref = DEFAULT_REFERENCE_VELOCITY if velocity is None else float(np.median(V))
+    calibrated = [n for n in names if _needs_calibration(n, given.get(n, {}))]
+    if calibrated:
+        if isinstance(ref, bool) or not isinstance(ref, (int, float, np.floating, np.integer)):
+            raise ValueError(f"reference_velocity must be a number, got {ref!r}")
+        ref = float(ref)
+        if not (math.isfinite(ref) and ref > pair.yield_velocity):
+            raise ValueError(
+                f"reference_velocity must be finite and above the yield velocity {pair.yield_velocity:.6g} m/s "
+                f"(the seed's e is 1 below it, which {calibrated[0]!r} cannot be calibrated to), got {ref!r}"
+            )
+    used = {}
+    for n in names:
+        p = dict(given.get(n, {}))
+        known = _models.parameters(n)
+        unknown = sorted(set(p) - set(known))
+        if unknown:
+            raise ValueError(
+                f"model {n!r} has no parameter {unknown[0]!r}; its parameters: {', '.join(known) or 'none'}"
+            )
+        if n in calibrated:
+            other = sorted(set(p) - {"limit_force"})
+            if other:
+                need = [q for q, (_, _, d) in _models.parameters(n).items() if math.isnan(d)]
+                raise ValueError(
+                    f"model {n!r}: give all of {', '.join(need)} or none of them (then calibrated to the seed; "
+                    f"only limit_force may be chosen with a calibration), got {other[0]!r} alone"
+                )
+            options = {"limit_force": int(p["limit_force"])} if "limit_force" in p else {}
+            cal = _calibrate.calibrate(pair, n, ref, plasticity=(n == "luding_hysteretic"), **options)
+            p = cal.as_dict()
+        mod = _models.get(n)
+        used[n] = dict(zip([q[0] for q in mod.PARAMETERS], _models.resolve_params(mod, p)))
+
+    data = {f: np.empty((len(names), V.size), dtype=bool if f == "large_strain" else float) for f in COMPARED_FIELDS}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", LargeStrainWarning)
+        for i, n in enumerate(names):
+            res = pair.impact(V, model=n, **used[n])
+            for f in COMPARED_FIELDS:
+                data[f][i] = np.asarray(getattr(res, f))
+    V_ls = seed_large_strain_velocity(pair)
+
+    unit, desc = quantities.table(["velocity"])["velocity"]
+    coords = {
+        "model": (
+            "model",
+            np.array(names, dtype=object),
+            {"long_name": "impact model (microimpact.models.available())"},
+        ),
+        "velocity": ("velocity", V, {"units": unit, "long_name": desc}),
+        "title": (
+            "model",
+            np.array([_models.get(n).TITLE for n in names], dtype=object),
+            {"long_name": MODEL_COORDINATES["title"]},
+        ),
+        "calibrated": (
+            "model",
+            np.array([n in calibrated for n in names]),
+            {"long_name": MODEL_COORDINATES["calibrated"]},
+        ),
+        "parameters": (
+            "model",
+            np.array([", ".join(f"{k} = {v:.10g}" for k, v in used[n].items()) or "none" for n in names], dtype=object),
+            {"long_name": MODEL_COORDINATES["parameters"]},
+        ),
+    }
+    variables = {
+        f: (("model", "velocity"), data[f], {"units": u, "long_name": d}) for f, (u, d) in COMPARED_FIELDS.items()
+    }
+    if calibrated:
+        note = (
+            f"{', '.join(calibrated)} calibrated to the seed's model (thornton_ning_2016) at "
+            f"V = {ref:.6g} m/s (microimpact.calibrate)"
+        )
+    else:
+        note = "none: every model's parameters were given or defaulted"
+    attrs = {
+        "title": "microimpact model comparison",
+        "pair": pair.label or "unnamed",
+        "effective_modulus": pair.effective_modulus,
+        "effective_radius": pair.effective_radius,
+        "effective_mass": pair.effective_mass,
+        "limiting_pressure": pair.limiting_pressure,
+        "yield_velocity": pair.yield_velocity,
+        "seed_large_strain_velocity": V_ls,
+        "reference_velocity": ref if calibrated else math.nan,
+        "calibration": note,
+    }
+    return xr.Dataset(variables, coords=coords, attrs=attrs)
+
+
+def seed_large_strain_velocity(pair) -> float:
+    """Impact speed [m/s] above which the seed's model leaves its small-strain range (``a*/R* > 0.3``).
+
+    The root of ``(R* alpha*(V))^(1/2) / R* = 0.3`` (:data:`~microimpact.core.constants.LARGE_STRAIN_RATIO`)
+    with the seed's ``alpha*`` (eq. 22), which grows with ``V``; ``inf`` if not reached below 1e6 m/s.
+    """
+    from scipy.optimize import brentq
+
+    from .core.constants import LARGE_STRAIN_RATIO
+
+    R = pair.effective_radius
+
+    def excess(V):
+        return float(pair.impact(float(V), warn=False).max_contact_radius) / R - LARGE_STRAIN_RATIO
+
+    hi = 1e6
+    if excess(hi) < 0.0:
+        return math.inf
+    lo = 1e-9
+    if excess(lo) > 0.0:
+        return 0.0
+    return float(brentq(excess, lo, hi, xtol=1e-12, rtol=1e-13))
+
+
+def _pair(pair):
+    if pair is None:
+        return ContactPair.paper_case("silicon")
+    if isinstance(pair, str):
+        return ContactPair.paper_case(pair)
+    if isinstance(pair, ContactPair):
+        return pair
+    raise ValueError(f"pair must be a ContactPair or a paper case name, got {pair!r}")
+
+
+def _names(models, params):
+    if models is None:
+        return default_models(params)
+    names = [models] if isinstance(models, str) else list(models)
+    if not names:
+        raise ValueError("models must name at least one model")
+    for n in names:
+        _models.get(n)
+    dup = sorted({n for n in names if names.count(n) > 1})
+    if dup:
+        raise ValueError(f"models names {dup[0]!r} more than once")
+    return names
+
+
+def _given(params, names):
+    if params is None:
+        return {}
+    if not isinstance(params, dict):
+        raise ValueError(f"params must be a dict {{model name: {{parameter: value}}}}, got {params!r}")
+    extra = sorted(set(params) - set(names))
+    if extra:
+        raise ValueError(f"params names the model {extra[0]!r}, which is not compared (models: {', '.join(names)})")
+    for n, p in params.items():
+        if not isinstance(p, dict):
+            raise ValueError(f"params[{n!r}] must be a dict {{parameter: value}}, got {p!r}")
+    return params

@@ -1,0 +1,198 @@
+"""Figure of a model comparison: ``e``, energy loss and contact time against impact speed.
+
+:func:`comparison_data` gives the plotted numbers as columns (one row per model and speed);
+:func:`plot_comparison` draws them as three panels side by side, one line style and colour per
+model (:mod:`microimpact.figures.style`), with the seed's yield velocity marked and the speeds where
+the seed's model leaves its small-strain range (``a*/R* > 0.3``) hatched. matplotlib (the ``plot``
+extra) is imported only when a plot function is called.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from . import style as _style
+
+__all__ = ["comparison_data", "plot_comparison", "COMPARISON_COLUMNS", "MODEL_LABELS", "MODEL_STYLES"]
+
+#: Columns of :func:`comparison_data`: name -> unit.
+COMPARISON_COLUMNS = {
+    "model": "",
+    "calibrated": "1",
+    "velocity_m_s": "m/s",
+    "restitution": "1",
+    "energy_loss": "1",
+    "contact_time_ns": "ns",
+    "large_strain": "1",
+}
+
+#: Short legend labels of the models.
+MODEL_LABELS = {
+    "thornton_ning_2016": "seed (Thornton-Ning 2016)",
+    "liggghts_thornton_ning": "LIGGGHTS thornton_ning",
+    "linear_spring_dashpot": "linear spring-dashpot",
+    "hertz_viscoelastic": "Hertz viscoelastic",
+    "hertz_tsuji": "Hertz-Tsuji damping",
+    "luding_hysteretic": "Luding hysteretic",
+    "jkr_elastic_adhesive": "JKR adhesive",
+}
+
+
+#: Colour and line style of each model (Okabe-Ito colours; the seed's black and solid), so that a
+#: model looks the same in every comparison; models not listed take :func:`~.style.series_style`.
+MODEL_STYLES = {
+    "thornton_ning_2016": {"color": "#000000", "linestyle": "-", "linewidth": 1.6},
+    "liggghts_thornton_ning": {"color": "#009E73", "linestyle": ":", "linewidth": 1.5},
+    "hertz_tsuji": {"color": "#D55E00", "linestyle": "--"},
+    "hertz_viscoelastic": {"color": "#0072B2", "linestyle": "-."},
+    "linear_spring_dashpot": {"color": "#56B4E9", "linestyle": (0, (5, 1.5, 1, 1.5, 1, 1.5))},
+    "luding_hysteretic": {"color": "#CC79A7", "linestyle": (0, (8, 2))},
+    "jkr_elastic_adhesive": {"color": "#E69F00", "linestyle": (0, (3, 1, 1, 1))},
+}
+
+
+def _dataset(comparison, **kwargs):
+    if comparison is None or not hasattr(comparison, "data_vars"):
+        from ..compare import compare_models
+
+        return compare_models(comparison, **kwargs)
+    if kwargs and any(v is not None for v in kwargs.values()):
+        raise ValueError("give either a comparison Dataset or the arguments of compare_models, not both")
+    return comparison
+
+
+def comparison_data(comparison=None, **kwargs) -> dict:
+    """The numbers of :func:`plot_comparison` as columns, one row per model and speed.
+
+    Parameters
+    ----------
+    comparison : xarray.Dataset, ContactPair or str, optional
+        A result of :func:`microimpact.compare.compare_models`, or the pair (or paper case name)
+        to compare the models for; default the seed's silicon case.
+    **kwargs
+        ``velocity``, ``models``, ``params``, ``reference_velocity`` of
+        :func:`~microimpact.compare.compare_models` when ``comparison`` is not a Dataset.
+
+    Returns
+    -------
+    dict of ndarray
+        Columns of :data:`COMPARISON_COLUMNS`: ``model``, ``calibrated`` (0/1),
+        ``velocity_m_s`` [m/s], ``restitution`` [-], ``energy_loss`` [-], ``contact_time_ns``
+        [ns], ``large_strain`` (0/1, ``a*/R* > 0.3``).
+    """
+    ds = _dataset(comparison, **kwargs)
+    names = [str(n) for n in ds["model"].values]
+    V = np.asarray(ds["velocity"].values, dtype=float)
+    n = len(names) * V.size
+    return {
+        "model": np.repeat(np.array(names, dtype=object), V.size),
+        "calibrated": np.repeat(np.asarray(ds["calibrated"].values, dtype=int), V.size),
+        "velocity_m_s": np.tile(V, len(names)),
+        "restitution": np.asarray(ds["restitution"].values, dtype=float).reshape(n),
+        "energy_loss": np.asarray(ds["energy_loss"].values, dtype=float).reshape(n),
+        "contact_time_ns": np.asarray(ds["contact_time"].values, dtype=float).reshape(n) * 1e9,
+        "large_strain": np.asarray(ds["large_strain"].values, dtype=int).reshape(n),
+    }
+
+
+def plot_comparison(comparison=None, ax=None, *, legend=True, **kwargs):
+    """Restitution, energy loss and contact time against impact speed, one line per model.
+
+    Parameters
+    ----------
+    comparison : xarray.Dataset, ContactPair or str, optional
+        As :func:`comparison_data`.
+    ax : sequence of three matplotlib Axes, optional
+        Panels for ``e``, ``1 - e^2`` and ``t_c``; default a new double-column figure.
+    legend : bool
+        Draw the legend (above the panels; calibrated models marked "cal.").
+    **kwargs
+        Passed to :func:`~microimpact.compare.compare_models` when ``comparison`` is not a Dataset.
+
+    Returns
+    -------
+    ndarray of three matplotlib Axes
+
+    Examples
+    --------
+    >>> from microimpact.figures.compare import plot_comparison
+    >>> axes = plot_comparison("silicon")  # doctest: +SKIP
+    >>> axes[0].figure.savefig("compare.png", dpi=300)  # doctest: +SKIP
+    """
+    ds = _dataset(comparison, **kwargs)
+    V = np.asarray(ds["velocity"].values, dtype=float)
+    names = [str(n) for n in ds["model"].values]
+    calibrated = np.asarray(ds["calibrated"].values, dtype=bool)
+    Vy = float(ds.attrs.get("yield_velocity", math.nan))
+    V_ls = float(ds.attrs.get("seed_large_strain_velocity", math.nan))
+    ref = float(ds.attrs.get("reference_velocity", math.nan))
+    panels = [
+        ("restitution", 1.0, r"Coefficient of restitution, $e$"),
+        ("energy_loss", 1.0, r"Energy loss, $1 - e^2$"),
+        ("contact_time", 1e9, r"Contact time, $t_c$ (ns)"),
+    ]
+    with _style.style() as plt:
+        if ax is None:
+            fig, axes = plt.subplots(1, 3, figsize=(7.2, 2.75), layout="constrained")
+        else:
+            axes = np.asarray(ax, dtype=object).ravel()
+            if axes.size != 3:
+                raise ValueError(f"ax must be three Axes (restitution, energy loss, contact time), got {axes.size}")
+            fig = axes[0].figure
+        handles = []
+        for i, name in enumerate(names):
+            st = MODEL_STYLES.get(name) or _style.series_style(i)
+            label = MODEL_LABELS.get(name, name) + (" (cal.)" if calibrated[i] else "")
+            if V.size <= 12:  # a few speeds: mark them
+                st = {**st, "marker": _style.MARKERS[i % len(_style.MARKERS)], "markersize": 3.5}
+            for a, (var, scale, _) in zip(axes, panels):
+                (line,) = a.plot(V, np.asarray(ds[var].values[i], dtype=float) * scale, label=label, **st)
+            handles.append(line)
+        for a, (var, _, ylabel) in zip(axes, panels):
+            a.set_xlabel(r"Impact velocity, $V$ (m/s)")
+            a.set_ylabel(ylabel)
+            a.set_xlim(0.0, float(V.max()) * 1.02)
+            a.minorticks_on()
+            if math.isfinite(Vy) and V.min() < Vy < V.max():
+                a.axvline(Vy, color="0.45", linewidth=0.6, linestyle=":", zorder=1)
+            if math.isfinite(ref):
+                a.axvline(ref, color="0.7", linewidth=0.5, linestyle="-", zorder=0.5)
+        axes[0].set_ylim(0.0, 1.05)
+        axes[1].set_ylim(0.0, 1.0)
+        axes[2].set_ylim(bottom=0.0)
+        for k, a in enumerate(axes):
+            if math.isfinite(V_ls):
+                _style.shade_large_strain(a, V_ls, label=(k == 0))
+        if math.isfinite(Vy) and V.min() < Vy < V.max():
+            axes[0].annotate(
+                r"$V_y$",
+                xy=(Vy, 0.02),
+                xycoords=("data", "axes fraction"),
+                xytext=(2, 0),
+                textcoords="offset points",
+                fontsize=6.5,
+                color="0.35",
+                va="bottom",
+            )
+        if math.isfinite(ref):
+            axes[0].annotate(
+                r"$V_\mathrm{cal}$",
+                xy=(ref, 0.02),
+                xycoords=("data", "axes fraction"),
+                xytext=(2, 0),
+                textcoords="offset points",
+                fontsize=6.5,
+                color="0.5",
+                va="bottom",
+            )
+        if legend:
+            fig.legend(
+                handles=handles,
+                loc="outside upper center",
+                ncol=min(len(handles), 4),
+                handlelength=3.0,
+                columnspacing=1.4,
+            )
+    return np.asarray(axes, dtype=object)
