@@ -22,7 +22,14 @@ import warnings
 import numpy as np
 
 import microimpact as mi
-from microimpact.fitting import FitWarning, fit_restitution, load_restitution_csv, plot_fit, plot_models, rank_models
+from microimpact.fitting import (
+    FitWarning,
+    fit_restitution,
+    load_restitution_csv,
+    plot_fit,
+    plot_models,
+    rank_models,
+)
 
 
 def write_atomically(path, text):
@@ -49,28 +56,55 @@ def main(out_dir=None) -> int:
     csv_path = os.path.join(out_dir, "synthetic_rebounds.csv")
     rows = "".join(f"{v:.3f},{x:.4f}\n" for v, x in zip(V, e))
     write_atomically(
-        csv_path, "# synthetic: seed model, p_y = 156 MPa, noise 0.02, one outlier\nvelocity [m/s],e\n" + rows
+        csv_path,
+        "# synthetic: seed model, p_y = 156 MPa, noise 0.02, one outlier\nvelocity [m/s],e\n"
+        + rows,
     )
 
     data = load_restitution_csv(csv_path)
-    print(f"{int(np.sum(data.restitution > 1))} of {len(data.velocity)} measured values lie above 1")
-    start = truth.replace(limiting_pressure=80e6)  # the fit must not depend on the start
+    print(
+        f"{int(np.sum(data.restitution > 1))} of {len(data.velocity)} measured values lie above 1"
+    )
+    start = truth.replace(
+        limiting_pressure=80e6
+    )  # the fit must not depend on the start
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", FitWarning)  # the outlier lies below the curve, this is for e > 1
-        plain = fit_restitution(data.velocity, data.restitution, start, line_numbers=data.lines)
-        robust = fit_restitution(data.velocity, data.restitution, start, loss="soft_l1", line_numbers=data.lines)
+        warnings.simplefilter(
+            "ignore", FitWarning
+        )  # the outlier lies below the curve, this is for e > 1
+        plain = fit_restitution(
+            data.velocity, data.restitution, start, line_numbers=data.lines
+        )
+        robust = fit_restitution(
+            data.velocity,
+            data.restitution,
+            start,
+            loss="soft_l1",
+            line_numbers=data.lines,
+        )
     print("least squares:", repr(plain))
     print("soft_l1:      ", repr(robust))
 
     pred = robust.predict([20.0, 50.0, 100.0], band=True)
-    for v, lo, mid, hi in zip(pred.velocity, pred.rebound_velocity_lo, pred.rebound_velocity, pred.rebound_velocity_hi):
-        print(f"V = {v:5.1f} m/s: rebound speed {mid:.2f} m/s, 95 % band [{lo:.2f}, {hi:.2f}]")
+    for v, lo, mid, hi in zip(
+        pred.velocity,
+        pred.rebound_velocity_lo,
+        pred.rebound_velocity,
+        pred.rebound_velocity_hi,
+    ):
+        print(
+            f"V = {v:5.1f} m/s: rebound speed {mid:.2f} m/s, 95 % band [{lo:.2f}, {hi:.2f}]"
+        )
 
     ranking = rank_models(
         data.velocity,
         data.restitution,
         start,
-        ["thornton_ning_2016", "thornton_ning_2016:effective_modulus", "thornton_ning_2016:none"],
+        [
+            "thornton_ning_2016",
+            "thornton_ning_2016:effective_modulus",
+            "thornton_ning_2016:none",
+        ],
         loss="soft_l1",
     )
     print(ranking.table())
@@ -81,7 +115,10 @@ def main(out_dir=None) -> int:
     import matplotlib.pyplot as plt
 
     ax, _ = plot_fit(robust, data.velocity, data.restitution)
-    ax.set_title("soft_l1 fit of synthetic data with values above 1 and an outlier", fontsize="medium")
+    ax.set_title(
+        "soft_l1 fit of synthetic data with values above 1 and an outlier",
+        fontsize="medium",
+    )
     save_figure(ax.figure, os.path.join(out_dir, "fit.png"))
     ax, _ = plot_models(ranking)
     save_figure(ax.figure, os.path.join(out_dir, "ranking.png"))

@@ -12,16 +12,19 @@ import html
 import math
 import warnings
 from dataclasses import dataclass, field, fields, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from . import contact, dynamics, impact
+from . import contact, impact
 from ._validation import check_poisson, check_positive, check_velocity
 from .core import models, quantities
 from .core.constants import LARGE_STRAIN_RATIO
 from .core.models import thornton_ning_2016 as _seed
 from .core.quantities import FLAG_FIELDS, OUTCOME_FIELDS
-from .dynamics import ImpactHistory
+
+if TYPE_CHECKING:  # the history machinery loads only when a history is asked for
+    from .dynamics import ImpactHistory
 from .materials import DEFAULT_K, PAPER_CASES, Material, effective_modulus, get_material, sphere_mass
 
 __all__ = [
@@ -898,6 +901,8 @@ class ContactPair:
         ('ode', 0.6905)
         """
         mod = models.get(model)
+        from . import dynamics  # imported here: one impact (and the CLI) need no history machinery
+
         closed = mod.NAME in dynamics.CLOSED_FORM_HISTORY
         if method is None:
             method = "closed" if closed else "ode"
@@ -914,7 +919,7 @@ class ContactPair:
             data = fn(velocity, *self._args, n=n, times=times)
         else:
             data = dynamics.integrate_model(mod.NAME, velocity, *self._args, params, n=n, times=times)
-        return ImpactHistory.from_dict(data, method=method)
+        return dynamics.ImpactHistory.from_dict(data, method=method)
 
     def restitution(self, velocity):
         """Restitution coefficient only (seed eq. 27), the fastest path.
@@ -944,6 +949,8 @@ class ContactPair:
         float
             ``t_L = (pi/2)(m*/(pi p_y R*))^(1/2)`` [s].
         """
+        from . import dynamics
+
         return float(dynamics.ning_loading_time(self.limiting_pressure, self.effective_radius, self.effective_mass))
 
     def deresiewicz_contact_time(self, velocity):
@@ -959,6 +966,8 @@ class ContactPair:
         numpy scalar or ndarray
             ``t_c = 2.87 (m*^2/(R* E*^2 V))^(1/5)`` [s], shaped like ``velocity``.
         """
+        from . import dynamics
+
         return _scalar_or_array(
             dynamics.deresiewicz_contact_time(
                 velocity, self.effective_modulus, self.effective_radius, self.effective_mass
