@@ -12,6 +12,8 @@ from scipy.integrate import quad
 
 from microimpact.core import adhesion, models
 from microimpact.core.models import jkr_elastic_adhesive as jkr
+from microimpact.core.models import luding_adhesive as lad
+from microimpact.core.models import luding_hysteretic as lud
 from microimpact.core.models import thornton_ning_1998_elastic_adhesive as tn
 from microimpact.core.models import thornton_ning_2016 as seed
 from microimpact.core.quantities import OUTCOME_FIELDS
@@ -26,7 +28,7 @@ M_SI = 4.0 / 3.0 * math.pi * R_SI**3 * 1350.0
 E_SI = 1.31e9
 PY_SI = 156e6
 
-PUBLISHED = (tn,)
+PUBLISHED = (tn, lad)
 
 
 def _sphere(r_exp, rho):
@@ -65,6 +67,12 @@ def test_contract(mod):
         (tn, (math.inf,), "work_of_adhesion must be non-negative and finite, got inf"),
         (tn, (True,), "work_of_adhesion must be a number, not a bool"),
         (tn, (0.1, 0.2), "params must hold 1 value"),
+        (lad, (1e3, 5e3, 0.0), "params must hold 4 values"),
+        (lad, (0.0, 5e3, 0.0, 0.1), "loading_stiffness must be positive and finite, got 0.0"),
+        (lad, (1e3, 1e3, 0.0, 0.1), "unloading_stiffness must be finite and > loading_stiffness"),
+        (lad, (1e3, 5e3, -1.0, 0.1), "adhesion_stiffness must be non-negative and finite, got -1.0"),
+        (lad, (1e3, 5e3, 1.0, 0.0), "plasticity_depth must be positive and finite, got 0.0"),
+        (lad, (1e3, 5e3, False, 0.1), "adhesion_stiffness must be a number, not a bool"),
     ],
 )
 def test_validate_names_the_parameter(mod, params, match):
@@ -72,8 +80,9 @@ def test_validate_names_the_parameter(mod, params, match):
         mod.validate(params)
 
 
-def test_invalid_params_give_nan_not_an_exception():
-    out = tn.outcome(10.0, E_SI, R_SI, M_SI, PY_SI, (-1.0,))
+@pytest.mark.parametrize("mod, params", [(tn, (-1.0,)), (lad, (1e3, 5e3, 0.0, 0.0)), (lad, (1e3, 5e2, 0.0, 0.1))])
+def test_invalid_params_give_nan_not_an_exception(mod, params):
+    out = mod.outcome(10.0, E_SI, R_SI, M_SI, PY_SI, params)
     assert out[0] == 10.0 and all(math.isnan(x) for x in out[1:])
 
 
@@ -181,5 +190,133 @@ def test_tn98_restitution_in_unit_interval_energy_never_created(V, g, r):
     assert 0.0 <= o["energy_loss"] <= 1.0
     assert o["rebound_velocity"] <= o["velocity"]
     assert o["max_approach"] > 0.0 and o["loading_time"] > 0.0 and o["unloading_time"] > 0.0
+    for k in ("yield_velocity", "normalized_velocity", "unloading_radius", "elastic_stage_time", "plastic_stage_time"):
+        assert math.isnan(o[k])
+
+
+# ----------------------------------------------------------------------------- Luding's adhesive law
+
+
+def _liggghts_hysteresis(V, m, R, k1, k2max, kc, phi, steps=40000):
+    """A step-by-step transcription of LIGGGHTS' ``hooke/hysteresis`` ``surfacesIntersect`` (its
+    ``fHys``, with the history update of ``deltaMax`` on the adhesive branch), integrated by
+    velocity Verlet until the overlap returns to zero: ``(e, largest overlap)``, or ``(0, .)`` if
+    the particle is still in contact after ten loading periods."""
+    lim = k2max / (k2max - k1) * phi * 2.0 * R
+    hist = [0.0]
+
+    def fhys(d):
+        if d > hist[0]:
+            hist[0] = d
+        dmax = hist[0]
+        if dmax >= lim:
+            ftmp = k2max * (d - lim) + k1 * lim
+            if ftmp >= -kc * d:
+                return ftmp
+        else:
+            k2 = k1 + (k2max - k1) * dmax / lim
+            ftmp = k2 * (d - dmax) + k1 * dmax
+            if ftmp >= k1 * d:
+                return k1 * d
+            if ftmp > -kc * d:
+                return ftmp
+        hist[0] = 0.5 * (d + math.sqrt(d * d + 4.0 * ((k1 + kc) * d * lim / (k2max - k1))))
+        return -kc * d
+
+    dt = math.pi * math.sqrt(m / k1) / steps
+    x, v = 0.0, V
+    a = 0.0
+    xmax = 0.0
+    for _ in range(10 * steps):
+        x += v * dt + 0.5 * a * dt * dt
+        if x <= 0.0:
+            return -v / V, xmax
+        xmax = max(xmax, x)
+        a_new = -fhys(x) / m
+        v += 0.5 * (a + a_new) * dt
+        a = a_new
+    return 0.0, xmax
+
+
+@pytest.mark.parametrize(
+    "p, V",
+    [
+        ((1e3, 5e3, 0.0, 0.01), 1.0),
+        ((1e3, 5e3, 500.0, 0.01), 1.0),
+        ((1e3, 5e3, 500.0, 0.01), 0.01),
+        ((1e3, 5e3, 2e3, 0.05), 0.5),
+        ((1e3, 2e3, 1e4, 0.01), 3.0),
+        ((1e3, 5e3, 1e4, 0.05), 1.0),
+        ((1e3, 5e3, 3e3, 0.05), 60.0),
+        ((1e3, 5e3, 1e4, 0.05), 20.0),  # sticks
+        ((1e3, 5e3, 2e3, 0.05), 20.0),  # sticks
+    ],
+)
+def test_luding_adhesive_is_what_liggghts_computes(p, V):
+    """The closed form against LIGGGHTS' own incremental law (history update included), to the
+    accuracy of a 40000-step velocity Verlet run (1e-4 in e)."""
+    o = fields(lad, V, E_SI, R_SI, M_SI, PY_SI, p)
+    e, xmax = _liggghts_hysteresis(V, M_SI, R_SI, *p)
+    assert abs(o["restitution"] - e) < 1e-4
+    assert xmax == pytest.approx(o["max_approach"], rel=1e-4)
+
+
+def test_luding_adhesive_sticks_in_a_window_of_speeds():
+    """Slow impacts rebound (the unloading stiffness is still close to k1, little is lost), speeds
+    that deform up to about the plasticity depth stick, faster ones rebound along k2."""
+    for p in ((1e3, 5e3, 1e4, 0.05), (1e3, 5e3, 2e3, 0.05)):
+        stuck = fields(lad, 20.0, E_SI, R_SI, M_SI, PY_SI, p)
+        assert stuck["restitution"] == 0.0 and stuck["contact_time"] == math.inf
+        assert fields(lad, 1.0, E_SI, R_SI, M_SI, PY_SI, p)["restitution"] > 0.9
+        assert fields(lad, 100.0, E_SI, R_SI, M_SI, PY_SI, p)["restitution"] > 0.8
+
+
+def test_luding_adhesive_without_adhesion_is_the_hysteretic_law():
+    """kc = 0: luding_hysteretic (Luding's k2(alpha_max)), whose contact ends at alpha_0; here it
+    lasts to zero approach, a free flight of alpha_0/(e V) more."""
+    for V in (0.01, 1.0, 100.0):
+        a = fields(lad, V, E_SI, R_SI, M_SI, PY_SI, (1e3, 5e3, 0.0, 0.01))
+        h = fields(lud, V, E_SI, R_SI, M_SI, PY_SI, (1e3, 5e3, 0.01))
+        for k in ("restitution", "max_approach", "max_force", "plastic_approach", "loading_time"):
+            assert a[k] == pytest.approx(h[k], rel=1e-13)
+        tail = a["plastic_approach"] / (a["restitution"] * V)
+        assert a["unloading_time"] == pytest.approx(h["unloading_time"] + tail, rel=1e-12)
+
+
+@settings(max_examples=30, **PROFILE)
+@given(
+    V=st.floats(-3.0, 2.0),
+    k1=st.floats(1.0, 5.0),
+    ratio=st.floats(1.05, 50.0),
+    kc=st.one_of(st.just(0.0), st.floats(-3.0, 1.0)),
+    phi=st.floats(-4.0, -1.0),
+    r=st.floats(-7.0, -3.0),
+    rho=st.floats(500.0, 20000.0),
+)
+def test_luding_adhesive_closed_form_equals_ode(V, k1, ratio, kc, phi, r, rho):
+    R, m = _sphere(r, rho)
+    k1 = 10.0**k1
+    p = (k1, ratio * k1, 0.0 if kc == 0.0 else 10.0**kc * k1, 10.0**phi)
+    V = 10.0**V
+    if fields(lad, V, 1.0, R, m, PY_SI, p)["restitution"] == 0.0:
+        return  # stuck: no separation for the ODE to find (test_luding_adhesive_sticks)
+    _agree(lad, V, E_SI, R, m, p)
+
+
+@settings(max_examples=100, **PROFILE)
+@given(
+    V=st.floats(-4.0, 4.0),
+    ratio=st.floats(1.001, 100.0),
+    kc=st.floats(0.0, 10.0),
+    phi=st.floats(-5.0, 0.0),
+    r=st.floats(-7.0, -2.0),
+)
+def test_luding_adhesive_restitution_in_unit_interval_energy_never_created(V, ratio, kc, phi, r):
+    R, m = _sphere(r, 2000.0)
+    o = fields(lad, 10.0**V, E_SI, R, m, PY_SI, (1e3, 1e3 * ratio, 1e3 * kc, 10.0**phi))
+    assert 0.0 <= o["restitution"] < 1.0
+    assert 0.0 < o["energy_loss"] <= 1.0
+    assert 0.0 <= o["plastic_approach"] <= o["max_approach"]
+    assert o["loading_time"] > 0.0 and o["unloading_time"] > 0.0
     for k in ("yield_velocity", "normalized_velocity", "unloading_radius", "elastic_stage_time", "plastic_stage_time"):
         assert math.isnan(o[k])
