@@ -6,8 +6,9 @@ stiffness ``kc`` that limits the tensile force. The paper was not available to t
 law is read second-hand from the code that implements it, LIGGGHTS-PUBLIC
 ``src/normal_model_hooke_hysteresis.h`` (CFDEMproject/LIGGGHTS-PUBLIC, commit ``25fc3965``;
 ``gran model hooke/hysteresis``, method ``surfacesIntersect``), with its viscous damping off
-(``coefficientRestitution = 1`` gives ``gamman = 0``). With ``kc = 0`` it is
-:mod:`~microimpact.core.models.luding_hysteretic` with ``plasticity_depth > 0``.
+(``coefficientRestitution = 1`` gives ``gamman = 0``). With ``kc = 0`` it gives the ``e``,
+approaches and force of :mod:`~microimpact.core.models.luding_hysteretic` with
+``plasticity_depth > 0``; its contact lasts longer, to zero approach.
 
 The law, as the code runs it (``deltan`` is the approach ``alpha``, ``deltaMax`` the largest
 approach ``alpha_max``, ``kn`` our ``k1``, ``k2Max`` our ``k2``):

@@ -13,8 +13,8 @@ that implement it and cite or name it, and every number below was reproduced fro
   ``fl = f + 2 (fc + sqrt(fc (f + fc)))`` (``calculate_fl``) with the contact radius
   ``a = (3 R fl / (4 E))^(1/3)`` (``calculate_a``), i.e. ``f = P1 - 2 (fc P1)^(1/2)``,
   ``P1 = 4 E* a^3/(3 R*)``; and detachment at ``detaching_force = -(5./9.)*fc``.
-* PyGran (anabiman/pygran-sim, ``pygran_sim/models.py``, class ``ThorntonNing``, which cites
-  Thornton & Ning 1998): the separation approach ``deltaf = -3/4 (pi^2 G^2 R*/E*^2)^(1/3)``.
+* PyGran (anabiman/pygran-sim, ``pygran_sim/models.py`` at commit ``6156f9b3``, class
+  ``ThorntonNing``, which cites Thornton & Ning 1998): the separation approach ``deltaf = -3/4 (pi^2 G^2 R*/E*^2)^(1/3)``.
 
 In terms of ``b = a^(1/2)`` (as in :mod:`~microimpact.core.models.jkr_elastic_adhesive`, whose
 ``surface_energy`` is ``G/2``) the JKR curve is
@@ -30,7 +30,8 @@ branch from ``b_0`` to ``b_f``,
 
 .. math::  W = 7.0922\\, (G^5 R^{*4} / E^{*2})^{1/3},
 
-(Thornton & Ning's 7.09, as quoted by a public LIGGGHTS input generator that cites them,
+(Thornton & Ning's 7.09, as quoted by a public LIGGGHTS input generator by A. Roy, University
+of Birmingham, that cites them,
 ``workofadhesion = 7.09 * (surface_energy**5 * R_eq**4 / E_eq**2) ** (1 / 3)``; derived here in
 closed form, the integrand being a polynomial in ``b``), so that ``e = (1 - V_s^2/V^2)^(1/2)`` with Thornton &
 Ning's sticking velocity ``V_s = (2W/m*)^(1/2) = (14.18/m*)^(1/2) (G^5 R*^4/E*^2)^(1/6)``
