@@ -71,7 +71,10 @@ import math
 
 from .._jit import jitable
 from ._common import LARGE_STRAIN_RATIO, nan_outcome
-from .jkr_elastic_adhesive import _G, _force_b, _time_tensile, _time_to_top
+from ._jkr import force_b as _force_b
+from ._jkr import time_tensile as _time_tensile
+from ._jkr import time_to_top as _time_to_top
+from ._jkr import work_integral as _G
 
 NAME = "thornton_ning_1998_elastic_adhesive"
 TITLE = "Elastic adhesive spheres, JKR from first touch to snap-off (Thornton & Ning 1998)"
