@@ -49,10 +49,12 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 from .._jit import jitable
 from ._common import LARGE_STRAIN_RATIO, nan_outcome
+from ._jkr import force_b as _force_b
+from ._jkr import time_tensile as _time_tensile
+from ._jkr import time_to_top as _time_to_top
+from ._jkr import work_integral as _G
 
 NAME = "jkr_elastic_adhesive"
 TITLE = "JKR elastic adhesion, contact at zero approach, pull-off at -3 pi gamma R (LAMMPS granular jkr)"
@@ -70,10 +72,6 @@ WORK_CONSTANT = (
         + 2.0 * (2.0 ** (2.0 / 3.0)) ** 2
     )
 )
-
-_X, _W = np.polynomial.legendre.leggauss(48)
-_GX = tuple(float(x) for x in _X)
-_GW = tuple(float(w) for w in _W)
 
 
 def validate(params):
@@ -117,75 +115,6 @@ def contact_radius(alpha, E, R, gamma):
     if s3 < 0.0:
         s3 = 0.0
     return (t6 + math.sqrt(s3)) / math.sqrt(6.0)
-
-
-@jitable
-def _force_b(b, E, R, s):
-    """JKR force at ``b = a^(1/2)``: ``4 E a^3/(3R) - 4 E s a^(3/2)``, ``s = (pi gamma/E)^(1/2)``."""
-    b3 = b * b * b
-    return 4.0 * E * b3 * b3 / (3.0 * R) - 4.0 * E * s * b3
-
-
-@jitable
-def _G(b, E, R, s):
-    """Antiderivative of ``P d alpha`` in ``b``: ``8E/(15R^2) b^10 - 8Es/(3R) b^7 + 2Es^2 b^4``."""
-    b2 = b * b
-    b4 = b2 * b2
-    return 8.0 * E / (15.0 * R * R) * b4 * b4 * b2 - 8.0 * E * s / (3.0 * R) * b4 * b2 * b + 2.0 * E * s * s * b4
-
-
-@jitable
-def _dG(x, y, E, R, s):
-    """``(G(x) - G(y)) / (x - y)``, free of cancellation: ``(x^n - y^n)/(x - y) = sum x^(n-1-k) y^k``."""
-    p10 = 0.0
-    p7 = 0.0
-    p4 = 0.0
-    xk = 1.0
-    for k in range(10):  # xk = x^k, y^(9-k) etc. built by division-free products
-        yk = 1.0
-        for _ in range(9 - k):
-            yk *= y
-        p10 += xk * yk
-        if k < 7:
-            yk7 = 1.0
-            for _ in range(6 - k):
-                yk7 *= y
-            p7 += xk * yk7
-        if k < 4:
-            yk4 = 1.0
-            for _ in range(3 - k):
-                yk4 *= y
-            p4 += xk * yk4
-        xk *= x
-    return 8.0 * E / (15.0 * R * R) * p10 - 8.0 * E * s / (3.0 * R) * p7 + 2.0 * E * s * s * p4
-
-
-@jitable
-def _time_to_top(b_lo, bm, E, R, m, s):
-    """``int d alpha/|alpha'|`` from ``b_lo`` to the turning point ``bm`` (substitution ``b = bm - w^2``)."""
-    W = math.sqrt(bm - b_lo)
-    total = 0.0
-    for i in range(48):
-        w = 0.5 * W * (_GX[i] + 1.0)
-        b = bm - w * w
-        q = _dG(bm, b, E, R, s)  # (G(bm) - G(b)) / (bm - b) > 0
-        total += _GW[i] * 2.0 * (4.0 * b * b * b / R - 2.0 * s) / math.sqrt(2.0 * q / m)
-    return 0.5 * W * total
-
-
-@jitable
-def _time_tensile(bF, b0, excess, E, R, m, s):
-    """``int d alpha/|alpha'|`` over the tensile branch ``bF <= b <= b0``, where the kinetic energy is
-    ``excess + G(bF) - G(b)`` (``excess = K - W``, the rebound energy); substitution ``b = bF + w^2``
-    keeps the integrand finite as ``excess -> 0`` (the sticking limit)."""
-    Wd = math.sqrt(b0 - bF)
-    total = 0.0
-    for i in range(48):
-        w = 0.5 * Wd * (_GX[i] + 1.0)
-        b = bF + w * w
-        ke = excess - w * w * _dG(b, bF, E, R, s)  # G(bF) - G(b) = -(b - bF) dG(b, bF) >= 0
-        total += _GW[i] * 2.0 * w * (4.0 * b * b * b / R - 2.0 * s) / math.sqrt(2.0 * ke / m)
-    return 0.5 * Wd * total
 
 
 @jitable
