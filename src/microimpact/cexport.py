@@ -396,6 +396,10 @@ def generate_c_source(
     limiting_pressure=None,
     work_of_adhesion=0.0,
     friction=0.0,
+    tangential="rigid",
+    poisson_ratio=None,
+    effective_shear_modulus=None,
+    comment=None,
 ) -> str:
     """A self-contained C99 source computing :func:`wall_interaction` for one particle.
 
@@ -432,6 +436,27 @@ def generate_c_source(
         ``G`` [J/m^2], the work of adhesion (``2 gamma`` for identical surfaces); default 0.
     friction : float, optional
         Coulomb coefficient ``mu`` [-]; default 0.
+    tangential : {"rigid", "mindlin"}, optional
+        Tangential model, as ``tangential=`` of :func:`~microimpact.wall.wall_interaction`.
+        ``"rigid"`` (default): the rigid-body Coulomb impulse (the source is the same,
+        byte for byte, as before the option existed). ``"mindlin"``: the compliant contact
+        of :mod:`microimpact.oblique`; the file then also holds the
+        :func:`~microimpact.oblique.universal_table` of the pair's ``kappa = 4 G*/E*``
+        (:func:`~microimpact.oblique.table_c_source`, about 30 kB of constants) and the
+        tangential impulse is ``J_t = -F(psi, V_y/V) mu J_n u_t/|u_t|`` with
+        ``psi = kappa |u_t| / (mu V)``, as the Python function computes it. ``kappa``
+        is a compile-time constant (``MICROIMPACT_KAPPA``): a struct with another
+        ``E*`` keeps the ``kappa`` given here.
+    poisson_ratio : float, optional
+        ``"mindlin"`` only: one Poisson's ratio for particle and wall,
+        ``kappa = 2(1 - nu)/(2 - nu)``.
+    effective_shear_modulus : float, optional
+        ``"mindlin"`` only: ``G*`` [Pa], ``kappa = 4 G*/E*`` with the ``E*`` used here.
+        Without either, ``kappa`` comes from the pair's particle and surface materials
+        (:func:`~microimpact.oblique.stiffness_ratio_of`).
+    comment : str, optional
+        A line added to the header comment (made safe: one line, printable ASCII, no
+        comment delimiters), e.g. which end of a confidence band the parameters are.
 
     Returns
     -------
@@ -442,7 +467,10 @@ def generate_c_source(
     ------
     ValueError
         If neither a pair nor both ``effective_modulus`` and ``limiting_pressure``
-        are given, or a value is out of range.
+        are given, a value is out of range, or ``tangential="mindlin"`` has no way to
+        ``kappa`` (or gets both ``poisson_ratio`` and ``effective_shear_modulus``);
+        ``poisson_ratio`` or ``effective_shear_modulus`` with ``"rigid"`` is refused
+        too (it would be ignored).
     """
     from . import __version__
 
@@ -456,9 +484,14 @@ def generate_c_source(
     mu = float(check_nonnegative("friction", friction))
     if math.isinf(G) or math.isinf(mu):
         raise ValueError("work_of_adhesion and friction must be finite")
+    kappa = _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus)
     label = f"{_comment_text(pair.label)}; " if pair is not None and pair.label else ""
     desc = f"{label}E* = {E:.6g} Pa, p_y = {p_y:.6g} Pa, G = {G:.6g} J/m^2, mu = {mu:.6g}"
-    return _C_TEMPLATE.format(
+    if kappa is not None:
+        desc += f"; tangential: mindlin, kappa = 4 G* / E* = {kappa:.6g}"
+    if comment is not None:
+        desc += "\n *\n * " + _comment_text(comment)
+    text = _C_TEMPLATE.format(
         version=__version__,
         description=desc,
         E=_c_double(E),
@@ -467,6 +500,84 @@ def generate_c_source(
         mu=_c_double(mu),
         stick=repr(STICKING_CONSTANT),
     )
+    return text if kappa is None else _mindlin_source(text, kappa)
+
+
+def _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus):
+    """``kappa = 4 G*/E*`` of the compliant model, or None for the rigid one (inputs checked)."""
+    if tangential not in ("rigid", "mindlin"):
+        raise ValueError(f"tangential must be 'rigid' or 'mindlin', got {tangential!r}")
+    if tangential == "rigid":
+        for name, value in (("poisson_ratio", poisson_ratio), ("effective_shear_modulus", effective_shear_modulus)):
+            if value is not None:
+                raise ValueError(f"{name} is used by tangential='mindlin' only, got it with tangential='rigid'")
+        return None
+    if poisson_ratio is not None and effective_shear_modulus is not None:
+        raise ValueError("give poisson_ratio or effective_shear_modulus, not both (each sets kappa)")
+    if effective_shear_modulus is not None:
+        Gs = float(check_positive("effective_shear_modulus", effective_shear_modulus))
+        if math.isinf(Gs):
+            raise ValueError(f"effective_shear_modulus must be finite, got {effective_shear_modulus!r}")
+        return 4.0 * Gs / E  # as wall_interaction: 4 G*/E* with the E* in use
+    if poisson_ratio is not None:
+        from ._validation import check_poisson
+
+        nu = float(check_poisson("poisson_ratio", poisson_ratio, scalar=True))
+        return 2.0 * (1.0 - nu) / (2.0 - nu)
+    if pair is None or getattr(pair, "particle", None) is None or getattr(pair, "surface", None) is None:
+        raise ValueError(
+            "tangential='mindlin' needs poisson_ratio=..., effective_shear_modulus=... or a pair built from materials"
+        )
+    from .oblique import stiffness_ratio_of
+
+    return stiffness_ratio_of(pair)
+
+
+#: The rigid source's tangential lines and their compliant replacements (each must occur once).
+_MINDLIN_EDITS = (
+    (
+        " *   tangential: rigid-body Coulomb impulse model of a solid sphere (I = 2/5 m r^2):\n"
+        " *               rolling (slip stopped, J_t = -2m/7 u_t) if |J_t| <= mu J_n, else sliding.\n",
+        " *   tangential: compliant contact (Mindlin's no-slip spring k_t = 8 G* a with a Coulomb limit, loaded\n"
+        " *               along the seed's normal history; microimpact.oblique) of a solid sphere:\n"
+        " *               J_t = -F(psi, V_y/V) mu J_n u_t/|u_t|, psi = kappa |u_t| / (mu V), kappa = 4 G* / E*,\n"
+        " *               F from the universal table below (bilinear; error below 3e-3 of mu J_n).\n",
+    ),
+    (
+        "    double len, r, m, V_y, V_s, vn, V, e_p, e, ratio, jn, ut_mag, stop, limit, scale;\n",
+        "    double len, r, m, V_y, V_s, vn, V, e_p, e, ratio, jn, ut_mag, limit, scale;\n",
+    ),
+    (
+        "    stop = (2.0 / 7.0) * ut_mag;             /* |impulse that stops the slip| / m */\n"
+        "    limit = params->friction * jn;           /* mu J_n / m */\n"
+        "    if (stop <= limit) scale = 2.0 / 7.0;    /* rolling */\n"
+        "    else scale = ut_mag > 0.0 ? limit / ut_mag : 0.0;  /* sliding */\n",
+        "    limit = params->friction * jn;           /* mu J_n / m */\n"
+        "    if (params->friction > 0.0 && ut_mag > 0.0)  /* |J_t| / m = F mu J_n / m */\n"
+        "        scale = microimpact_oblique_impulse_ratio(MICROIMPACT_KAPPA * ut_mag / (params->friction * V),\n"
+        "                                                  V_y / V) * limit / ut_mag;\n"
+        "    else scale = 0.0;\n",
+    ),
+)
+
+
+def _mindlin_source(text, kappa):
+    """The rigid source ``text`` turned into the compliant one for ``kappa``."""
+    from .oblique import table_c_source, universal_table
+
+    for old, new in _MINDLIN_EDITS:
+        if text.count(old) != 1:  # pragma: no cover - the template changed
+            raise RuntimeError("the C template no longer has the rigid tangential block")
+        text = text.replace(old, new)
+    table = table_c_source(universal_table(kappa), "microimpact_oblique")
+    table = table.replace("#include <math.h>\n", "")  # already included
+    table += (
+        f"\n/* kappa = 4 G* / E* of psi, unrounded (the table is built for it rounded to 12 digits) */\n"
+        f"#define MICROIMPACT_KAPPA {kappa!r}\n\n"
+    )
+    anchor = "int microimpact_wall_interaction("
+    head, tail = text.split(anchor, 1)
+    return head + table + anchor + tail
 
 
 def write_c_source(path, pair=None, **kwargs):
