@@ -3,7 +3,10 @@
 Tables of the adhesive restitution (:func:`restitution_table`, :func:`write_tables`) and a
 C function computing the same outgoing velocity, spin and stick flag as
 :func:`microimpact.wall.wall_interaction` for one particle, for Fluent UDFs and OpenFOAM patch
-interaction models (:func:`generate_c_source`). Sign conventions are those of :mod:`microimpact.wall`.
+interaction models (:func:`generate_c_source`), with the rigid or the compliant
+(``tangential="mindlin"``) tangential model. :func:`write_band` writes both for a fit's
+estimate and the two ends of its confidence band. Sign conventions are those of
+:mod:`microimpact.wall`.
 """
 
 from __future__ import annotations
@@ -603,7 +606,8 @@ def write_c_source(path, pair=None, **kwargs):
         Takes ``E*`` [Pa] and ``p_y`` [Pa] from it.
     **kwargs
         ``effective_modulus`` [Pa], ``limiting_pressure`` [Pa], ``work_of_adhesion``
-        ``G`` [J/m^2] and ``friction`` ``mu`` [-], as for :func:`generate_c_source`.
+        ``G`` [J/m^2], ``friction`` ``mu`` [-], ``tangential``, ``poisson_ratio``,
+        ``effective_shear_modulus`` [Pa] and ``comment``, as for :func:`generate_c_source`.
 
     Returns
     -------
@@ -780,6 +784,9 @@ def write_band(
     from .io import atomic_directory, atomic_write
 
     ends = band_pairs(fit)
+    if not c_source and (tangential != "rigid" or poisson_ratio is not None or effective_shear_modulus is not None):
+        raise ValueError("tangential, poisson_ratio and effective_shear_modulus set the C source: c_source=False")
+    mu = float(check_nonnegative("friction", friction))
     G = float(check_nonnegative("work_of_adhesion", work_of_adhesion))
     if math.isinf(G):
         raise ValueError(f"work_of_adhesion must be finite, got {work_of_adhesion!r}")
@@ -798,7 +805,7 @@ def write_band(
             sources[end["name"]] = generate_c_source(
                 pair,
                 work_of_adhesion=G,
-                friction=friction,
+                friction=mu,
                 tangential=tangential,
                 poisson_ratio=poisson_ratio,
                 effective_shear_modulus=effective_shear_modulus,

@@ -178,9 +178,9 @@ def run(args) -> int:
     for path in written:
         print(f"wrote {out / Path(path).name}")
     if fit is not None:
-        from .fit import _report
+        from .fit import report_warnings
 
-        _report(caught)
+        report_warnings(caught)
     return 0
 
 
@@ -219,7 +219,7 @@ def _fit(args):
     import warnings
 
     from ..fitting import FitWarning, fit_restitution, load_restitution_csv
-    from .fit import _fit_pair, _yield_strength
+    from .fit import fit_pair, fit_yield_strength
 
     data = load_restitution_csv(args.fit)
     velocity, restitution, sigma = data
@@ -227,7 +227,7 @@ def _fit(args):
     if len(free) != 1:
         raise ValueError(f"--free: the band's ends need exactly one free parameter, got {args.free!r}")
     confidence = parse_float(args.confidence, "--confidence") if args.confidence is not None else 0.95
-    pair = _fit_pair(args, free[0])
+    pair = fit_pair(args, free[0])
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", FitWarning)
         fit = fit_restitution(
@@ -239,7 +239,7 @@ def _fit(args):
             loss=args.loss or "linear",
             confidence=confidence,
             interval=args.interval or "auto",
-            yield_strength=_yield_strength(args) if "k" in free else None,
+            yield_strength=fit_yield_strength(args) if "k" in free else None,
             line_numbers=data.lines,
         )
     return fit, caught
