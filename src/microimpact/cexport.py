@@ -3,7 +3,10 @@
 Tables of the adhesive restitution (:func:`restitution_table`, :func:`write_tables`) and a
 C function computing the same outgoing velocity, spin and stick flag as
 :func:`microimpact.wall.wall_interaction` for one particle, for Fluent UDFs and OpenFOAM patch
-interaction models (:func:`generate_c_source`). Sign conventions are those of :mod:`microimpact.wall`.
+interaction models (:func:`generate_c_source`), with the rigid or the compliant
+(``tangential="mindlin"``) tangential model. :func:`write_band` writes both for a fit's
+estimate and the two ends of its confidence band. Sign conventions are those of
+:mod:`microimpact.wall`.
 """
 
 from __future__ import annotations
@@ -20,6 +23,9 @@ __all__ = [
     "write_tables",
     "generate_c_source",
     "write_c_source",
+    "BAND_ENDS",
+    "band_pairs",
+    "write_band",
 ]
 
 
@@ -166,8 +172,16 @@ def write_tables(
         tag = f"{_slug(pair.label or f'pair{i}')}_" if multi else ""
         jobs += [(pair, tag, d, _sized_pair(pair, d)) for d in sizes]
     out_dir.mkdir(parents=True, exist_ok=True)
+    written = [_write_universal_table(out_dir, v, s)]
+    for pair, tag, d, p in jobs:
+        path = out_dir / f"restitution_{tag}d{float(d) * 1e6:g}um.csv"
+        _write_size_table(path, pair, d, p, V, G)
+        written.append(path)
+    return written
 
-    written = []
+
+def _write_universal_table(out_dir, v, s):
+    """``restitution_vs_v_over_vy.csv`` of :func:`write_tables`; returns its path."""
     path = out_dir / "restitution_vs_v_over_vy.csv"
     table = restitution_table(v, s)
     _write_csv(
@@ -181,28 +195,28 @@ def write_tables(
         [("V/V_y", "1")] + [(f"e at V_s/V_y={_fmt_num(x)}", "1") for x in s],
         [v, *np.asarray(table).T],
     )
-    written.append(path)
+    return path
 
-    for pair, tag, d, p in jobs:
-        Vy = p.yield_velocity
-        Vs = float(sticking_velocity(G, p.effective_modulus, p.effective_radius, p.effective_mass))
-        e = adhesive_restitution(V, Vy, Vs)
-        stuck = (Vs > 0.0) & (e == 0.0)
-        path = out_dir / f"restitution_{tag}d{float(d) * 1e6:g}um.csv"
-        _write_csv(
-            path,
-            [
-                f"microimpact: normal restitution of {_comment_text(pair.label or 'a sphere')} on a flat, "
-                f"diameter {float(d):.6g} m",
-                f"E* = {p.effective_modulus:.6g} Pa, p_y = {p.limiting_pressure:.6g} Pa, "
-                f"density = {pair.density:.6g} kg/m^3, work of adhesion G = {G:.6g} J/m^2",
-                f"yield velocity V_y = {Vy:.10g} m/s, sticking velocity V_s = {Vs:.10g} m/s",
-            ],
-            [("normal speed", "m/s"), ("restitution e", "1"), ("stuck", "1")],
-            [V, e, np.broadcast_to(stuck, np.shape(V)).astype(np.int8)],
-        )
-        written.append(path)
-    return written
+
+def _write_size_table(path, pair, d, p, V, G, extra=()):
+    """One per-size table of :func:`write_tables` (``p`` is ``pair`` at diameter ``d``)."""
+    Vy = p.yield_velocity
+    Vs = float(sticking_velocity(G, p.effective_modulus, p.effective_radius, p.effective_mass))
+    e = adhesive_restitution(V, Vy, Vs)
+    stuck = (Vs > 0.0) & (e == 0.0)
+    _write_csv(
+        path,
+        [
+            f"microimpact: normal restitution of {_comment_text(pair.label or 'a sphere')} on a flat, "
+            f"diameter {float(d):.6g} m",
+            f"E* = {p.effective_modulus:.6g} Pa, p_y = {p.limiting_pressure:.6g} Pa, "
+            f"density = {pair.density:.6g} kg/m^3, work of adhesion G = {G:.6g} J/m^2",
+            f"yield velocity V_y = {Vy:.10g} m/s, sticking velocity V_s = {Vs:.10g} m/s",
+            *(_comment_text(x) for x in extra),
+        ],
+        [("normal speed", "m/s"), ("restitution e", "1"), ("stuck", "1")],
+        [V, e, np.broadcast_to(stuck, np.shape(V)).astype(np.int8)],
+    )
 
 
 # ----------------------------------------------------------------------------- C export
@@ -396,6 +410,10 @@ def generate_c_source(
     limiting_pressure=None,
     work_of_adhesion=0.0,
     friction=0.0,
+    tangential="rigid",
+    poisson_ratio=None,
+    effective_shear_modulus=None,
+    comment=None,
 ) -> str:
     """A self-contained C99 source computing :func:`wall_interaction` for one particle.
 
@@ -432,6 +450,27 @@ def generate_c_source(
         ``G`` [J/m^2], the work of adhesion (``2 gamma`` for identical surfaces); default 0.
     friction : float, optional
         Coulomb coefficient ``mu`` [-]; default 0.
+    tangential : {"rigid", "mindlin"}, optional
+        Tangential model, as ``tangential=`` of :func:`~microimpact.wall.wall_interaction`.
+        ``"rigid"`` (default): the rigid-body Coulomb impulse (the source is the same,
+        byte for byte, as before the option existed). ``"mindlin"``: the compliant contact
+        of :mod:`microimpact.oblique`; the file then also holds the
+        :func:`~microimpact.oblique.universal_table` of the pair's ``kappa = 4 G*/E*``
+        (:func:`~microimpact.oblique.table_c_source`, about 30 kB of constants) and the
+        tangential impulse is ``J_t = -F(psi, V_y/V) mu J_n u_t/|u_t|`` with
+        ``psi = kappa |u_t| / (mu V)``, as the Python function computes it. ``kappa``
+        is a compile-time constant (``MICROIMPACT_KAPPA``): a struct with another
+        ``E*`` keeps the ``kappa`` given here.
+    poisson_ratio : float, optional
+        ``"mindlin"`` only: one Poisson's ratio for particle and wall,
+        ``kappa = 2(1 - nu)/(2 - nu)``.
+    effective_shear_modulus : float, optional
+        ``"mindlin"`` only: ``G*`` [Pa], ``kappa = 4 G*/E*`` with the ``E*`` used here.
+        Without either, ``kappa`` comes from the pair's particle and surface materials
+        (:func:`~microimpact.oblique.stiffness_ratio_of`).
+    comment : str, optional
+        A line added to the header comment (made safe: one line, printable ASCII, no
+        comment delimiters), e.g. which end of a confidence band the parameters are.
 
     Returns
     -------
@@ -442,7 +481,10 @@ def generate_c_source(
     ------
     ValueError
         If neither a pair nor both ``effective_modulus`` and ``limiting_pressure``
-        are given, or a value is out of range.
+        are given, a value is out of range, or ``tangential="mindlin"`` has no way to
+        ``kappa`` (or gets both ``poisson_ratio`` and ``effective_shear_modulus``);
+        ``poisson_ratio`` or ``effective_shear_modulus`` with ``"rigid"`` is refused
+        too (it would be ignored).
     """
     from . import __version__
 
@@ -456,9 +498,14 @@ def generate_c_source(
     mu = float(check_nonnegative("friction", friction))
     if math.isinf(G) or math.isinf(mu):
         raise ValueError("work_of_adhesion and friction must be finite")
+    kappa = _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus)
     label = f"{_comment_text(pair.label)}; " if pair is not None and pair.label else ""
     desc = f"{label}E* = {E:.6g} Pa, p_y = {p_y:.6g} Pa, G = {G:.6g} J/m^2, mu = {mu:.6g}"
-    return _C_TEMPLATE.format(
+    if kappa is not None:
+        desc += f"; tangential: mindlin, kappa = 4 G* / E* = {kappa:.6g}"
+    if comment is not None:
+        desc += "\n *\n * " + _comment_text(comment)
+    text = _C_TEMPLATE.format(
         version=__version__,
         description=desc,
         E=_c_double(E),
@@ -467,6 +514,84 @@ def generate_c_source(
         mu=_c_double(mu),
         stick=repr(STICKING_CONSTANT),
     )
+    return text if kappa is None else _mindlin_source(text, kappa)
+
+
+def _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus):
+    """``kappa = 4 G*/E*`` of the compliant model, or None for the rigid one (inputs checked)."""
+    if tangential not in ("rigid", "mindlin"):
+        raise ValueError(f"tangential must be 'rigid' or 'mindlin', got {tangential!r}")
+    if tangential == "rigid":
+        for name, value in (("poisson_ratio", poisson_ratio), ("effective_shear_modulus", effective_shear_modulus)):
+            if value is not None:
+                raise ValueError(f"{name} is used by tangential='mindlin' only, got it with tangential='rigid'")
+        return None
+    if poisson_ratio is not None and effective_shear_modulus is not None:
+        raise ValueError("give poisson_ratio or effective_shear_modulus, not both (each sets kappa)")
+    if effective_shear_modulus is not None:
+        Gs = float(check_positive("effective_shear_modulus", effective_shear_modulus))
+        if math.isinf(Gs):
+            raise ValueError(f"effective_shear_modulus must be finite, got {effective_shear_modulus!r}")
+        return 4.0 * Gs / E  # as wall_interaction: 4 G*/E* with the E* in use
+    if poisson_ratio is not None:
+        from ._validation import check_poisson
+
+        nu = float(check_poisson("poisson_ratio", poisson_ratio, scalar=True))
+        return 2.0 * (1.0 - nu) / (2.0 - nu)
+    if pair is None or getattr(pair, "particle", None) is None or getattr(pair, "surface", None) is None:
+        raise ValueError(
+            "tangential='mindlin' needs poisson_ratio=..., effective_shear_modulus=... or a pair built from materials"
+        )
+    from .oblique import stiffness_ratio_of
+
+    return stiffness_ratio_of(pair)
+
+
+#: The rigid source's tangential lines and their compliant replacements (each must occur once).
+_MINDLIN_EDITS = (
+    (
+        " *   tangential: rigid-body Coulomb impulse model of a solid sphere (I = 2/5 m r^2):\n"
+        " *               rolling (slip stopped, J_t = -2m/7 u_t) if |J_t| <= mu J_n, else sliding.\n",
+        " *   tangential: compliant contact (Mindlin's no-slip spring k_t = 8 G* a with a Coulomb limit, loaded\n"
+        " *               along the seed's normal history; microimpact.oblique) of a solid sphere:\n"
+        " *               J_t = -F(psi, V_y/V) mu J_n u_t/|u_t|, psi = kappa |u_t| / (mu V), kappa = 4 G* / E*,\n"
+        " *               F from the universal table below (bilinear; error below 3e-3 of mu J_n).\n",
+    ),
+    (
+        "    double len, r, m, V_y, V_s, vn, V, e_p, e, ratio, jn, ut_mag, stop, limit, scale;\n",
+        "    double len, r, m, V_y, V_s, vn, V, e_p, e, ratio, jn, ut_mag, limit, scale;\n",
+    ),
+    (
+        "    stop = (2.0 / 7.0) * ut_mag;             /* |impulse that stops the slip| / m */\n"
+        "    limit = params->friction * jn;           /* mu J_n / m */\n"
+        "    if (stop <= limit) scale = 2.0 / 7.0;    /* rolling */\n"
+        "    else scale = ut_mag > 0.0 ? limit / ut_mag : 0.0;  /* sliding */\n",
+        "    limit = params->friction * jn;           /* mu J_n / m */\n"
+        "    if (params->friction > 0.0 && ut_mag > 0.0)  /* |J_t| / m = F mu J_n / m */\n"
+        "        scale = microimpact_oblique_impulse_ratio(MICROIMPACT_KAPPA * ut_mag / (params->friction * V),\n"
+        "                                                  V_y / V) * limit / ut_mag;\n"
+        "    else scale = 0.0;\n",
+    ),
+)
+
+
+def _mindlin_source(text, kappa):
+    """The rigid source ``text`` turned into the compliant one for ``kappa``."""
+    from .oblique import table_c_source, universal_table
+
+    for old, new in _MINDLIN_EDITS:
+        if text.count(old) != 1:  # pragma: no cover - the template changed
+            raise RuntimeError("the C template no longer has the rigid tangential block")
+        text = text.replace(old, new)
+    table = table_c_source(universal_table(kappa), "microimpact_oblique")
+    table = table.replace("#include <math.h>\n", "")  # already included
+    table += (
+        f"\n/* kappa = 4 G* / E* of psi, unrounded (the table is built for it rounded to 12 digits) */\n"
+        f"#define MICROIMPACT_KAPPA {kappa!r}\n\n"
+    )
+    anchor = "int microimpact_wall_interaction("
+    head, tail = text.split(anchor, 1)
+    return head + table + anchor + tail
 
 
 def write_c_source(path, pair=None, **kwargs):
@@ -481,7 +606,8 @@ def write_c_source(path, pair=None, **kwargs):
         Takes ``E*`` [Pa] and ``p_y`` [Pa] from it.
     **kwargs
         ``effective_modulus`` [Pa], ``limiting_pressure`` [Pa], ``work_of_adhesion``
-        ``G`` [J/m^2] and ``friction`` ``mu`` [-], as for :func:`generate_c_source`.
+        ``G`` [J/m^2], ``friction`` ``mu`` [-], ``tangential``, ``poisson_ratio``,
+        ``effective_shear_modulus`` [Pa] and ``comment``, as for :func:`generate_c_source`.
 
     Returns
     -------
@@ -506,3 +632,223 @@ def write_c_source(path, pair=None, **kwargs):
     with atomic_write(path) as fh:
         fh.write(text)
     return path
+
+
+# ----------------------------------------------------------------------------- confidence band
+#: Names of the three parameter sets :func:`write_band` exports, in file names.
+BAND_ENDS = ("estimate", "lower", "upper")
+#: File names an export directory consists of (so that either export may replace the other's).
+BAND_OWNED = ("README.txt", "restitution_*.csv", "microimpact_wall*.c")
+
+
+def band_pairs(fit) -> list[dict]:
+    """The fitted pair at the estimate and at the two ends of the fit's confidence band.
+
+    For each of :data:`BAND_ENDS` a dict with ``"name"``, ``"pair"`` (:class:`ContactPair`),
+    ``"parameter"``, ``"value"`` (SI) and ``"text"`` (one line saying which end, the
+    parameter's value and the confidence). ``"lower"`` and ``"upper"`` name the ends of the
+    *restitution* band, which is what a CFD run with the band's ends needs: the seed's
+    ``e`` depends on the free parameter only through ``V/V_y`` and grows with ``V_y``, so
+    the end with the smaller ``V_y`` gives the lower ``e`` at every speed (for
+    ``limiting_pressure`` that is the lower end of its interval; for ``density`` the upper
+    one).
+
+    Parameters
+    ----------
+    fit : FitResult
+        A fit of the seed's model (:func:`~microimpact.fitting.fit_restitution`) with one
+        free parameter and a closed confidence interval.
+
+    Returns
+    -------
+    list of dict
+
+    Raises
+    ------
+    ValueError
+        Another model than the seed's (the export writes the seed's model), not one free
+        parameter, or an interval open at one end (the data do not bound it; no table can
+        stand for that end).
+    """
+    from .fitting import FREE_PARAMETERS, SEED_MODEL, FitResult
+
+    if not isinstance(fit, FitResult):
+        raise ValueError(f"fit must be a FitResult (from fit_restitution), got {type(fit).__name__}")
+    if fit.model != SEED_MODEL:
+        raise ValueError(f"fit: the export writes the seed's model ({SEED_MODEL}); this fit is of {fit.model!r}")
+    if len(fit.params) != 1:
+        raise ValueError(f"fit: the band's ends need exactly one free parameter, this fit has {len(fit.params)}")
+    name = fit.free[0]
+    unit = FREE_PARAMETERS.get(name, {}).get("si", "") or "-"
+    conf = f"{100.0 * fit.confidence:g} %"
+    ends = fit.band_ends()
+    for end in ends:
+        if not (0.0 < end["value"] < math.inf):
+            raise ValueError(
+                f"fit: the {end['end']} end of the {conf} interval of {name} is open ({end['value']:g}): the data do "
+                "not bound it, so no table can stand for it (lower the confidence or add points above V_y)"
+            )
+    if ends[0]["pair"].yield_velocity > ends[1]["pair"].yield_velocity:
+        ends = ends[::-1]  # the smaller V_y gives the lower restitution
+    out = [
+        {
+            "name": "estimate",
+            "pair": fit.pair,
+            "parameter": name,
+            "value": float(fit.params[name]),
+            "text": f"best estimate of the fit: {name} = {fit.params[name]:.10g} {unit} "
+            f"(V_y = {fit.pair.yield_velocity:.6g} m/s); the {conf} confidence band is in the *_lower and *_upper files",
+        }
+    ]
+    for band_end, end in zip(("lower", "upper"), ends):
+        out.append(
+            {
+                "name": band_end,
+                "pair": end["pair"],
+                "parameter": name,
+                "value": end["value"],
+                "text": f"{band_end} end of the {conf} confidence band of e(V): {name} = {end['value']:.10g} {unit} "
+                f"({end['end']} end of its {conf} interval, {fit.interval}; V_y = {end['pair'].yield_velocity:.6g} m/s)",
+            }
+        )
+    return out
+
+
+def write_band(
+    fit,
+    directory,
+    diameters=None,
+    velocities=None,
+    *,
+    work_of_adhesion=0.0,
+    friction=0.0,
+    v_over_vy=None,
+    vs_over_vy_values=DEFAULT_VS_OVER_VY,
+    c_source=True,
+    tangential="rigid",
+    poisson_ratio=None,
+    effective_shear_modulus=None,
+    source=None,
+):
+    """Write the tables and C source of a fit at its estimate and at both ends of its band.
+
+    So that a CFD user can run with the band's ends (:func:`band_pairs` says which
+    parameter value each end is). One output directory, written whole
+    (:func:`microimpact.io.atomic_directory`: built beside it and swapped into place when
+    complete; nothing is written unless every input is good):
+
+    * ``README.txt``: the fit, the confidence, and which file is which;
+    * ``restitution_vs_v_over_vy.csv``: the dimensionless table (the same for every end:
+      ``e`` depends on the fit only through ``V_y``);
+    * ``restitution_d<diameter>um_<end>.csv`` for each diameter and each ``<end>`` of
+      ``estimate``, ``lower``, ``upper`` (of the restitution band), as :func:`write_tables`;
+    * ``microimpact_wall_<end>.c`` (unless ``c_source=False``), as :func:`write_c_source`.
+
+    Every file has a comment line saying which end it is and at which confidence.
+
+    Parameters
+    ----------
+    fit : FitResult
+        A fit of the seed's model with one free parameter (:func:`band_pairs`); its pair
+        needs a density (the tables are rescaled to each diameter).
+    directory : path
+        The output directory (replaced whole if it holds only files of this export).
+    diameters, velocities, work_of_adhesion, v_over_vy, vs_over_vy_values
+        As :func:`write_tables` (diameters [m], speeds [m/s], ``G`` [J/m^2]).
+    friction, tangential, poisson_ratio, effective_shear_modulus
+        As :func:`generate_c_source` (``mu`` [-], ``G*`` [Pa]); C source only.
+    c_source : bool
+        Write the C files (default True).
+    source : str, optional
+        Where the data came from (a file name), quoted in the comments.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written (at their final place).
+
+    Examples
+    --------
+    >>> import numpy as np, tempfile, microimpact as mi
+    >>> from microimpact.fitting import fit_restitution
+    >>> pair = mi.ContactPair.paper_case("silicon")
+    >>> V = np.array([5.0, 10.0, 20.0, 40.0, 80.0])
+    >>> fit = fit_restitution(V, pair.restitution(V) + [0.0, 0.01, -0.01, 0.005, -0.005], pair)
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     files = write_band(fit, tmp + "/band")
+    >>> sorted(p.name for p in files)[:3]
+    ['README.txt', 'microimpact_wall_estimate.c', 'microimpact_wall_lower.c']
+    """
+    from pathlib import Path
+
+    from .io import atomic_directory, atomic_write
+
+    ends = band_pairs(fit)
+    if not c_source and (tangential != "rigid" or poisson_ratio is not None or effective_shear_modulus is not None):
+        raise ValueError("tangential, poisson_ratio and effective_shear_modulus set the C source: c_source=False")
+    mu = float(check_nonnegative("friction", friction))
+    G = float(check_nonnegative("work_of_adhesion", work_of_adhesion))
+    if math.isinf(G):
+        raise ValueError(f"work_of_adhesion must be finite, got {work_of_adhesion!r}")
+    v = DEFAULT_V_OVER_VY if v_over_vy is None else np.atleast_1d(check_nonnegative("v_over_vy", v_over_vy))
+    s = np.atleast_1d(check_nonnegative("vs_over_vy_values", vs_over_vy_values)).reshape(-1)
+    V = DEFAULT_SPEEDS if velocities is None else np.atleast_1d(check_nonnegative("velocities", velocities))
+    where = f" to {_comment_text(source)}" if source else ""
+    # every input checked and every text made before anything is written
+    jobs = []
+    sources = {}
+    for end in ends:
+        pair = end["pair"]
+        sizes = [2.0 * pair.effective_radius] if diameters is None else list(np.atleast_1d(diameters))
+        jobs += [(end, d, _sized_pair(pair, d)) for d in sizes]
+        if c_source:
+            sources[end["name"]] = generate_c_source(
+                pair,
+                work_of_adhesion=G,
+                friction=mu,
+                tangential=tangential,
+                poisson_ratio=poisson_ratio,
+                effective_shear_modulus=effective_shear_modulus,
+                comment=f"fit{where}: {end['text']}",
+            )
+    readme = _band_readme(fit, ends, where, c_source)
+    target = Path(directory)
+    names = []
+    with atomic_directory(target, owned=BAND_OWNED) as tmp:
+        with atomic_write(tmp / "README.txt") as fh:
+            fh.write(readme)
+        names.append("README.txt")
+        names.append(_write_universal_table(tmp, v, s).name)
+        for end, d, p in jobs:
+            name = f"restitution_d{float(d) * 1e6:g}um_{end['name']}.csv"
+            _write_size_table(tmp / name, end["pair"], d, p, V, G, extra=[f"fit{where}: {end['text']}"])
+            names.append(name)
+        for end_name, text in sources.items():
+            with atomic_write(tmp / f"microimpact_wall_{end_name}.c") as fh:
+                fh.write(text)
+            names.append(f"microimpact_wall_{end_name}.c")
+    return [target / n for n in names]
+
+
+def _band_readme(fit, ends, where, c_source) -> str:
+    name = ends[0]["parameter"]
+    lines = [
+        f"microimpact export of a fit{where}: restitution tables"
+        + (" and C wall functions" if c_source else "")
+        + f" at the estimate and at both ends of the {100.0 * fit.confidence:g} % confidence band.",
+        "",
+        f"Model: {fit.model} (seed eqs. 22, 27, 28); free parameter: {name}; {fit.n_points} points; "
+        f"loss {fit.loss}; interval {fit.interval}.",
+        "",
+    ]
+    for end in ends:
+        lines.append(f"*_{end['name']}: {end['text']}")
+    lines += [
+        "",
+        "The band is pointwise in the speed, but each end is one parameter value: the seed's e depends on the",
+        "parameter only through V/V_y and grows with V_y, so the 'lower' files give the lowest e of the band at",
+        "every speed and the 'upper' files the highest (fitting.FitResult.predict(V, band=True)).",
+        "restitution_vs_v_over_vy.csv is the same for every end (e against V/V_y).",
+        "",
+    ]
+    return "\n".join(_comment_text(x) if x else "" for x in lines)

@@ -6,8 +6,17 @@ import math
 from pathlib import Path
 
 from ..adhesion import work_of_adhesion
-from ..cexport import DEFAULT_VS_OVER_VY, write_c_source, write_tables
-from ._common import add_pair_arguments, check_outputs, check_pair_options, pair_from_args, parse_float, parse_values
+from ..cexport import BAND_OWNED, DEFAULT_VS_OVER_VY, generate_c_source, write_band, write_c_source, write_tables
+from ..fitting import INTERVALS, LOSSES
+from ._common import (
+    add_pair_arguments,
+    check_input_file,
+    check_outputs,
+    check_pair_options,
+    pair_from_args,
+    parse_float,
+    parse_values,
+)
 
 
 def register(sub) -> None:
@@ -17,7 +26,10 @@ def register(sub) -> None:
         description="Write (a) e against V/V_y with V_s/V_y as a parameter, (b) per-diameter tables of "
         "(normal speed [m/s], restitution, stuck), and (c) microimpact_wall.c, a self-contained C99 "
         "function giving the outgoing velocity, spin and stick flag of one particle at a wall "
-        "(seed model + Thornton-Ning adhesion + Coulomb friction).",
+        "(seed model + Thornton-Ning adhesion + Coulomb friction, rigid or compliant tangential contact). "
+        "With --fit DATA.csv the pair's parameter is first fitted to measured restitution and every file is "
+        "written three times: at the estimate and at both ends of the confidence band (*_estimate, *_lower, "
+        "*_upper, with a README.txt).",
     )
     p.add_argument(
         "--out",
@@ -49,6 +61,28 @@ def register(sub) -> None:
         help=f"V_s/V_y columns of the dimensionless table (default {','.join(str(x) for x in DEFAULT_VS_OVER_VY)})",
     )
     p.add_argument("--no-c", action="store_true", help="do not write the C file")
+    t = p.add_argument_group("tangential model of the C file")
+    t.add_argument(
+        "--tangential",
+        choices=("rigid", "mindlin"),
+        help="rigid: rigid-body Coulomb impulse (default); mindlin: compliant contact (Mindlin's no-slip spring "
+        "with a Coulomb limit) through the universal table of kappa = 4 G*/E*, baked into the C file; needs "
+        "--poisson-ratio, --shear-modulus or --particle/--surface",
+    )
+    k = t.add_mutually_exclusive_group()
+    k.add_argument("--poisson-ratio", metavar="NU", help="mindlin: one Poisson ratio of particle and wall")
+    k.add_argument("--shear-modulus", metavar="PA", help="mindlin: effective shear modulus G* [Pa]")
+    f = p.add_argument_group("uncertainty forward (fit first, then export the band's ends)")
+    f.add_argument(
+        "--fit",
+        metavar="DATA.csv",
+        help="fit the pair to measured restitution (as 'microimpact fit'; the pair options give the known "
+        "values and the free parameter's reference) and export the estimate and both ends of the band",
+    )
+    f.add_argument("--free", metavar="NAME", help="free parameter of the fit (default limiting_pressure)")
+    f.add_argument("--confidence", metavar="P", help="confidence level of the band (default 0.95)")
+    f.add_argument("--loss", choices=LOSSES, help="least-squares loss of the fit (default linear)")
+    f.add_argument("--interval", choices=INTERVALS, help="interval of the fit (default auto)")
     p.set_defaults(func=run)
 
 
@@ -58,6 +92,17 @@ def run(args) -> int:
 
     check_pair_options(args)
     check_outputs(directories=[args.out])
+    tangential, kappa_kw = _tangential_options(args)
+    if args.fit is None:
+        for dest in ("free", "confidence", "loss", "interval"):
+            if getattr(args, dest) is not None:
+                raise ValueError(f"--{dest} needs --fit DATA.csv (it sets the fit whose band is exported)")
+    else:
+        check_input_file(args.fit, "--fit")
+        if args.confidence is not None:
+            c = parse_float(args.confidence, "--confidence")
+            if not 0.0 < c < 1.0:
+                raise ValueError(f"--confidence must lie in (0, 1), got {c!r}")
     diameters = parse_values(args.diameters, "--diameters") if args.diameters else None
     if diameters is not None:
         check_positive("--diameters", diameters)
@@ -82,7 +127,12 @@ def run(args) -> int:
         check_nonnegative("--velocities", velocities)
     vs = parse_values(args.vs_over_vy, "--vs-over-vy") if args.vs_over_vy else DEFAULT_VS_OVER_VY
     check_nonnegative("--vs-over-vy", vs)
-    pair = pair_from_args(args)
+    fit = None
+    if args.fit is not None:
+        fit, caught = _fit(args)
+        pair = fit.pair
+    else:
+        pair = pair_from_args(args)
     if diameters is not None:
         rho = pair.density if pair.density is not None else float("nan")
         for d in diameters:
@@ -96,12 +146,100 @@ def run(args) -> int:
                     f"is {m:g} kg"
                 )
     out = Path(args.out)
-    with atomic_directory(out, owned=("restitution_*.csv", "microimpact_wall.c")) as tmp:
-        written = write_tables(tmp, pair, diameters, velocities, work_of_adhesion=G, vs_over_vy_values=vs)
-        if not args.no_c:
-            written.append(write_c_source(tmp / "microimpact_wall.c", pair, work_of_adhesion=G, friction=mu))
+    c_kw = {"tangential": tangential, **kappa_kw} if tangential == "mindlin" else {}
+    if fit is not None:
+        written = write_band(
+            fit,
+            out,
+            diameters,
+            velocities,
+            work_of_adhesion=G,
+            friction=mu,
+            vs_over_vy_values=vs,
+            c_source=not args.no_c,
+            source=Path(args.fit).name,
+            **c_kw,
+        )
+    else:
+        if c_kw and not args.no_c:
+            generate_c_source(pair, work_of_adhesion=G, friction=mu, **c_kw)  # kappa checked before writing
+        with atomic_directory(out, owned=BAND_OWNED) as tmp:
+            written = write_tables(tmp, pair, diameters, velocities, work_of_adhesion=G, vs_over_vy_values=vs)
+            if not args.no_c:
+                written.append(
+                    write_c_source(tmp / "microimpact_wall.c", pair, work_of_adhesion=G, friction=mu, **c_kw)
+                )
+    if fit is not None:
+        print(f"fit to {args.fit} ({fit.n_points} points):")
+        print(fit.summary())
+        print()
     print(pair.describe())
-    print(f"  work of adhesion G = {G:.6g} J/m^2, friction mu = {mu:.6g}")
+    print(f"  work of adhesion G = {G:.6g} J/m^2, friction mu = {mu:.6g}, tangential {tangential}")
     for path in written:
         print(f"wrote {out / Path(path).name}")
+    if fit is not None:
+        from .fit import report_warnings
+
+        report_warnings(caught)
     return 0
+
+
+def _tangential_options(args):
+    """``(tangential, kappa options)``; options that would be ignored are refused, naming both."""
+    from .._validation import check_poisson, check_positive
+
+    tangential = args.tangential or "rigid"
+    given = [(o, v) for o, v in (("--poisson-ratio", args.poisson_ratio), ("--shear-modulus", args.shear_modulus)) if v]
+    if tangential == "rigid":
+        if given:
+            raise ValueError(f"{given[0][0]} is used by --tangential mindlin only (the rigid model has no stiffness)")
+        return tangential, {}
+    if args.no_c:
+        raise ValueError("--tangential mindlin and --no-c cannot be used together (the model is in the C file only)")
+    if args.poisson_ratio is not None:
+        nu = parse_float(args.poisson_ratio, "--poisson-ratio")
+        check_poisson("--poisson-ratio", nu)
+        return tangential, {"poisson_ratio": nu}
+    if args.shear_modulus is not None:
+        g = parse_float(args.shear_modulus, "--shear-modulus")
+        check_positive("--shear-modulus", g)
+        if math.isinf(g):
+            raise ValueError(f"--shear-modulus must be finite, got {g!r}")
+        return tangential, {"effective_shear_modulus": g}
+    if not (args.particle and args.surface):
+        raise ValueError(
+            "--tangential mindlin needs the tangential stiffness: give --poisson-ratio NU or --shear-modulus G* "
+            "(or --particle and --surface, whose moduli give it)"
+        )
+    return tangential, {}
+
+
+def _fit(args):
+    """Fit the pair to ``--fit DATA.csv`` as ``microimpact fit`` does; returns the fit and its warnings."""
+    import warnings
+
+    from ..fitting import FitWarning, fit_restitution, load_restitution_csv
+    from .fit import fit_pair, fit_yield_strength
+
+    data = load_restitution_csv(args.fit)
+    velocity, restitution, sigma = data
+    free = [x.strip() for x in (args.free or "limiting_pressure").split(",") if x.strip()]
+    if len(free) != 1:
+        raise ValueError(f"--free: the band's ends need exactly one free parameter, got {args.free!r}")
+    confidence = parse_float(args.confidence, "--confidence") if args.confidence is not None else 0.95
+    pair = fit_pair(args, free[0])
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", FitWarning)
+        fit = fit_restitution(
+            velocity,
+            restitution,
+            pair,
+            sigma=sigma,
+            params=free,
+            loss=args.loss or "linear",
+            confidence=confidence,
+            interval=args.interval or "auto",
+            yield_strength=fit_yield_strength(args) if "k" in free else None,
+            line_numbers=data.lines,
+        )
+    return fit, caught

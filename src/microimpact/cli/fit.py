@@ -81,7 +81,7 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
-def _fit_pair(args, free):
+def fit_pair(args, free):
     """The pair from the options; a provisional p_y when none is known (the fit starts from the data)."""
     if (
         args.particle
@@ -96,7 +96,8 @@ def _fit_pair(args, free):
     return pair_from_args(args)
 
 
-def _yield_strength(args):
+def fit_yield_strength(args):
+    """``Y`` [Pa] for a fit of ``k``: the option, the paper case's, or None (the materials')."""
     if args.yield_strength is not None:
         return args.yield_strength
     if not (args.particle or args.surface or args.effective_modulus is not None):
@@ -145,7 +146,7 @@ def _rank(args, data, pair, f_scale_given, confidence) -> int:
             loss=args.loss,
             k_folds=folds,
             confidence=confidence,
-            yield_strength=_yield_strength(args),
+            yield_strength=fit_yield_strength(args),
             absolute_sigma=False if args.relative_sigma else None,
             line_numbers=data.lines,
         )
@@ -170,13 +171,14 @@ def _rank(args, data, pair, f_scale_given, confidence) -> int:
             print(ranking.fits[row["label"]].summary())
         if args.plot:
             print(f"plot written to {args.plot}")
-    _report(caught)
+    report_warnings(caught)
     if ranking.caveat and args.json:
         print("caveat: " + ranking.caveat, file=sys.stderr)
     return 0
 
 
-def _report(caught) -> None:
+def report_warnings(caught) -> None:
+    """Each distinct recorded warning once on stderr."""
     seen = set()
     for w in caught:
         text = str(w.message)
@@ -193,10 +195,10 @@ def run(args) -> int:
     f_scale = None if args.f_scale is None else parse_float(args.f_scale, "--f-scale")
     confidence = parse_float(args.confidence, "--confidence")
     if args.models:
-        pair = _fit_pair(args, "limiting_pressure")
+        pair = fit_pair(args, "limiting_pressure")
         return _rank(args, data, pair, f_scale is not None, confidence)
     free = [s.strip() for s in (args.free or "limiting_pressure").split(",") if s.strip()]
-    pair = _fit_pair(args, free[0] if free else "")
+    pair = fit_pair(args, free[0] if free else "")
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", FitWarning)
         fit = fit_restitution(
@@ -209,7 +211,7 @@ def run(args) -> int:
             f_scale=f_scale,
             confidence=confidence,
             interval=args.interval,
-            yield_strength=_yield_strength(args) if "k" in free else None,
+            yield_strength=fit_yield_strength(args) if "k" in free else None,
             absolute_sigma=False if args.relative_sigma else None,
             line_numbers=data.lines,
         )
@@ -238,5 +240,5 @@ def run(args) -> int:
         for what, path in (("plot", args.plot), ("Fig. 2 layout", args.fig2)):
             if path:
                 print(f"{what} written to {path}")
-    _report(caught)
+    report_warnings(caught)
     return 0
