@@ -9,12 +9,9 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
+from ..constants import LARGE_STRAIN_RATIO  # noqa: F401  (re-exported for the model files)
 
 __all__ = ["LARGE_STRAIN_RATIO", "NAN", "pack", "nan_outcome", "dem_outcome"]
-
-#: ``a*/R*`` above which an impact leaves the small-strain range; the same value as
-#: :data:`microimpact.impact.LARGE_STRAIN_RATIO` (a test checks that they agree).
-LARGE_STRAIN_RATIO = 0.3
 
 NAN = math.nan
 

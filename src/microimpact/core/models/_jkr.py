@@ -13,8 +13,19 @@ import math
 import numpy as np
 
 from .._jit import jitable
+from ..constants import LARGE_STRAIN_RATIO
 
-__all__ = ["GX", "GW", "force_b", "work_integral", "work_difference", "time_to_top", "time_tensile"]
+__all__ = [
+    "GX",
+    "GW",
+    "force_b",
+    "work_integral",
+    "work_difference",
+    "time_to_top",
+    "time_tensile",
+    "hertz_impact",
+    "impact",
+]
 
 _X, _W = np.polynomial.legendre.leggauss(48)
 #: 48-point Gauss-Legendre nodes and weights on ``[-1, 1]``.
@@ -89,3 +100,57 @@ def time_tensile(bF, b0, excess, E, R, m, s):
         ke = excess - w * w * work_difference(b, bF, E, R, s)  # G(bF) - G(b) = -(b - bF) dG(b, bF) >= 0
         total += GW[i] * 2.0 * w * (4.0 * b * b * b / R - 2.0 * s) / math.sqrt(2.0 * ke / m)
     return 0.5 * Wd * total
+
+
+@jitable
+def hertz_impact(V, E, R, m):
+    """The 18-tuple outcome of an adhesive model with zero adhesion: Hertz (contact from zero approach)."""
+    n = math.nan
+    if V == 0.0:
+        return (V, n, n, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, n, 0.0, 0.0, 0.0, n, n, math.inf, math.inf, math.inf)
+    K = 0.5 * m * V * V
+    am = (15.0 * K / (8.0 * E * math.sqrt(R))) ** 0.4
+    bm = math.sqrt(math.sqrt(R * am))
+    t = time_to_top(0.0, bm, E, R, m, 0.0)
+    pm = 4.0 / 3.0 * E * math.sqrt(R) * am**1.5
+    a_c = math.sqrt(R * am)
+    big = 1.0 if a_c / R > LARGE_STRAIN_RATIO else 0.0
+    return (V, n, n, 1.0, 1.0, V, am, 0.0, pm, n, 0.0, a_c, big, n, n, t, t, 2.0 * t)
+
+
+@jitable
+def impact(V, E, R, m, s, b0, bF):
+    """The 18-tuple outcome of an impact on the JKR curve of ``s``, from contact at ``b0`` to breaking at ``bF``.
+
+    Maximum approach from the energy balance ``G(b_m) - G(b_0) = 1/2 m* V^2`` (Newton from above),
+    ``e = (1 - W/K)^(1/2)`` with ``W = G(b_F) - G(b_0)`` the work lost (0 and an infinite time when
+    the particle sticks), loading and unloading times by the quadratures above.
+    """
+    n = math.nan
+    K = 0.5 * m * V * V
+    G0 = work_integral(b0, E, R, s)
+    W = work_integral(bF, E, R, s) - G0
+    bm = b0
+    while work_integral(bm, E, R, s) - G0 < K:
+        bm *= 1.5
+    for _ in range(200):
+        f = work_integral(bm, E, R, s) - G0 - K
+        d = force_b(bm, E, R, s) * (4.0 * bm * bm * bm / R - 2.0 * s)  # dG/db = P dalpha/db
+        step = f / d
+        bm -= step
+        if abs(step) <= 1e-16 * bm:
+            break
+    if bm < b0:
+        bm = b0
+    a_max = bm**4 / R - 2.0 * s * bm
+    p_max = force_b(bm, E, R, s)
+    t_load = time_to_top(b0, bm, E, R, m, s) if bm > b0 else 0.0
+    if K <= W:
+        e = 0.0
+        t_un = math.inf
+    else:
+        e = math.sqrt(1.0 - W / K)
+        t_un = t_load + time_tensile(bF, b0, K - W, E, R, m, s)
+    a_c = bm * bm
+    big = 1.0 if a_c / R > LARGE_STRAIN_RATIO else 0.0
+    return (V, n, n, 0.0, e, e * V, a_max, 0.0, p_max, n, 1.0 - e * e, a_c, big, n, n, t_load, t_un, t_load + t_un)

@@ -70,10 +70,9 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
-from ._common import LARGE_STRAIN_RATIO, nan_outcome
+from . import _jkr
+from ._common import nan_outcome
 from ._jkr import force_b as _force_b
-from ._jkr import time_tensile as _time_tensile
-from ._jkr import time_to_top as _time_to_top
 from ._jkr import work_integral as _G
 
 NAME = "thornton_ning_1998_elastic_adhesive"
@@ -146,49 +145,12 @@ def outcome(V, E, R, m, p_y, params):
     G = params[0]
     if not (G >= 0.0 and G < math.inf and V >= 0.0 and V < math.inf):
         return nan_outcome(V)
-    n = math.nan
-    K = 0.5 * m * V * V
     if G == 0.0:
-        # Hertz: b0 = 0, no snap-off
-        if V == 0.0:
-            return (V, n, n, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, n, 0.0, 0.0, 0.0, n, n, math.inf, math.inf, math.inf)
-        am = (15.0 * K / (8.0 * E * math.sqrt(R))) ** 0.4
-        bm = math.sqrt(math.sqrt(R * am))
-        t = _time_to_top(0.0, bm, E, R, m, 0.0)
-        pm = 4.0 / 3.0 * E * math.sqrt(R) * am**1.5
-        a_c = math.sqrt(R * am)
-        big = 1.0 if a_c / R > LARGE_STRAIN_RATIO else 0.0
-        return (V, n, n, 1.0, 1.0, V, am, 0.0, pm, n, 0.0, a_c, big, n, n, t, t, 2.0 * t)
+        return _jkr.hertz_impact(V, E, R, m)  # b0 = 0, no snap-off
     s = math.sqrt(0.5 * math.pi * G / E)
     b0 = (2.0 * R * s) ** (1.0 / 3.0)
     bF = (0.5 * R * s) ** (1.0 / 3.0)
-    G0 = _G(b0, E, R, s)
-    W = _G(bF, E, R, s) - G0
-    # maximum approach: G(bm) - G(b0) = K, Newton from above (G increasing for b > b0)
-    bm = b0
-    while _G(bm, E, R, s) - G0 < K:
-        bm *= 1.5
-    for _ in range(200):
-        f = _G(bm, E, R, s) - G0 - K
-        d = _force_b(bm, E, R, s) * (4.0 * bm * bm * bm / R - 2.0 * s)
-        step = f / d
-        bm -= step
-        if abs(step) <= 1e-16 * bm:
-            break
-    if bm < b0:
-        bm = b0
-    a_max = bm**4 / R - 2.0 * s * bm
-    p_max = _force_b(bm, E, R, s)
-    t_load = _time_to_top(b0, bm, E, R, m, s) if bm > b0 else 0.0
-    if K <= W:
-        e = 0.0
-        t_un = math.inf
-    else:
-        e = math.sqrt(1.0 - W / K)
-        t_un = t_load + _time_tensile(bF, b0, K - W, E, R, m, s)
-    a_c = bm * bm
-    big = 1.0 if a_c / R > LARGE_STRAIN_RATIO else 0.0
-    return (V, n, n, 0.0, e, e * V, a_max, 0.0, p_max, n, 1.0 - e * e, a_c, big, n, n, t_load, t_un, t_load + t_un)
+    return _jkr.impact(V, E, R, m, s, b0, bF)
 
 
 @jitable
