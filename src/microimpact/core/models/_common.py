@@ -11,7 +11,7 @@ import math
 from .._jit import jitable
 from ..constants import LARGE_STRAIN_RATIO  # noqa: F401  (re-exported for the model files)
 
-__all__ = ["LARGE_STRAIN_RATIO", "NAN", "pack", "nan_outcome", "dem_outcome"]
+__all__ = ["LARGE_STRAIN_RATIO", "NAN", "pack", "nan_outcome", "dem_outcome", "as_floats", "check_flag"]
 
 NAN = math.nan
 
@@ -84,3 +84,23 @@ def no_parameters(name, params):
     if len(params):
         raise ValueError(f"model {name!r} takes no parameters, got {params!r}")
     return ()
+
+
+def as_floats(parameters, params) -> list:
+    """A model's ``params`` as floats, one per entry of its ``PARAMETERS`` (ValueError naming what is wrong)."""
+    n = len(parameters)
+    if len(params) != n:
+        names = ", ".join(p[0] for p in parameters)
+        raise ValueError(f"params must hold {n} value{'s' if n != 1 else ''} ({names}), got {params!r}")
+    out = []
+    for (name, _, _), x in zip(parameters, params):
+        if isinstance(x, bool):
+            raise ValueError(f"{name} must be a number, not a bool, got {x!r}")
+        out.append(float(x))
+    return out
+
+
+def check_flag(name, x) -> None:
+    """A 0/1 switch such as ``limit_force``: ValueError naming it otherwise."""
+    if x not in (0.0, 1.0):
+        raise ValueError(f"{name} must be 0 or 1, got {x!r}")

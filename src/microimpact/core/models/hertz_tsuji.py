@@ -49,7 +49,7 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
-from ._common import dem_outcome, nan_outcome
+from ._common import as_floats, check_flag, dem_outcome, nan_outcome
 from .hertz_viscoelastic import scaled_damped_hertz
 
 NAME = "hertz_tsuji"
@@ -63,18 +63,11 @@ DEFAULTS = (math.nan, 1.0)
 
 def validate(params):
     """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
-    if len(params) != len(PARAMETERS):
-        raise ValueError(f"params must hold 2 values (damping_ratio, limit_force), got {params!r}")
-    out = []
-    for (name, _, _), x in zip(PARAMETERS, params):
-        if isinstance(x, bool):
-            raise ValueError(f"{name} must be a number, not a bool, got {x!r}")
-        out.append(float(x))
+    out = as_floats(PARAMETERS, params)
     a, limit = out
     if not (a >= 0.0 and math.isfinite(a)):
         raise ValueError(f"damping_ratio must be non-negative and finite, got {a!r}")
-    if limit not in (0.0, 1.0):
-        raise ValueError(f"limit_force must be 0 or 1, got {limit!r}")
+    check_flag("limit_force", limit)
     return tuple(out)
 
 

@@ -53,7 +53,7 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
-from ._common import dem_outcome, nan_outcome
+from ._common import as_floats, check_flag, dem_outcome, nan_outcome
 
 NAME = "hertz_viscoelastic"
 TITLE = "Hertz with viscoelastic damping (Brilliantov et al. 1996; LAMMPS damping viscoelastic)"
@@ -86,20 +86,11 @@ _T_MAX = 1e4
 
 def validate(params):
     """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
-    if len(params) != len(PARAMETERS):
-        raise ValueError(
-            f"params must hold {len(PARAMETERS)} values ({', '.join(p[0] for p in PARAMETERS)}), got {params!r}"
-        )
-    out = []
-    for (name, _, _), x in zip(PARAMETERS, params):
-        if isinstance(x, bool):
-            raise ValueError(f"{name} must be a number, not a bool, got {x!r}")
-        out.append(float(x))
+    out = as_floats(PARAMETERS, params)
     A, limit = out
     if not (A >= 0.0 and math.isfinite(A)):
         raise ValueError(f"dissipative_constant must be non-negative and finite, got {A!r}")
-    if limit not in (0.0, 1.0):
-        raise ValueError(f"limit_force must be 0 or 1, got {limit!r}")
+    check_flag("limit_force", limit)
     return tuple(out)
 
 

@@ -51,7 +51,7 @@ import math
 
 from .._jit import jitable
 from . import _jkr
-from ._common import nan_outcome
+from ._common import as_floats, nan_outcome
 
 NAME = "jkr_elastic_adhesive"
 TITLE = "JKR elastic adhesion, contact at zero approach, pull-off at -3 pi gamma R (LAMMPS granular jkr)"
@@ -73,11 +73,7 @@ WORK_CONSTANT = (
 
 def validate(params):
     """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
-    if len(params) != 1:
-        raise ValueError(f"params must hold 1 value (surface_energy), got {params!r}")
-    if isinstance(params[0], bool):
-        raise ValueError(f"surface_energy must be a number, not a bool, got {params[0]!r}")
-    g = float(params[0])
+    (g,) = as_floats(PARAMETERS, params)
     if not (g >= 0.0 and math.isfinite(g)):
         raise ValueError(f"surface_energy must be non-negative and finite, got {g!r}")
     return (g,)

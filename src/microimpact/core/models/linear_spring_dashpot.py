@@ -61,7 +61,7 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
-from ._common import dem_outcome, nan_outcome
+from ._common import as_floats, check_flag, dem_outcome, nan_outcome
 
 NAME = "linear_spring_dashpot"
 TITLE = "Linear spring-dashpot, constant e (LAMMPS/LIGGGHTS hooke with coefficient of restitution)"
@@ -75,22 +75,13 @@ DEFAULTS = (math.nan, math.nan, 0.0)
 
 def validate(params):
     """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
-    if len(params) != len(PARAMETERS):
-        raise ValueError(
-            f"params must hold {len(PARAMETERS)} values ({', '.join(p[0] for p in PARAMETERS)}), got {params!r}"
-        )
-    out = []
-    for (name, _, _), x in zip(PARAMETERS, params):
-        if isinstance(x, bool):
-            raise ValueError(f"{name} must be a number, not a bool, got {x!r}")
-        out.append(float(x))
+    out = as_floats(PARAMETERS, params)
     k, e, limit = out
     if not (k > 0.0 and math.isfinite(k)):
         raise ValueError(f"stiffness must be positive and finite, got {k!r}")
     if not (0.0 < e <= 1.0):
         raise ValueError(f"restitution must lie in (0, 1], got {e!r}")
-    if limit not in (0.0, 1.0):
-        raise ValueError(f"limit_force must be 0 or 1, got {limit!r}")
+    check_flag("limit_force", limit)
     return tuple(out)
 
 

@@ -65,7 +65,7 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
-from ._common import dem_outcome, nan_outcome
+from ._common import as_floats, dem_outcome, nan_outcome
 
 NAME = "luding_adhesive"
 TITLE = "Adhesive elasto-plastic linear law, k1 loading / k2 unloading / kc adhesion (Luding 2008; LIGGGHTS)"
@@ -80,15 +80,7 @@ DEFAULTS = (math.nan, math.nan, math.nan, math.nan)
 
 def validate(params):
     """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
-    if len(params) != len(PARAMETERS):
-        raise ValueError(
-            f"params must hold {len(PARAMETERS)} values ({', '.join(p[0] for p in PARAMETERS)}), got {params!r}"
-        )
-    out = []
-    for (name, _, _), x in zip(PARAMETERS, params):
-        if isinstance(x, bool):
-            raise ValueError(f"{name} must be a number, not a bool, got {x!r}")
-        out.append(float(x))
+    out = as_floats(PARAMETERS, params)
     k1, k2, kc, phi = out
     if not (k1 > 0.0 and math.isfinite(k1)):
         raise ValueError(f"loading_stiffness must be positive and finite, got {k1!r}")

@@ -71,7 +71,7 @@ import math
 
 from .._jit import jitable
 from . import _jkr
-from ._common import nan_outcome
+from ._common import as_floats, nan_outcome
 from ._jkr import force_b as _force_b
 from ._jkr import work_integral as _G
 
@@ -89,11 +89,7 @@ WORK_CONSTANT = _G((0.5 * math.sqrt(0.5 * math.pi)) ** (1.0 / 3.0), 1.0, 1.0, ma
 
 def validate(params):
     """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
-    if len(params) != 1:
-        raise ValueError(f"params must hold 1 value (work_of_adhesion), got {params!r}")
-    if isinstance(params[0], bool):
-        raise ValueError(f"work_of_adhesion must be a number, not a bool, got {params[0]!r}")
-    g = float(params[0])
+    (g,) = as_floats(PARAMETERS, params)
     if not (g >= 0.0 and math.isfinite(g)):
         raise ValueError(f"work_of_adhesion must be non-negative and finite, got {g!r}")
     return (g,)
