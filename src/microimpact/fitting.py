@@ -138,7 +138,7 @@ import numpy as np
 from scipy import special
 
 from ._optional import require
-from .impact import restitution_coefficient
+from .impact import outcome_arrays, restitution_coefficient
 from .materials import DEFAULT_K, sphere_mass
 from .pair import ContactPair
 
@@ -447,21 +447,13 @@ def _outcome_of(model_name, pair, params, V, fields=("restitution", "rebound_vel
             return {"restitution": restitution_coefficient(V, pair.yield_velocity)}
         res = pair.impact(V, warn=False)
         return {f: np.asarray(getattr(res, f), dtype=float) for f in fields}
-    from .core.arrays import evaluate, registered
-    from .core.quantities import OUTCOME_FIELDS
-
     module = _model_module(model_name)
-    args = (
-        V.ravel(),
-        *(np.asarray(float(x)) for x in (pair.effective_modulus, pair.effective_radius, pair.effective_mass)),
-        np.asarray(float(pair.limiting_pressure)),
+    E, R, m, p_y = (
+        np.asarray(float(x))
+        for x in (pair.effective_modulus, pair.effective_radius, pair.effective_mass, pair.limiting_pressure)
     )
-    # compiled loops for a @jitable outcome (every zoo model); a plain Python function runs in Python
-    backend = None if module.outcome in registered() else "python"
-    values = evaluate(
-        module.outcome, *args, nout=len(OUTCOME_FIELDS), params=tuple(float(x) for x in params), backend=backend
-    )
-    return {f: np.asarray(values[OUTCOME_FIELDS.index(f)], dtype=float).reshape(V.shape) for f in fields}
+    out = outcome_arrays(module, V.ravel(), E, R, m, p_y, tuple(float(x) for x in params))
+    return {f: np.asarray(out[f], dtype=float).reshape(V.shape) for f in fields}
 
 
 def _restitution_of(model_name, pair, params, V):

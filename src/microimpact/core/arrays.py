@@ -20,6 +20,7 @@ poliastro's split (compiled core on floats; wrappers only convert and call).
 
 from __future__ import annotations
 
+import functools
 import itertools
 import os
 import sys
@@ -72,6 +73,7 @@ def cache_dir() -> Path:
     return Path(base) / "microimpact"
 
 
+@functools.lru_cache(maxsize=1)
 def _source_hash() -> str:
     import hashlib
 
@@ -237,7 +239,8 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
     out = np.empty((nout, n))
     if n == 0:
         return out.reshape((nout,) + shape)
-    engine = backend or backend_for(n)
+    # a function not marked @jitable (a user's model, say) can only run in Python
+    engine = backend or (backend_for(n) if fn in JITABLE else "python")
     with_params = params is not None
     if engine == "numba":
         kinds = "".join("s" if s == 0 else "a" for s in steps)
