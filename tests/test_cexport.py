@@ -8,7 +8,7 @@ import subprocess
 
 import numpy as np
 import pytest
-from test_coupling import DRIVER, _compiler, _random_cases
+from test_coupling import _compiler, _random_cases, build_driver
 
 import microimpact as mi
 from microimpact.cexport import band_pairs, generate_c_source, write_band, write_c_source
@@ -39,16 +39,7 @@ def mindlin_program(tmp_path_factory):
         tangential="mindlin",
         poisson_ratio=NU,
     )
-    (tmp / "driver.c").write_text(DRIVER)
-    exe = tmp / "driver"
-    res = subprocess.run(
-        [cc, "-std=c99", "-O2", "-Wall", "-Werror", "-pedantic", "-o", str(exe), str(tmp / "driver.c"), "-lm"],
-        capture_output=True,
-        text=True,
-        cwd=tmp,
-    )
-    assert res.returncode == 0, res.stderr
-    return exe
+    return build_driver(cc, tmp)
 
 
 def _run(exe, rows):

@@ -320,14 +320,8 @@ def _compiler():
     return None
 
 
-@pytest.fixture(scope="module")
-def c_program(tmp_path_factory):
-    cc = _compiler()
-    if cc is None:
-        pytest.skip("no C compiler on this machine")
-    tmp = tmp_path_factory.mktemp("cexport")
-    src = write_c_source(tmp, effective_modulus=1.31e9, limiting_pressure=156e6, work_of_adhesion=0.1, friction=0.3)
-    assert src.name == "microimpact_wall.c"
+def build_driver(cc, tmp):
+    """Compile DRIVER against the ``microimpact_wall.c`` written in ``tmp``; the executable's path."""
     (tmp / "driver.c").write_text(DRIVER)
     exe = tmp / "driver"
     res = subprocess.run(
@@ -338,6 +332,17 @@ def c_program(tmp_path_factory):
     )
     assert res.returncode == 0, res.stderr
     return exe
+
+
+@pytest.fixture(scope="module")
+def c_program(tmp_path_factory):
+    cc = _compiler()
+    if cc is None:
+        pytest.skip("no C compiler on this machine")
+    tmp = tmp_path_factory.mktemp("cexport")
+    src = write_c_source(tmp, effective_modulus=1.31e9, limiting_pressure=156e6, work_of_adhesion=0.1, friction=0.3)
+    assert src.name == "microimpact_wall.c"
+    return build_driver(cc, tmp)
 
 
 def _random_cases(rng, N):
