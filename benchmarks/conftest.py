@@ -18,7 +18,11 @@ are formed from those best times and printed as one table, and written as JSON w
 4. ``wall_vs_copy``: the wall interaction against copying its inputs;
 5. ``memory``: peaks of traced allocations (:mod:`tracemalloc`) per point of an array call and of
    an eager against a chunked sweep;
-6. ``paper``: ``microimpact paper`` end to end (not in ``tiny`` mode).
+6. ``paper``: ``microimpact paper`` end to end (not in ``tiny`` mode);
+7. ``outcome_vs_copy``: the full outcome with times for many speeds against copying them;
+8. ``threads_1e3``: the compiled loop on 1e3 speeds, as the library runs it against threads forced;
+9. ``startup``: ``microimpact impact 50`` against ``python -c "import numpy"``, first array call;
+10. ``c_wall``: the exported C wall function per call in a C loop, against the loop only copying.
 
 No benchmark asserts a timing; accuracies (closed form against ODE, every path against the
 reference restitution) are asserted.
@@ -44,14 +48,15 @@ SIZES = {
 #: Targets the project tracks (the README lists the same).
 TARGETS = {
     "outcome_vs_ode": "closed form >= 1e4x faster than the ODE, max rel. difference < 1e-8",
-    "restitution_vs_copy": "<= 5x the time of copying the array",
+    "restitution_vs_copy": "<= 2x the time of copying the array (numba; <= 5x without)",
     "impact_latency": "pair.impact(50.0) <= 2x a plain-Python closed form returning the same numbers",
-    "wall_vs_copy": "ratio to copying the inputs (reported)",
+    "wall_vs_copy": "wall interaction <= 15x copying its inputs",
     "memory": "chunked sweep peak < 500 MB at 1e7 points",
     "paper": "microimpact paper end to end < 20 s",
     "outcome_vs_copy": "full outcome with times <= 100x copying the speeds (1e7)",
-    "threads_1e3": "1e3 speeds: the default never slower than forced threads",
+    "threads_1e3": "1e3 speeds: the default never slower than the serial loop (threads only where they pay)",
     "startup": "microimpact impact 50 <= 1.5x python -c 'import numpy'; first array call of 1e3 speeds <= 50 ms",
+    "c_wall": "the exported C wall function <= 55 ns per call",
 }
 
 TITLES = {
@@ -64,6 +69,7 @@ TITLES = {
     "outcome_vs_copy": "full outcome and contact times vs copying the speeds",
     "threads_1e3": "compiled loop on 1e3 speeds: serial vs threads",
     "startup": "start-up of a new process",
+    "c_wall": "the exported C wall function, in a C loop",
 }
 
 ORDER = list(TARGETS)
@@ -189,11 +195,12 @@ def _entry(key, rec: Record) -> dict | None:
         if key == "restitution_vs_copy" and ratios:
             best = min(ratios, key=ratios.get)
             m["best"] = best
-            met = bool(ratios[best] <= 5.0) if rec.mode == "full" else None  # the target is set at 1e7
+            met = bool(ratios[best] <= 2.0) if rec.mode == "full" else None  # the target is set at 1e7
             headline = f"{ratios[best]:.2g}x copy ({best})"
         elif ratios:
             (variant, r), *_ = ratios.items()
             headline = f"{r:.3g}x copy"
+            met = bool(r <= 15.0) if rec.mode == "full" else None
     elif key == "impact_latency" and "pair.impact(50.0)" in t:
         api = t["pair.impact(50.0)"]
         headline = f"{_fmt_t(api)}"
@@ -228,10 +235,12 @@ def _entry(key, rec: Record) -> dict | None:
             ("copy", _fmt_t(t["copy"])),
             ("pair.impact (18 fields)", f"{_fmt_t(t['pair.impact (18 fields)'])} = {r:.3g}x copy"),
         ]
-    elif key == "threads_1e3" and {"default (serial)", "threads forced"} <= set(t):
-        r = t["threads forced"] / t["default (serial)"]
-        met = bool(r >= 1.0)
-        headline = f"threads take {r:.3g}x the default"
+    elif key == "threads_1e3" and {"default", "serial forced"} <= set(t):
+        r = t["default"] / t["serial forced"]
+        met = bool(r <= 1.1)
+        headline = f"the default takes {r:.3g}x the serial loop"
+        if "threads forced" in t:
+            headline += f" (threads forced: {t['threads forced'] / t['serial forced']:.3g}x)"
         rows = [(k, _fmt_t(s)) for k, s in t.items()]
     elif key == "startup" and t:
         rows = [(k, _fmt_t(s)) for k, s in t.items()]
@@ -258,6 +267,11 @@ def _entry(key, rec: Record) -> dict | None:
             if "sweep_eager_peak_bytes" in m:
                 headline += f" (eager {m['sweep_eager_peak_bytes'] / mb:.0f} MB)"
             met = bool(m["sweep_chunked_peak_bytes"] < 500 * mb) if rec.mode == "full" else None
+    elif key == "c_wall" and len(t) == 2:
+        (call_name, call), (copy_name, copy) = t.items()
+        met = bool(call <= 55e-9)
+        headline = f"{call * 1e9:.3g} ns per call ({call / copy:.3g}x the loop copying its data)"
+        rows = [(call_name, _fmt_t(call)), (copy_name, _fmt_t(copy)), ("ratio", f"{call / copy:.3g}x")]
     elif key == "paper" and "end to end" in t:
         s = t["end to end"]
         met = bool(s < 20.0)

@@ -1,5 +1,6 @@
 """7. The full outcome with times over an array of speeds against copying the array; threads at 1e3."""
 
+import math
 import warnings
 
 import numpy as np
@@ -37,11 +38,23 @@ def _run_1e3(pair):
     return lambda: arrays.evaluate(seed.outcome, V, E, R, m, p, nout=18, params=(), backend="numba")
 
 
-def test_serial_at_1e3(timed, pair):
-    """The compiled loop over 1e3 speeds as the library runs it (serial below PARALLEL_MIN)."""
+def test_default_at_1e3(timed, pair):
+    """The compiled loop over 1e3 speeds as the library runs it."""
     run = _run_1e3(pair)
     run()
-    timed("threads_1e3", "default (serial)", run, rounds=20, iterations=20)
+    run()
+    timed("threads_1e3", "default", run, rounds=20, iterations=20)
+
+
+def test_serial_at_1e3(timed, pair, monkeypatch):
+    """The same with the serial loop forced."""
+    from microimpact.core import arrays
+
+    monkeypatch.setattr(arrays, "PARALLEL_MIN", 10**12)
+    monkeypatch.setattr(arrays, "PARALLEL_WORK", math.inf)
+    run = _run_1e3(pair)
+    run()
+    timed("threads_1e3", "serial forced", run, rounds=20, iterations=20)
 
 
 def test_threads_at_1e3(timed, pair, monkeypatch):

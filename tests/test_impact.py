@@ -294,3 +294,21 @@ def test_large_strain_flag_and_warning(silicon):
         out = silicon.impact(np.array([10.0, 120.0]))
     assert not out.large_strain[0] and out.large_strain[1]
     assert out.max_contact_radius[1] / R_SI == pytest.approx(0.65, abs=0.01)
+
+
+def test_restitution_into_out_is_the_same_and_checked():
+    """``out=`` writes the very numbers of the plain call into the caller's array; a wrong one is refused."""
+    from microimpact.impact import restitution_coefficient
+
+    V = np.linspace(0.0, 80.0, 1001).reshape(7, 143)
+    buf = np.full(V.shape, np.nan)
+    got = restitution_coefficient(V, 7.5, out=buf)
+    assert got is buf
+    np.testing.assert_array_equal(buf, restitution_coefficient(V, 7.5))
+    pair = mi.ContactPair.paper_case("silicon")
+    buf2 = np.empty(V.shape)
+    assert pair.restitution(V, out=buf2) is buf2
+    np.testing.assert_array_equal(buf2, pair.restitution(V))
+    for bad in (np.empty((7, 142)), np.empty(V.shape, dtype=np.float32), np.empty((143, 7)).T, [0.0] * 1001):
+        with pytest.raises(ValueError, match="out must be"):
+            restitution_coefficient(V, 7.5, out=bad)

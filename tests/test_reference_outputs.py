@@ -90,6 +90,13 @@ def assert_same(name, actual, expected, rtol=RTOL, atol=0.0, alternative=None):
     where = np.argwhere(bad)[:5].tolist() if actual.ndim else "scalar"
     if expected.dtype.kind in "biuUS":
         np.testing.assert_array_equal(actual[bad], expected[bad], err_msg=f"{name} at {where}")
+    if np.ndim(rtol):  # a tolerance per entry: report the worst offenders by hand
+        r = np.broadcast_to(rtol, actual.shape)[bad]
+        a, e = actual[bad], expected[bad]
+        raise AssertionError(
+            f"{name} at {where}: actual {a[:5]}, stored {e[:5]}, allowed rtol {r[:5]}, "
+            f"relative difference {(np.abs(a - e) / np.abs(e))[:5]}"
+        )
     np.testing.assert_allclose(
         actual[bad] if actual.ndim else actual,
         expected[bad] if actual.ndim else expected,
@@ -162,6 +169,42 @@ def _twin(group, name):
     return scalar.get(_FUNCTION_TWINS.get(name, ""))
 
 
+# Moved on purpose (issue 11, second session), each measured against 50-digit mpmath:
+# * The yield point: alpha^(3/2) is now alpha alpha^(1/2) (a square root instead of pow), which
+#   moves V_y by up to an ulp. Near V_y the outcome is ill-conditioned in V_y: t2 grows as
+#   (V^2 - V_y^2)^(1/2), alpha_p as A - P^/A^(1/2) -> 0, so one ulp of V_y moves them by about
+#   eps/(2 (V/V_y - 1)) relative. Each entry is compared at 1e-13 + 2e-15/|V/V_y - 1|, and the
+#   `elastic` flag may flip where V is within 1e-15 relative of V_y (the grid has such points).
+# * plastic_approach near V_y: alpha_p/alpha_y = A - P^/A^(1/2) cancelled (both terms -> 1, the
+#   difference -> 0 as (v - 1)^2); the stored values are off by up to 8e-4 relative at
+#   V/V_y = 1 + 1e-6. It is now computed without cancellation (plastic_stage's docstring), within
+#   4e-15 of mpmath (tests/core/test_thornton_ning_2016.py). Compared at 1e-13 + 1e-15/(V/V_y - 1)^2.
+# * unloading_time (and contact_time = t_L + t_U) at V/V_y > 1e4: t_U was computed from
+#   alpha* - alpha_p, which cancels as the impact becomes ever more plastic; the stored values
+#   carry up to 1e-9 relative error there. It is now alpha_y P^/A^(1/2) (no cancellation,
+#   within 4e-15 of mpmath: tests/core/test_thornton_ning_2016.py). Compared there at 1e-8.
+# * energy_loss = 1 - e^2 just above V_y, where e = 1 - a few ulp: the restitution now takes two
+#   divisions instead of four and its last bit moved, so 1 - e^2 moves by up to 4.5e-16 absolute
+#   (the stored array value was -4.4e-16, now 0). Compared with atol 1e-15.
+# * Where alpha_y underflows (pairs with V_y ~ 1e290 m/s, say) the stored t_U cancelled to exactly
+#   0 and is now a correct 1e-68 s or so: times are also compared with atol 1e-40 s.
+_CANCELLED_TIMES = ("unloading_time", "contact_time")
+
+
+def _normalized_speed(name, stored):
+    """The stored V/V_y on the same grid as ``name``, or None."""
+    return _same_grid(name, "normalized_velocity", stored)
+
+
+def _same_grid(name, field, stored):
+    """The stored ``field`` on the same grid as ``name`` (same prefix first), or None."""
+    prefix = next((p for p in ("2d_", "0d_") if name.startswith(p)), "")
+    for key in (prefix + field, "impact_outcome_" + field, "contact_times_" + field):
+        if key in stored and stored[key].shape == stored[name].shape:
+            return stored[key]
+    return None
+
+
 @pytest.mark.parametrize("group", ["impact_scalar", "impact_array", "impact_functions"])
 def test_impact_grid_unchanged(group):
     new, stored = _replay(group)
@@ -169,7 +212,35 @@ def test_impact_grid_unchanged(group):
         twin = _twin(group, name)
         if twin is not None and twin.shape != stored[name].shape:
             twin = None
-        assert_same(f"{group}/{name}", new[name], stored[name], alternative=twin)
+        expected, got = stored[name], np.asarray(new[name])
+        v = _normalized_speed(name, stored)
+        rtol, atol = RTOL, 0.0
+        if v is not None and expected.dtype.kind == "f":
+            with np.errstate(divide="ignore", invalid="ignore"):
+                rtol = RTOL + np.nan_to_num(2e-15 / np.abs(v - 1.0), nan=0.0, posinf=1.0)
+            if name.endswith("plastic_approach"):  # the stored value lost (v - 1)^-2 ulps to cancellation
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    rtol = rtol + np.nan_to_num(1e-15 / (v - 1.0) ** 2, nan=0.0, posinf=1.0)
+            if name.endswith(_CANCELLED_TIMES) and "hertz" not in name and "deresiewicz" not in name:
+                rtol = np.where(v > 1e4, np.maximum(rtol, 1e-8), rtol)
+        if v is not None and expected.dtype.kind == "b":
+            at_yield = np.abs(v - 1.0) < 1e-15
+            expected = np.where(at_yield, got, expected)  # may flip with the last bit of V_y
+            if twin is not None:
+                twin = np.where(at_yield, got, twin)
+        if name.endswith("_time") or name.endswith("_times"):
+            atol = 1e-40
+            scale = _same_grid(name, "contact_time", stored)
+            if v is not None and scale is not None:  # t2 ~ (V - V_y)^(1/2): ulps of V_y -> 1e-8 of t_c
+                atol = np.where(np.abs(v - 1.0) < 1e-12, 1e-7 * scale, atol)
+        if name.endswith("plastic_approach"):  # the stored value's absolute error: a few ulps of alpha*
+            scale = _same_grid(name, "max_approach", stored)
+            if name.startswith("normalized_"):
+                scale = np.ones(stored[name].shape)  # alpha*/alpha_y ~ 1 where it cancels
+            atol = 0.0 if scale is None else 1e-15 * np.where(np.isfinite(scale), scale, 0.0)
+        if "energy_loss" in name:
+            atol = 1e-15
+        assert_same(f"{group}/{name}", got, expected, rtol=rtol, atol=atol, alternative=twin)
 
 
 def test_scalar_path_returns_numpy_scalars():

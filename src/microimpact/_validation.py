@@ -70,9 +70,20 @@ def _as_float_array(name: str, value) -> np.ndarray:
     if kind in "mM":
         raise ValueError(f"{name} must be a number, got the date/time {_describe(value)}")
     try:
-        return raw.astype(float)
+        return raw.astype(float, copy=False)  # no copy of a float array: the checks only read it
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be a number or an array of numbers, got {_describe(value)}") from None
+
+
+def _extremes(arr: np.ndarray):
+    """``(min, max)`` of ``arr`` in two read-only passes (NaN if any element is NaN); ``None`` if empty.
+
+    The checks below first test these against the bounds (one pass each, no temporary arrays) and
+    only build the mask of offending elements, for the message, when they fail.
+    """
+    if arr.size == 0:
+        return None
+    return arr.min(), arr.max()
 
 
 def _scalar(name: str, arr: np.ndarray, value):
@@ -98,8 +109,9 @@ def check_positive(name: str, value, *, allow_inf: bool = False, scalar: bool = 
     ``scalar=True`` requires a single number and returns a ``float``.
     """
     arr = _as_float_array(name, value)
-    bad = ~(arr > 0) | (np.isinf(arr) if not allow_inf else np.isnan(arr))
-    if np.any(bad):
+    ext = _extremes(arr)
+    if ext is not None and not (ext[0] > 0 and (allow_inf or ext[1] < np.inf)):
+        bad = ~(arr > 0) | (np.isinf(arr) if not allow_inf else np.isnan(arr))
         raise ValueError(
             f"{name} must be positive and finite, got {_first_bad(arr, bad)!r}"
             if not allow_inf
@@ -111,8 +123,9 @@ def check_positive(name: str, value, *, allow_inf: bool = False, scalar: bool = 
 def check_nonnegative(name: str, value, *, scalar: bool = False):
     """``value`` as a float array; raise unless all >= 0 and not NaN (``inf`` allowed)."""
     arr = _as_float_array(name, value)
-    bad = ~(arr >= 0)
-    if np.any(bad):
+    ext = _extremes(arr)
+    if ext is not None and not ext[0] >= 0:
+        bad = ~(arr >= 0)
         raise ValueError(f"{name} must be non-negative and not NaN, got {_first_bad(arr, bad)!r}")
     return _scalar(name, arr, value) if scalar else arr
 
@@ -120,8 +133,9 @@ def check_nonnegative(name: str, value, *, scalar: bool = False):
 def check_poisson(name: str, value, *, scalar: bool = False):
     """Poisson ratio: raise unless every value lies in (-1, 0.5]."""
     arr = _as_float_array(name, value)
-    bad = ~((arr > -1.0) & (arr <= 0.5))
-    if np.any(bad):
+    ext = _extremes(arr)
+    if ext is not None and not (ext[0] > -1.0 and ext[1] <= 0.5):
+        bad = ~((arr > -1.0) & (arr <= 0.5))
         raise ValueError(f"{name} must lie in (-1, 0.5], got {_first_bad(arr, bad)!r}")
     return _scalar(name, arr, value) if scalar else arr
 
@@ -134,8 +148,9 @@ def check_velocity(name: str, value, *, scalar: bool = False):
     contradicts ``V_r = e V``), so it is an error rather than a result.
     """
     arr = _as_float_array(name, value)
-    bad = ~(arr >= 0) | np.isinf(arr)
-    if np.any(bad):
+    ext = _extremes(arr)
+    if ext is not None and not (ext[0] >= 0 and ext[1] < np.inf):
+        bad = ~(arr >= 0) | np.isinf(arr)
         x = _first_bad(arr, bad)
         why = "non-negative and not NaN" if not x > 0 else "finite (an infinite impact speed has no outcome)"
         raise ValueError(f"{name} must be {why}, got {x!r}")

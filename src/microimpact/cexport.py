@@ -297,18 +297,6 @@ static const microimpact_wall_params microimpact_wall_default MICROIMPACT_UNUSED
 #define MICROIMPACT_PI 3.141592653589793
 #define MICROIMPACT_STICKING_CONSTANT {stick}
 
-static double microimpact_dot(const double a[3], const double b[3])
-{{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}}
-
-static void microimpact_cross(const double a[3], const double b[3], double c[3])
-{{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}}
-
 /* Yield velocity, 1/2 m V_y^2 = 2/5 P_y alpha_y (eq. 28) [m/s]. */
 double microimpact_yield_velocity(double p_y, double E, double r, double m)
 {{
@@ -316,42 +304,45 @@ double microimpact_yield_velocity(double p_y, double E, double r, double m)
     if (isinf(p_y)) return INFINITY;
     a_y = MICROIMPACT_PI * p_y * r / (2.0 * E);
     alpha_y = a_y * a_y / r;
-    P_y = 4.0 / 3.0 * E * sqrt(r) * pow(alpha_y, 1.5);
+    P_y = 4.0 / 3.0 * E * sqrt(r) * (alpha_y * sqrt(alpha_y));
     return sqrt(0.8 * P_y * alpha_y / m);
 }}
 
 /* Thornton & Ning (1998) sticking velocity [m/s]; G is the work of adhesion. */
 double microimpact_sticking_velocity(double G, double E, double r, double m)
 {{
-    if (!(G > 0.0)) return 0.0;   /* no adhesion: skip four powers */
-    return sqrt(MICROIMPACT_STICKING_CONSTANT / m) * pow(pow(G, 5.0) * pow(r, 4.0) / pow(E, 2.0), 1.0 / 6.0);
+    double g2;
+    if (!(G > 0.0)) return 0.0;   /* no adhesion: skip the sixth root */
+    g2 = G * G;
+    return sqrt(MICROIMPACT_STICKING_CONSTANT / m) * pow(g2 * g2 * G * ((r * r) * (r * r)) / (E * E), 1.0 / 6.0);
 }}
 
-/* Seed restitution e_p(V/V_y), eq. 27 with eq. 22. */
+/* Seed restitution e_p(V/V_y), eq. 27 with eq. 22 (core: thornton_ning_2016.restitution). */
 double microimpact_restitution(double V, double V_y)
 {{
     double v, q;
     v = isinf(V_y) ? 0.0 : V / V_y;
-    if (v <= 1.0) return 1.0;
-    q = sqrt((24.0 - 4.0 / (v * v)) / 5.0);   /* q = s / v, s = ((24 v^2 - 4)/5)^(1/2) */
-    return 0.5 * q / sqrt(sqrt((1.0 + v * q) / 3.0));   /* e = P^ / (A^(1/4) v), A = (1 + s)/3 */
+    if (!(v > 1.0)) return 1.0;
+    q = sqrt((24.0 - 4.0 / (v * v)) * 0.2);   /* q = s / v, s = ((24 v^2 - 4)/5)^(1/2) */
+    return 0.5 * q / sqrt(sqrt((1.0 + v * q) * (1.0 / 3.0)));   /* e = P^ / (A^(1/4) v), A = (1 + s)/3 */
 }}
 
 int microimpact_wall_interaction(const double v_in[3], const double n_in[3], const double omega_in[3],
                                  double diameter, double density, const microimpact_wall_params *params,
                                  double v_out[3], double omega_out[3], double *e_n)
 {{
-    double n[3], w[3], vt[3], ut[3], nxw[3], nxj[3], jt[3];
-    double len, r, m, V_y, V_s, vn, V, e_p, e, ratio, jn, ut_mag, stop, limit, scale;
+    /* The operations of microimpact.core.wall.wall_impact, in its order: the same bits. */
+    double n[3], w[3], vt[3], ut[3], jt[3];
+    double len, r, m, V_y, V_s, vn, V, e_p, e, ratio, jn, ut_mag, stop, limit, scale, eV, k;
     int i, stuck;
 
     for (i = 0; i < 3; i++) w[i] = omega_in ? omega_in[i] : 0.0;
     for (i = 0; i < 3; i++) {{ v_out[i] = v_in[i]; if (omega_out) omega_out[i] = w[i]; }}
-    len = sqrt(microimpact_dot(n_in, n_in));
+    len = sqrt(n_in[0] * n_in[0] + n_in[1] * n_in[1] + n_in[2] * n_in[2]);
     if (!(diameter > 0.0) || !(density > 0.0) || !(len > 0.0)) return -2;
     for (i = 0; i < 3; i++) n[i] = n_in[i] / len;
 
-    vn = microimpact_dot(v_in, n);
+    vn = v_in[0] * n[0] + v_in[1] * n[1] + v_in[2] * n[2];
     if (!(vn < 0.0)) {{ if (e_n) *e_n = 1.0; return -1; }}
     V = -vn;
 
@@ -368,27 +359,29 @@ int microimpact_wall_interaction(const double v_in[3], const double n_in[3], con
         if (e_n) *e_n = 0.0;
         return 1;
     }}
-    ratio = V_s / V;
+    ratio = V > 0.0 ? V_s / V : 0.0;
     e = sqrt(fmax(e_p * e_p - ratio * ratio, 0.0));
     jn = (1.0 + e) * V;                      /* normal impulse / m */
 
     /* tangential: slip of the contact point u_t = v_t + r n x omega */
-    microimpact_cross(n, w, nxw);
-    for (i = 0; i < 3; i++) {{
-        vt[i] = v_in[i] - vn * n[i];
-        ut[i] = vt[i] + r * nxw[i];
-    }}
-    ut_mag = sqrt(microimpact_dot(ut, ut));
+    for (i = 0; i < 3; i++) vt[i] = v_in[i] - vn * n[i];
+    ut[0] = vt[0] + r * (n[1] * w[2] - n[2] * w[1]);
+    ut[1] = vt[1] + r * (n[2] * w[0] - n[0] * w[2]);
+    ut[2] = vt[2] + r * (n[0] * w[1] - n[1] * w[0]);
+    ut_mag = sqrt(ut[0] * ut[0] + ut[1] * ut[1] + ut[2] * ut[2]);
     stop = (2.0 / 7.0) * ut_mag;             /* |impulse that stops the slip| / m */
     limit = params->friction * jn;           /* mu J_n / m */
     if (stop <= limit) scale = 2.0 / 7.0;    /* rolling */
     else scale = ut_mag > 0.0 ? limit / ut_mag : 0.0;  /* sliding */
-    for (i = 0; i < 3; i++) jt[i] = -scale * ut[i];
+    for (i = 0; i < 3; i++) jt[i] = ut[i] * -scale;
 
-    for (i = 0; i < 3; i++) v_out[i] = vt[i] + jt[i] + (e * V) * n[i];
+    eV = e * V;
+    for (i = 0; i < 3; i++) v_out[i] = vt[i] + jt[i] + eV * n[i];
     if (omega_out) {{
-        microimpact_cross(n, jt, nxj);
-        for (i = 0; i < 3; i++) omega_out[i] = w[i] - (2.5 / r) * nxj[i];
+        k = -2.5 / r;                        /* omega' = omega - 5/(2 m r) n x J_t */
+        omega_out[0] = (n[1] * jt[2] - n[2] * jt[1]) * k + w[0];
+        omega_out[1] = (n[2] * jt[0] - n[0] * jt[2]) * k + w[1];
+        omega_out[2] = (n[0] * jt[1] - n[1] * jt[0]) * k + w[2];
     }}
     if (e_n) *e_n = e;
     return 0;
@@ -558,8 +551,8 @@ _MINDLIN_EDITS = (
         " *               F from the universal table below (bilinear; error below 3e-3 of mu J_n).\n",
     ),
     (
-        "    double len, r, m, V_y, V_s, vn, V, e_p, e, ratio, jn, ut_mag, stop, limit, scale;\n",
-        "    double len, r, m, V_y, V_s, vn, V, e_p, e, ratio, jn, ut_mag, limit, scale;\n",
+        "    double len, r, m, V_y, V_s, vn, V, e_p, e, ratio, jn, ut_mag, stop, limit, scale, eV, k;\n",
+        "    double len, r, m, V_y, V_s, vn, V, e_p, e, ratio, jn, ut_mag, limit, scale, eV, k;\n",
     ),
     (
         "    stop = (2.0 / 7.0) * ut_mag;             /* |impulse that stops the slip| / m */\n"

@@ -291,7 +291,7 @@ def normalized_restitution(v):
     return evaluate(_seed.normalized_outcome, check_velocity("v", v), nout=5)[4]
 
 
-def restitution_coefficient(velocity, yield_velocity):
+def restitution_coefficient(velocity, yield_velocity, *, out=None):
     """Restitution coefficient ``e`` of an impact at ``velocity`` [-] (seed eq. 27).
 
     Parameters
@@ -300,11 +300,13 @@ def restitution_coefficient(velocity, yield_velocity):
         Impact speed ``V`` [m/s], >= 0.
     yield_velocity : array_like
         ``V_y`` [m/s] (eq. 28 or :func:`yield_velocity`); ``inf`` gives ``e = 1``.
+    out : ndarray, optional
+        Float64 array, C-contiguous, of the broadcast shape, to write ``e`` into (as numpy's ``out``).
 
     Returns
     -------
     ndarray
-        Coefficient of restitution ``e = V_r/V`` [-]: 1 for ``V <= V_y``.
+        Coefficient of restitution ``e = V_r/V`` [-]: 1 for ``V <= V_y``; ``out`` if given.
 
     Raises
     ------
@@ -318,6 +320,9 @@ def restitution_coefficient(velocity, yield_velocity):
     """
     V = check_velocity("velocity", velocity)
     Vy = check_positive("yield_velocity", yield_velocity, allow_inf=True)
+    if out is not None:
+        evaluate(_seed.restitution_at, V, Vy, out=out)
+        return out
     return _restitution(V, Vy)
 
 

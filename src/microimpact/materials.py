@@ -18,8 +18,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-import numpy as np
-
 from ._validation import check_poisson, check_positive
 
 __all__ = [
@@ -392,7 +390,10 @@ def sphere_mass(radius, density):
     """
     radius = check_positive("radius", radius)
     density = check_positive("density", density)
-    return 4.0 / 3.0 * np.pi * radius**3 * density
+    from .core.arrays import evaluate
+    from .core.wall import sphere_mass as _mass
+
+    return evaluate(_mass, radius, density)[0]
 
 
 #: The seed paper's two validation cases (Section 3.1): ammonium fluorescein

@@ -22,6 +22,7 @@ from .core import models, quantities
 from .core.constants import LARGE_STRAIN_RATIO
 from .core.models import thornton_ning_2016 as _seed
 from .core.quantities import FLAG_FIELDS, OUTCOME_FIELDS
+from .core.wall import sphere_mass as _sphere_mass
 
 if TYPE_CHECKING:  # the history machinery loads only when a history is asked for
     from .dynamics import ImpactHistory
@@ -343,7 +344,7 @@ class ContactPair:
             m = float(sphere_mass(radius, density))
         else:
             m = check_positive("mass", mass, scalar=True)
-            density = m / (4.0 / 3.0 * math.pi * radius**3)
+            density = m / _sphere_mass(radius, 1.0)
         p_y = cls._limiting_pressure(limiting_pressure, k, yield_strength)
         return cls(effective_modulus, radius, m, p_y, density=density, label=label)
 
@@ -921,24 +922,28 @@ class ContactPair:
             data = dynamics.integrate_model(mod.NAME, velocity, *self._args, params, n=n, times=times)
         return dynamics.ImpactHistory.from_dict(data, method=method)
 
-    def restitution(self, velocity):
+    def restitution(self, velocity, *, out=None):
         """Restitution coefficient only (seed eq. 27), the fastest path.
 
         Parameters
         ----------
         velocity : array_like
             Impact speed ``V`` [m/s], >= 0.
+        out : ndarray, optional
+            Float64 array, C-contiguous, shaped like ``velocity``, to write ``e`` into.
 
         Returns
         -------
         numpy scalar or ndarray
             Coefficient of restitution ``e`` [-], shaped like ``velocity``.
         """
-        if type(velocity) is float or type(velocity) is int:  # one speed: the core's scalar function itself
+        if out is None and (type(velocity) is float or type(velocity) is int):  # one speed: the scalar core
             V = float(velocity)
             if not 0.0 <= V < math.inf:
                 check_velocity("velocity", V)
             return np.float64(_seed.restitution_at(V, self.yield_velocity))
+        if out is not None:
+            return impact.restitution_coefficient(velocity, self.yield_velocity, out=out)
         return _scalar_or_array(impact.restitution_coefficient(velocity, self.yield_velocity))
 
     def ning_loading_time(self) -> float:

@@ -43,10 +43,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._validation import check_nonnegative, check_positive
-from .adhesion import sticking_velocity
-from .core import adhesion as _adhesion
+from .core import wall as _wall
 from .core.arrays import evaluate
-from .impact import yield_velocity
+from .core.models.thornton_ning_2016 import yield_point as _yield_point
 from .materials import DEFAULT_K, Material, get_material
 from .materials import effective_modulus as _effective_modulus
 
@@ -256,7 +255,7 @@ def wall_interaction(
     length = np.sqrt(np.einsum("ij,ij->i", nrm, nrm))
     if np.any(length == 0.0):
         raise ValueError("normal must not be a zero vector")
-    nrm = nrm / length[:, None]  # (1, 3) or (N, 3)
+    nrm_in = nrm  # (1, 3) or (N, 3); normalised per particle by the core
 
     d = _per_particle("diameter", check_positive("diameter", diameter), N)
     mats = _materials(material, N) if material is not None else None
@@ -300,67 +299,26 @@ def wall_interaction(
             raise ValueError(f"spin must have one vector per particle ({N}), got {w.shape[0]}")
         w = np.broadcast_to(w, (N, 3))
 
-    r = 0.5 * d
-    m = 4.0 / 3.0 * np.pi * r**3 * rho  # as materials.sphere_mass: same bits as ContactPair
-    Vy = np.broadcast_to(yield_velocity(p_y, E, r, m), (N,))
-    Vs = np.broadcast_to(sticking_velocity(G, E, r, m), (N,)) if np.any(G > 0.0) else np.zeros(N)
-
-    # Components as contiguous rows (structure of arrays): (3, N) and (3, N or 1).
+    # One particle's physics is core.wall.wall_impact (the C export is its copy); here only arrays.
     vT = np.ascontiguousarray(v.T)
-    nT = np.ascontiguousarray(nrm.T)
-
-    # Normal direction.
-    vn = vT[0] * nT[0] + vT[1] * nT[1] + vT[2] * nT[2]
-    approaching = vn < 0.0
-    V = np.where(approaching, -vn, 0.0)
-    e, stuck = evaluate(_adhesion.restitution, V, Vy, Vs, nout=2)
-    stuck = stuck == 1.0
-    stuck &= approaching
-    e = np.where(approaching, e, 1.0)
-    Jn_over_m = (1.0 + e) * V  # normal impulse / m
-
-    # Tangential direction: slip of the contact point, u_t = v_t + r n x omega.
-    # (In-place updates keep the number of passes over (3, N) arrays low.)
-    vtT = vT - vn * nT
-    if has_spin:
-        wT = np.ascontiguousarray(w.T)
-        utT = _cross(nT, wT)
-        utT *= r
-        utT += vtT
-    else:
-        utT = vtT
-    ut_mag = np.sqrt(utT[0] * utT[0] + utT[1] * utT[1] + utT[2] * utT[2])
-    limit = mu * Jn_over_m  # mu J_n / m; 0 where not approaching (V = 0)
+    nT = np.ascontiguousarray(nrm_in.T)
+    wT = np.ascontiguousarray(np.broadcast_to(w, (N, 3)).T) if has_spin else np.zeros((3, 1))
     if tangential == "rigid":
-        stop = (2.0 / 7.0) * ut_mag  # |J_stop| / m
-        rolling = approaching & ~stuck & (stop <= limit)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            scale = np.where(rolling, 2.0 / 7.0, np.where(ut_mag > 0.0, limit / ut_mag, 0.0))
+        F = np.array(-1.0)
     else:
+        V0, slip = evaluate(_wall.approach_and_slip, *vT, *nT, *wT, d, nout=2)
         F = _compliant_impulse_ratio(
-            ut_mag, V, mu, Vy, E, mats, wall_mat, poisson_ratio, effective_shear_modulus, approaching
+            slip, V0, mu, d, rho, E, p_y, mats, wall_mat, poisson_ratio, effective_shear_modulus
         )
-        rolling = approaching & ~stuck & (F < 1.0)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            scale = np.where(ut_mag > 0.0, F * limit / ut_mag, 0.0)
-    JtT = utT * -scale  # tangential impulse / m; 0 where not approaching
-
-    v_outT = vtT + JtT
-    v_outT += np.where(approaching, e * V, vn) * nT
-    v_out = np.ascontiguousarray(v_outT.T)
-    away = ~approaching
-    if away.any():
-        v_out[away] = v[away]  # passed through bit for bit
-    v_out[stuck] = 0.0
-    w_out = None
-    if has_spin or np.any(mu > 0.0):
-        # omega' = omega + (-r n) x J / I = omega - 5/(2 m r) n x J
-        w_outT = _cross(nT, JtT)
-        w_outT *= -2.5 / r
-        if has_spin:
-            w_outT += wT
-        w_out = np.ascontiguousarray(w_outT.T)
-        w_out[stuck] = 0.0
+    out = evaluate(_wall.wall_impact, *vT, *nT, *wT, d, rho, E, p_y, G, mu, F, nout=len(_wall.WALL_FIELDS))
+    o = dict(zip(_wall.WALL_FIELDS, out))
+    approaching = o["approaching"] == 1.0
+    stuck = o["stuck"] == 1.0
+    v_out = np.ascontiguousarray(out[0:3].T)
+    w_out = np.ascontiguousarray(out[3:6].T) if (has_spin or np.any(mu > 0.0)) else None
+    e, V = o["restitution"], o["normal_speed"]
+    Vy, Vs = o["yield_velocity"], o["sticking_velocity"]
+    rolling = o["rolling"] == 1.0
     return WallInteraction(
         velocity=v_out[0] if single else v_out,
         spin=None if w_out is None else (w_out[0] if single else w_out),
@@ -369,13 +327,13 @@ def wall_interaction(
         normal_speed=V[0] if single else V,
         approaching=approaching[0] if single else approaching,
         rolling=rolling[0] if single else rolling,
-        yield_velocity=Vy[0] if single else np.array(Vy),
-        sticking_velocity=Vs[0] if single else np.array(Vs),
+        yield_velocity=Vy[0] if single else Vy,
+        sticking_velocity=Vs[0] if single else Vs,
         _single=single,
     )
 
 
-def _compliant_impulse_ratio(ut_mag, V, mu, Vy, E, mats, wall_mat, poisson_ratio, effective_shear_modulus, approaching):
+def _compliant_impulse_ratio(ut_mag, V, mu, d, rho, E, p_y, mats, wall_mat, poisson_ratio, effective_shear_modulus):
     """``|J_t| / (mu J_n)`` of the compliant model per particle, from the universal tables."""
     from .core.tangential import effective_shear_modulus as _gstar
     from .oblique import universal_table
@@ -401,6 +359,8 @@ def _compliant_impulse_ratio(ut_mag, V, mu, Vy, E, mats, wall_mat, poisson_ratio
             "tangential='mindlin' needs poisson_ratio=..., effective_shear_modulus=... or material=... and wall=..."
         )
     F = np.zeros(n)
+    approaching = V > 0.0
+    Vy = evaluate(_yield_point, E, 0.5 * d, evaluate(_wall.sphere_mass, 0.5 * d, rho)[0], p_y, nout=3)[2]
     with np.errstate(invalid="ignore", divide="ignore"):
         psi = np.where(approaching & (mu > 0.0), kappa * ut_mag / (mu * np.where(V > 0, V, 1.0)), 0.0)
         x = np.where(V > 0.0, Vy / np.where(V > 0, V, 1.0), 1.0)

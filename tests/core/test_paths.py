@@ -2,7 +2,8 @@
 (Python loop, compiled serial loop, compiled multi-threaded loop) and the exported C.
 
 The array paths run the very same scalar functions, so they must agree bitwise. The C export is
-the one permitted second copy of the restitution and yield velocity; it agrees to a few ulp.
+the one permitted second copy of the restitution, the yield and sticking velocities and the wall
+interaction (core.wall); it does the same operations in the same order, so it agrees bitwise too.
 """
 
 from __future__ import annotations
@@ -130,7 +131,7 @@ def test_c_export_matches_the_core_on_edge_and_random_cases(tmp_path):
     vys = np.concatenate([np.full(_edge_speeds(VY).size, VY), Vy])
     core = arrays.evaluate(seed.restitution_at, speeds, vys)[0]
     c_e = np.array([so.microimpact_restitution(a, b) for a, b in zip(speeds, vys)])
-    np.testing.assert_allclose(c_e, core, rtol=4e-16, atol=0.0)
+    np.testing.assert_array_equal(c_e, core)  # the same operations in the same order
     assert c_e[0] == 1.0 and core[-1] <= 1.0
 
 
@@ -141,3 +142,55 @@ def test_every_path_refuses_nothing_silently_for_infinite_p_y():
     for got in paths.values():
         assert np.all(got[OUTCOME_FIELDS.index("elastic")] == 1.0)
         assert np.all(got[OUTCOME_FIELDS.index("restitution")] == 1.0)
+
+
+class _Params(ctypes.Structure):
+    _fields_ = [(k, ctypes.c_double) for k in ("E", "p_y", "G", "mu")]
+
+
+@pytest.mark.parametrize("G, mu", [(0.0, 0.0), (0.0, 0.3), (0.05, 0.3), (2.0, 1.0)])
+def test_c_wall_function_matches_the_core_bitwise(tmp_path, G, mu):
+    """microimpact_wall_interaction (C) against core.wall.wall_impact (Python) on random particles:
+    bouncing, rolling and sliding, sticking (G > 0), moving away, with spin; every output bit for bit."""
+    from microimpact.core import wall
+
+    so = _compile_c(tmp_path)
+    fn = so.microimpact_wall_interaction
+    vec = ctypes.c_double * 3
+    fn.restype = ctypes.c_int
+    E, p_y = PAIR.effective_modulus, PAIR.limiting_pressure
+    params = _Params(E, p_y, G, mu)
+    rng = np.random.default_rng(21)
+    seen = set()
+    for _ in range(400):
+        v = rng.normal(0.0, 5.0, 3)
+        v[2] = -rng.uniform(-5.0, 60.0)  # mostly towards the wall (normal ~ +z), some away
+        n = np.array([0.0, 0.0, 1.0]) + rng.normal(0.0, 0.2, 3)
+        w = rng.normal(0.0, 1e5, 3)
+        d, rho = rng.uniform(0.5e-6, 20e-6), rng.uniform(500.0, 3000.0)
+        vo, wo, e = vec(), vec(), ctypes.c_double()
+        code = fn(
+            vec(*v),
+            vec(*n),
+            vec(*w),
+            ctypes.c_double(d),
+            ctypes.c_double(rho),
+            ctypes.byref(params),
+            vo,
+            wo,
+            ctypes.byref(e),
+        )
+        ref = dict(zip(wall.WALL_FIELDS, wall.wall_impact(*v, *n, *w, d, rho, E, p_y, G, mu, -1.0)))
+        assert list(vo) == [ref["vx"], ref["vy"], ref["vz"]]
+        assert list(wo) == [ref["wx"], ref["wy"], ref["wz"]]
+        assert e.value == ref["restitution"]
+        want = -1 if ref["approaching"] == 0.0 else (1 if ref["stuck"] == 1.0 else 0)
+        assert code == want
+        seen.add((code, ref["rolling"]))
+    assert (-1, 0.0) in seen  # moving away met
+    if mu < 1.0:
+        assert (0, 0.0) in seen  # sliding met
+    if mu > 0.0:
+        assert (0, 1.0) in seen  # rolling met
+    if G > 1.0:
+        assert (1, 0.0) in seen  # sticking met

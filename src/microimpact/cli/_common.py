@@ -10,6 +10,7 @@ import sys
 import numpy as np
 
 from .._validation import check_positive
+from ..core.wall import sphere_mass
 from ..io import check_figure_path, check_input_file, check_memory, check_output_path
 from ..materials import PAPER_CASES, list_materials
 from ..pair import ContactPair
@@ -199,7 +200,7 @@ def _size_option(args) -> str:
 
 def _check_mass(radius, density, option, value):
     try:
-        m = 4.0 / 3.0 * math.pi * radius**3 * density
+        m = sphere_mass(radius, density)
     except OverflowError:
         m = math.inf
     if not (m > 0 and math.isfinite(m)):

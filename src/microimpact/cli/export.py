@@ -7,6 +7,7 @@ from pathlib import Path
 
 from ..adhesion import work_of_adhesion
 from ..cexport import BAND_OWNED, DEFAULT_VS_OVER_VY, generate_c_source, write_band, write_c_source, write_tables
+from ..core.wall import sphere_mass
 from ..fitting import INTERVALS, LOSSES
 from ._common import (
     add_pair_arguments,
@@ -137,7 +138,7 @@ def run(args) -> int:
         rho = pair.density if pair.density is not None else float("nan")
         for d in diameters:
             try:
-                m = 4.0 / 3.0 * math.pi * (0.5 * float(d)) ** 3 * rho
+                m = sphere_mass(0.5 * float(d), rho)
             except OverflowError:
                 m = math.inf
             if not (m > 0 and math.isfinite(m)):

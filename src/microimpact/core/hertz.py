@@ -17,8 +17,12 @@ __all__ = ["force", "contact_radius", "central_pressure", "max_approach", "time_
 
 @jitable
 def force(alpha, E, R):
-    """Hertz force ``P = 4/3 E* R^(1/2) alpha^(3/2)`` [N] (seed eq. 2)."""
-    return 4.0 / 3.0 * E * math.sqrt(R) * alpha**1.5
+    """Hertz force ``P = 4/3 E* R^(1/2) alpha^(3/2)`` [N] (seed eq. 2), ``alpha >= 0``.
+
+    ``alpha^(3/2)`` as ``alpha alpha^(1/2)``: a correctly rounded square root instead of a call to
+    ``pow`` (a third of the C wall function's time, and the same bits in Python, numba and C).
+    """
+    return 4.0 / 3.0 * E * math.sqrt(R) * (alpha * math.sqrt(alpha))
 
 
 @jitable

@@ -14,8 +14,19 @@ from __future__ import annotations
 import math
 
 from ._jit import jitable
+from .hertz_beta_table import DEGREE, PIECES, S_COEFFS, U_COEFFS, U_SPLIT, WIDTH
 
-__all__ = ["beta", "incomplete_beta", "incomplete_beta_with", "hertz_beta", "BETA_25_12", "HERTZ_TIME_CONSTANT"]
+__all__ = [
+    "beta",
+    "incomplete_beta",
+    "incomplete_beta_with",
+    "hertz_beta",
+    "hertz_beta_scaled",
+    "hertz_beta_scaled_u",
+    "hertz_beta_scaled_s",
+    "BETA_25_12",
+    "HERTZ_TIME_CONSTANT",
+]
 
 _TINY = 1e-300
 _EPS = 1e-16
@@ -101,19 +112,60 @@ HERTZ_TIME_CONSTANT = 0.8 * BETA_25_12 * (15.0 / 16.0) ** 0.4
 
 
 @jitable
-def hertz_beta(u):
-    """The Hertz time integral ``B(u; 2/5, 1/2)`` [-] (seed eqs. 20, 26), as :func:`incomplete_beta_with`.
+def _horner(coeffs, k, x):
+    """Piece ``k`` of a :mod:`~microimpact.core.hertz_beta_table` table at ``x`` in ``[-1, 1]`` (Horner's rule)."""
+    base = k * (DEGREE + 1)
+    r = coeffs[base + DEGREE]
+    for j in range(DEGREE - 1, -1, -1):
+        r = r * x + coeffs[base + j]
+    return r
 
-    Written out for ``a = 2/5``, ``b = 1/2`` with :func:`math.sqrt` for the power 1/2 and the
-    constant :data:`BETA_25_12`, so that Python and compiled code give the same bits (compilers turn
-    ``x ** 0.5`` into a correctly rounded square root, the C library's ``pow`` is not always
-    correctly rounded; and CPython and numba implement ``lgamma`` differently).
+
+@jitable
+def hertz_beta_scaled(u):
+    """The scaled Hertz time integral ``G(u) = B(u; 2/5, 1/2) / u^(2/5)`` [-], ``u`` in ``[0, 1]``.
+
+    ``G(0) = 5/2`` and ``G(1) = B(2/5, 1/2)``; the stage-1 time of a plastic impact is
+    ``(2/5) (alpha_y/V) G((V_y/V)^2)`` (seed eq. 20 with ``alpha_m = alpha_y u^(-2/5)``). Piecewise
+    polynomials (:mod:`~microimpact.core.hertz_beta_table`): :func:`hertz_beta_scaled_u` below
+    ``U_SPLIT``, :func:`hertz_beta_scaled_s` of ``s = (1 - u)^(1/2)`` above; within a few units in
+    the last place; no power, no loop to convergence. Where ``1 - u`` is known more accurately than
+    ``u`` (next to ``V_y``), call :func:`hertz_beta_scaled_s` with it directly.
+    """
+    if u < U_SPLIT:
+        return hertz_beta_scaled_u(u)
+    return hertz_beta_scaled_s(math.sqrt(max(1.0 - u, 0.0)))
+
+
+@jitable
+def hertz_beta_scaled_u(u):
+    """``G(u)`` (:func:`hertz_beta_scaled`) for ``0 <= u < U_SPLIT``, from the pieces in ``u``.
+
+    The local variable is formed with powers of two only (``x = 32 u - (2k + 1)``), exact.
+    """
+    y = u * (2.0 / WIDTH)
+    k = min(int(y * 0.5), PIECES - 1)
+    return _horner(U_COEFFS, k, y - (2.0 * k + 1.0))
+
+
+@jitable
+def hertz_beta_scaled_s(s):
+    """``G(1 - s^2)`` (:func:`hertz_beta_scaled`) for ``0 <= s <= (1 - U_SPLIT)^(1/2)``, from the pieces in ``s``."""
+    y = s * (2.0 / WIDTH)
+    k = min(int(y * 0.5), PIECES - 1)
+    return _horner(S_COEFFS, k, y - (2.0 * k + 1.0))
+
+
+@jitable
+def hertz_beta(u):
+    """The Hertz time integral ``B(u; 2/5, 1/2)`` [-] (seed eqs. 20, 26), ``u`` in ``[0, 1]``.
+
+    ``u^(2/5) G(u)`` with :func:`hertz_beta_scaled`; ``B(0) = 0`` and ``B(1) = B(2/5, 1/2)``
+    (:data:`BETA_25_12`) exactly. Agrees with :func:`incomplete_beta` ``(u, 2/5, 1/2)`` (the continued
+    fraction) to about 1e-15.
     """
     if u <= 0.0:
         return 0.0
-    if u < 1.4 / 2.9:  # (a + 1)/(a + b + 2)
-        return u**0.4 * math.sqrt(1.0 - u) / 0.4 * _beta_fraction(u, 0.4, 0.5)
-    w = 1.0 - u
-    if w <= 0.0:
+    if u >= 1.0:
         return BETA_25_12
-    return BETA_25_12 - math.sqrt(w) * u**0.4 / 0.5 * _beta_fraction(w, 0.5, 0.4)
+    return u**0.4 * hertz_beta_scaled(u)

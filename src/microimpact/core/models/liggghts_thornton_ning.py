@@ -245,7 +245,7 @@ def outcome(V, E, R, m, p_y, params):
         e = 0.0
         max_approach = max_force = plastic = inf
     else:
-        A, Phat = seed.plastic_stage(v)[:2]  # alpha*/alpha_y (seed eq. 22), P*/P_y
+        A, Phat = seed.plastic_stage(v, v - 1.0)[:2]  # alpha*/alpha_y (seed eq. 22), P*/P_y
         A15 = A * math.sqrt(A)
         D = max(A15 - Phat, 0.0)  # x_p^(3/2)
         W = 0.4 * A * A15 - D * A + 0.6 * D ** (5.0 / 3.0)  # returned work / (P_y alpha_y)
@@ -257,7 +257,7 @@ def outcome(V, E, R, m, p_y, params):
     a_max = math.sqrt(R * max_approach)
 
     # Loading times: the seed's (eqs. 20, 23).
-    t1 = seed.elastic_stage_time(V, E, R, m, Vy)
+    t1 = seed.elastic_stage_time(V, E, R, m, a_y, Vy)
     t2 = seed.plastic_stage_time(V, R, m, p_y, a_y, Vy)
     # Unloading time: Hertz for an elastic impact, else the quadrature above.
     if V == inf:

@@ -128,7 +128,9 @@ def outcome(V, E, R, m, p_y, params):
     d0 = dp - up
     U = math.sqrt(up * up + vp2 / (w2 * w2))
     t2 = (0.5 * math.pi - math.asin(up / U)) / w2
-    return dem_outcome(V, w2 * U / V, d0 + U, d0, k2 * U, R, t1 + t2, 0.5 * math.pi / w2)
+    # e <= 1 exactly in arithmetic (U <= V/w2); rounding gave 1 + 1 ulp where dp -> 0
+    e = min(w2 * U / V, 1.0)
+    return dem_outcome(V, e, d0 + U, d0, k2 * U, R, t1 + t2, 0.5 * math.pi / w2)
 
 
 @jitable

@@ -21,7 +21,8 @@ import math
 from .. import hertz
 from .._jit import jitable
 from ..constants import LARGE_STRAIN_RATIO
-from ..special import BETA_25_12, hertz_beta
+from ..hertz_beta_table import U_SPLIT
+from ..special import BETA_25_12, hertz_beta_scaled_s, hertz_beta_scaled_u
 from ._common import no_parameters
 
 NAME = "thornton_ning_2016"
@@ -51,20 +52,32 @@ def yield_velocity_sphere_on_flat(p_y, E, rho):
 
 
 @jitable
-def plastic_stage(v):
-    """Normalised outcome of a plastic impact at ``v = V/V_y > 1`` (eqs. 22, 14, 11, 9, 27).
+def plastic_stage(v, dv):
+    """Normalised outcome of a plastic impact at ``v = V/V_y > 1``, ``dv = v - 1`` (eqs. 22, 14, 11, 9, 27).
 
     Returns ``(A, Phat, alpha_p_hat, R_p_hat, e)``: ``alpha*/alpha_y`` (eq. 22), ``P*/P_y`` (eq. 14),
     ``alpha_p/alpha_y`` (eq. 11), ``R_p/R*`` (eq. 9) and the restitution coefficient (eq. 27). All are
     computed from ``q = s/v = ((24 - 4/v^2)/5)^(1/2)``, with ``s = 2 P*/P_y``, so that nothing
     overflows before ``v`` does.
+
+    ``alpha_p_hat = A - Phat/A^(1/2)`` cancels as ``v -> 1`` (both terms tend to 1; it vanishes as
+    ``(v - 1)^2``). Below ``v = 2`` it is computed from the identity
+    ``A^3 - Phat^2 = (s - 2)^2 (4 s + 1)/108`` (expand ``(1 + s)^3/27 - s^2/4``), with
+    ``s - 2 = 24 (v - 1)(v + 1)/(5 (s + 2))``: exact to rounding, given ``dv`` computed as
+    ``(V - V_y)/V_y`` (exact subtraction) rather than as ``V/V_y - 1``.
     """
     q = math.sqrt((24.0 - 4.0 / (v * v)) / 5.0)
     A = (1.0 + v * q) / 3.0
     Phat = 0.5 * v * q
     sqA = math.sqrt(A)
     e = 0.5 * q / math.sqrt(sqA)  # P^*/(alpha^*^(1/4) v) with the v cancelled
-    return A, Phat, max(A - Phat / sqA, 0.0), A * sqA / Phat, e
+    if dv < 1.0:
+        s = v * q
+        d = 24.0 * dv * (v + 1.0) / (5.0 * (s + 2.0))  # s - 2
+        ap = d * d * (4.0 * s + 1.0) / (108.0 * (A * sqA + Phat) * sqA)
+    else:
+        ap = max(A - Phat / sqA, 0.0)
+    return A, Phat, ap, A * sqA / Phat, e
 
 
 @jitable
@@ -78,21 +91,25 @@ def normalized_outcome(v):
         return v**0.8, v**1.2, 0.0, 1.0, 1.0
     if v == math.inf:
         return math.inf, math.inf, math.inf, math.inf, 0.0
-    return plastic_stage(v)
+    return plastic_stage(v, v - 1.0)
 
 
 @jitable
 def restitution(v):
     """Restitution coefficient at ``v = V/V_y`` [-] (eq. 27): 1 for ``v <= 1``, 0 at ``v = inf``.
 
-    Written without early returns (the plastic formula on ``max(v, 1)``, then a select), so that
-    the compiled loop vectorises: at ``v = 1`` the formula gives 1 exactly and at ``v = inf`` it
-    gives 0, and for ``v > 1`` these are the operations of :func:`plastic_stage`.
+    The operations of :func:`plastic_stage` with two divisions instead of four (``/5`` and ``/3``
+    as products; the last bit can differ from there), written without early returns (the formula on
+    ``max(v, 1)``, then a select) so that the compiled loop vectorises: at ``v = 1`` it gives 1
+    exactly (``q = 2``, ``A = 1``) and at ``v = inf`` it gives 0 (``A = inf``).
     """
     vp = v if v > 1.0 else 1.0
-    q = math.sqrt((24.0 - 4.0 / (vp * vp)) / 5.0)
-    e = 0.5 * q / math.sqrt(math.sqrt((1.0 + vp * q) / 3.0))
+    q = math.sqrt((24.0 - 4.0 / (vp * vp)) * 0.2)
+    e = 0.5 * q / math.sqrt(math.sqrt((1.0 + vp * q) * _THIRD))
     return e if v > 1.0 else 1.0
+
+
+_THIRD = 1.0 / 3.0
 
 
 @jitable
@@ -115,18 +132,25 @@ def normalized_velocity(V, V_y):
 
 
 @jitable
-def elastic_stage_time(V, E, R, m, V_y):
+def elastic_stage_time(V, E, R, m, alpha_y, V_y):
     """Stage 1, Hertz loading to yield or to rest: ``t1 = (2/5)(alpha_m/V) B(u; 2/5, 1/2)`` [s] (eq. 20).
 
-    ``u = min(1, (V_y/V)^2)``; 0 at ``V = inf``.
+    ``u = min(1, (V_y/V)^2)``; 0 at ``V = inf``. Elastic (``u = 1``): ``(2/5) B(2/5, 1/2) alpha_m/V``.
+    Plastic: with ``alpha_m = alpha_y u^(-2/5)`` (``alpha_m`` grows as ``V^(4/5)``, eq. 17, and equals
+    ``alpha_y`` at ``V_y``) this is ``(2/5)(alpha_y/V) G(u)``, ``G(u) = B(u; 2/5, 1/2)/u^(2/5)``
+    (:func:`~microimpact.core.special.hertz_beta_scaled`), which needs no power of ``V``.
     """
     if V == math.inf:
         return 0.0
-    u = 1.0
     if V > V_y:
         w = V_y / V
-        u = w * w  # w * w, not w ** 2: compiled code must give the same bits
-    return 0.4 * hertz.time_scale(V, E, R, m) * hertz_beta(u)
+        u = w * w  # w * w, not w ** 2: the same bits compiled
+        if u < U_SPLIT:
+            G = hertz_beta_scaled_u(u)
+        else:  # next to V_y: 1 - u from (V - V_y)(V + V_y), exact to rounding, not from u
+            G = hertz_beta_scaled_s(math.sqrt((V - V_y) * (V + V_y)) / V)
+        return 0.4 * (alpha_y / V) * G
+    return 0.4 * BETA_25_12 * hertz.time_scale(V, E, R, m)
 
 
 @jitable
@@ -139,7 +163,7 @@ def plastic_stage_time(V, R, m, p_y, alpha_y, V_y):
     if not V > V_y:
         return 0.0
     omega = plastic_frequency(p_y, R, m)
-    v1 = math.sqrt(max(V * V - V_y * V_y, 0.0))
+    v1 = math.sqrt((V - V_y) * (V + V_y))  # (V^2 - V_y^2)^(1/2) without cancellation next to V_y
     return math.atan2(v1, 2.0 * omega * alpha_y / 3.0) / omega
 
 
@@ -161,12 +185,16 @@ def outcome(V, E, R, m, p_y, params):
         max_force = hertz.force(max_approach, E, R)
         e = 1.0
         plastic = 0.0
+        recovery = max_approach
         R_p = R
     elif v == inf:
         e = 0.0
-        max_approach = max_force = plastic = R_p = inf
+        max_approach = max_force = plastic = R_p = recovery = inf
     else:
-        A, Phat, ap_hat, Rp_hat, e = plastic_stage(v)
+        A, Phat, ap_hat, Rp_hat, _ = plastic_stage(v, (V - Vy) / Vy)
+        e = restitution(v)  # the restitution-only path's very operations: the same bits
+        # elastic recovery alpha* - alpha_p = alpha* P*/F_e (eq. 11) = alpha_y P^/A^(1/2): no cancellation
+        recovery = a_y * min(Phat / math.sqrt(A), A)
         max_approach = a_y * A
         max_force = P_y * Phat
         plastic = a_y * ap_hat
@@ -175,15 +203,15 @@ def outcome(V, E, R, m, p_y, params):
     a_max = math.sqrt(R * max_approach)
 
     # Contact times (eqs. 20, 23, 26, 32, 33).
-    t1 = elastic_stage_time(V, E, R, m, Vy)
+    t1 = elastic_stage_time(V, E, R, m, a_y, Vy)
     t2 = plastic_stage_time(V, R, m, p_y, a_y, Vy)
-    if V == inf:
+    if v == inf:  # V = inf, or V/V_y beyond the largest float: the limit t_U ~ v^(-1/4) -> 0
         tU = 0.0
     elif elastic:
         tU = 0.4 * BETA_25_12 * hertz.time_scale(V, E, R, m)  # the Hertz half-period
     else:
         # Hertz unloading with R_p from alpha* to alpha_p (eq. 26): the stage-1 integral run backwards.
-        tU = 0.4 * BETA_25_12 * (max_approach - plastic) / rebound
+        tU = 0.4 * BETA_25_12 * recovery / rebound
     tL = t1 + t2
     return (
         V,

@@ -1,0 +1,139 @@
+"""One sphere bouncing off, or sticking to, a flat, fixed, massive wall: scalar floats in and out.
+
+The physics of :func:`microimpact.wall.wall_interaction` for one particle, written once; the array
+path (:func:`~microimpact.core.arrays.evaluate`) runs this function, and the C export
+(:mod:`microimpact.cexport`) is its one second copy, tested bit for bit against it.
+
+* **Normal**: the seed's elastic-plastic restitution (eq. 27, yield point eqs. 5, 7, 28) with
+  Thornton & Ning's (1998) adhesive loss (:mod:`microimpact.core.adhesion`); ``R* = r``, ``m* = m``.
+* **Tangential**: the rigid-body impulse with Coulomb friction for a solid sphere (``I = 2/5 m r^2``;
+  Walton 1993; Brach 1988): the impulse that stops the slip of the contact point, ``2/7 m |u_t|``,
+  if it lies within ``mu J_n`` (rolling), else ``mu J_n`` against the slip (sliding). Or, given a
+  ratio ``F = |J_t|/(mu J_n)`` from the compliant contact of :mod:`microimpact.oblique`, that impulse.
+* Kinematics: ``n`` is normalised here; ``v_n = v.n`` (``< 0``: approaching, ``V = -v_n``);
+  ``u_t = v_t + r n x omega`` with ``v_t = v - v_n n``; after the impact ``v' = v_t + J_t/m + e V n``
+  and ``omega' = omega - 5/(2 m r) n x J_t``. A particle not approaching is returned unchanged.
+"""
+
+from __future__ import annotations
+
+import math
+
+from . import adhesion
+from ._jit import jitable
+from .models.thornton_ning_2016 import yield_point
+
+__all__ = ["sphere_mass", "contact_slip", "unit_normal", "approach_and_slip", "wall_impact", "WALL_FIELDS"]
+
+#: The results of :func:`wall_impact`, in order.
+WALL_FIELDS = (
+    "vx",
+    "vy",
+    "vz",
+    "wx",
+    "wy",
+    "wz",
+    "restitution",
+    "normal_speed",
+    "stuck",
+    "rolling",
+    "approaching",
+    "yield_velocity",
+    "sticking_velocity",
+)
+
+
+@jitable
+def sphere_mass(r, rho):
+    """Mass of a sphere of radius ``r`` [m] and density ``rho`` [kg/m^3], ``4/3 pi r^3 rho`` [kg].
+
+    ``r^3`` as ``r r r`` (no ``pow``: the same bits in Python, numba and C).
+    """
+    return 4.0 / 3.0 * math.pi * (r * r * r) * rho
+
+
+@jitable
+def contact_slip(vx, vy, vz, nx, ny, nz, wx, wy, wz, r):
+    """``(v_n, v_t, u_t)`` of a sphere at a wall with unit normal ``n``: ``v_n = v.n``, ``v_t = v - v_n n``
+    and the slip of the contact point ``u_t = v_t + r n x omega`` [m/s] (7 floats)."""
+    vn = vx * nx + vy * ny + vz * nz
+    tx = vx - vn * nx
+    ty = vy - vn * ny
+    tz = vz - vn * nz
+    return (
+        vn,
+        tx,
+        ty,
+        tz,
+        tx + r * (ny * wz - nz * wy),
+        ty + r * (nz * wx - nx * wz),
+        tz + r * (nx * wy - ny * wx),
+    )
+
+
+@jitable
+def unit_normal(nx, ny, nz):
+    """``n/|n|`` (3 floats); the caller refuses a zero vector."""
+    length = math.sqrt(nx * nx + ny * ny + nz * nz)
+    return nx / length, ny / length, nz / length
+
+
+@jitable
+def approach_and_slip(vx, vy, vz, nx, ny, nz, wx, wy, wz, d):
+    """``(V, |u_t|)``: normal impact speed (0 if not approaching) and slip speed [m/s], as :func:`wall_impact` sees them."""
+    ux, uy, uz = unit_normal(nx, ny, nz)
+    vn, tx, ty, tz, sx, sy, sz = contact_slip(vx, vy, vz, ux, uy, uz, wx, wy, wz, 0.5 * d)
+    return (-vn if vn < 0.0 else 0.0), math.sqrt(sx * sx + sy * sy + sz * sz)
+
+
+@jitable
+def wall_impact(vx, vy, vz, nx, ny, nz, wx, wy, wz, d, rho, E, p_y, G, mu, F):
+    """Outcome of one particle hitting the wall, in the order of :data:`WALL_FIELDS`.
+
+    ``v`` [m/s] and ``omega`` [rad/s] the incoming velocity and spin, ``n`` the wall normal (out of
+    the wall; any length > 0), ``d`` [m] and ``rho`` [kg/m^3] the sphere's, ``E = E*`` [Pa],
+    ``p_y`` [Pa] (``inf``: never yields), ``G`` [J/m^2] the work of adhesion, ``mu`` the friction
+    coefficient, ``F`` the compliant impulse ratio or ``-1`` for the rigid-body impulse (module
+    docstring). Flags are 1.0 or 0.0.
+    """
+    ux, uy, uz = unit_normal(nx, ny, nz)
+    r = 0.5 * d
+    m = sphere_mass(r, rho)
+    Vy = yield_point(E, r, m, p_y)[2]
+    Vs = adhesion.sticking_velocity(G, E, r, m) if G > 0.0 else 0.0
+    vn, tx, ty, tz, sx, sy, sz = contact_slip(vx, vy, vz, ux, uy, uz, wx, wy, wz, r)
+    if not vn < 0.0:  # moving away (or along): no impact
+        return vx, vy, vz, wx, wy, wz, 1.0, 0.0, 0.0, 0.0, 0.0, Vy, Vs
+    V = -vn
+    e, stuck = adhesion.restitution(V, Vy, Vs)
+    if stuck == 1.0:
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, V, 1.0, 0.0, 1.0, Vy, Vs
+    jn = (1.0 + e) * V  # normal impulse / m
+    slip = math.sqrt(sx * sx + sy * sy + sz * sz)
+    limit = mu * jn  # Coulomb limit mu J_n / m
+    if F < 0.0:  # rigid body: stop the slip if the friction allows it
+        rolling = (2.0 / 7.0) * slip <= limit
+        scale = 2.0 / 7.0 if rolling else (limit / slip if slip > 0.0 else 0.0)
+    else:  # compliant: |J_t| = F mu J_n along the slip
+        rolling = F < 1.0
+        scale = F * limit / slip if slip > 0.0 else 0.0
+    jx = sx * -scale  # tangential impulse / m
+    jy = sy * -scale
+    jz = sz * -scale
+    k = -2.5 / r  # omega' = omega - 5/(2 m r) n x J_t
+    eV = e * V
+    return (
+        tx + jx + eV * ux,
+        ty + jy + eV * uy,
+        tz + jz + eV * uz,
+        (uy * jz - uz * jy) * k + wx,
+        (uz * jx - ux * jz) * k + wy,
+        (ux * jy - uy * jx) * k + wz,
+        e,
+        V,
+        0.0,
+        1.0 if rolling else 0.0,
+        1.0,
+        Vy,
+        Vs,
+    )
