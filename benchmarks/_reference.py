@@ -70,42 +70,45 @@ def core_outcome():
 
 
 def outcome_reference(V: float, E: float, R: float, m: float, p_y: float) -> tuple:
-    """The seed's full outcome of one plastic impact (``V > V_y``, finite ``p_y``) as one flat function.
+    """The seed's full outcome of one plastic impact (``V >= 2 V_y``, finite ``p_y``) as one flat function.
 
     The closed forms of seed eqs. 5-33 written out in one body, with no function calls but ``math``
-    and the Hertz time integral (the core's :func:`~microimpact.core.special.hertz_beta`, itself plain
-    Python): the floor of what one Python call returning the 18 numbers costs. Same operations in
-    the same order as the core, so the numbers are bitwise the same (the suite asserts it).
+    and the scaled Hertz time integral (the core's
+    :func:`~microimpact.core.special.hertz_beta_scaled`, itself plain Python): the floor of what one
+    Python call returning the 18 numbers costs. Same operations in the same order as the core for
+    ``V >= 2 V_y`` (there the core takes no branch this body leaves out), so the numbers are bitwise
+    the same (the suite asserts it).
 
     Returns
     -------
     tuple of float
         In the order of :data:`microimpact.core.quantities.OUTCOME_FIELDS`.
     """
-    from microimpact.core.special import BETA_25_12, hertz_beta
+    from microimpact.core.special import BETA_25_12, hertz_beta_scaled
 
     sqR = math.sqrt(R)
     ac = math.pi * p_y * R / (2.0 * E)
     a_y = ac * ac / R
-    P_y = 4.0 / 3.0 * E * sqR * a_y**1.5
+    P_y = 4.0 / 3.0 * E * sqR * (a_y * math.sqrt(a_y))
     Vy = math.sqrt(0.8 * P_y * a_y / m)
     v = V / Vy
     q = math.sqrt((24.0 - 4.0 / (v * v)) / 5.0)
     A = (1.0 + v * q) / 3.0
     Phat = 0.5 * v * q
     sqA = math.sqrt(A)
-    e = 0.5 * q / math.sqrt(sqA)
+    a_p = a_y * max(A - Phat / sqA, 0.0)
+    qe = math.sqrt((24.0 - 4.0 / (v * v)) * 0.2)
+    e = 0.5 * qe / math.sqrt(math.sqrt((1.0 + v * qe) * (1.0 / 3.0)))
     a_star = a_y * A
     P_star = P_y * Phat
-    a_p = a_y * max(A - Phat / sqA, 0.0)
     R_p = R * (A * sqA / Phat)
     V_r = e * V
     a_max = math.sqrt(R * a_star)
     w = Vy / V
-    t1 = 0.4 * ((15.0 * m / (16.0 * E * sqR)) ** 0.4 * V ** (-0.2)) * hertz_beta(w * w)
+    t1 = 0.4 * (a_y / V) * hertz_beta_scaled(w * w)
     omega = math.sqrt(math.pi * p_y * R / m)
-    t2 = math.atan2(math.sqrt(max(V * V - Vy * Vy, 0.0)), 2.0 * omega * a_y / 3.0) / omega
-    tU = 0.4 * BETA_25_12 * (a_star - a_p) / V_r
+    t2 = math.atan2(math.sqrt((V - Vy) * (V + Vy)), 2.0 * omega * a_y / 3.0) / omega
+    tU = 0.4 * BETA_25_12 * (a_y * min(Phat / sqA, A)) / V_r
     tL = t1 + t2
     return (V, Vy, v, 0.0, e, V_r, a_star, a_p, P_star, R_p, 1.0 - e * e, a_max,
             1.0 if a_max / R > 0.3 else 0.0, t1, t2, tL, tU, tL + tU)  # fmt: skip

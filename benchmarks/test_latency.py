@@ -19,6 +19,17 @@ def test_pair_impact_no_warning(timed, pair):
     timed(KEY, "pair.impact(50.0, warn=False)", lambda: pair.impact(50.0, warn=False), rounds=25, iterations=40)
 
 
+def test_pair_impact_every_field_read(timed, pair):
+    """The same, then every one of the 18 fields read (each becomes a numpy scalar on first reading)."""
+    from microimpact.core.quantities import OUTCOME_FIELDS
+
+    def run():
+        res = pair.impact(50.0, warn=False)
+        return [getattr(res, f) for f in OUTCOME_FIELDS]
+
+    timed(KEY, "pair.impact(50.0, warn=False), every field read", run, rounds=25, iterations=40)
+
+
 def test_core_outcome(timed, record, pair):
     outcome = core_outcome()
     if outcome is None:

@@ -80,6 +80,7 @@ class LargeStrainWarning(UserWarning):
 
 _TRUE, _FALSE = np.bool_(True), np.bool_(False)
 _LARGE = OUTCOME_FIELDS.index("large_strain")
+_FLAG_INDEX = tuple((OUTCOME_FIELDS.index(k), k) for k in FLAG_FIELDS)
 
 
 def _scalar_or_array(x):
@@ -163,6 +164,17 @@ class ImpactResult:
         """Build from a complete dict of already-checked values, skipping the dataclass ``__init__`` (hot path)."""
         obj = object.__new__(cls)
         obj.__dict__.update(values)
+        return obj
+
+    @classmethod
+    def _of_one(cls, values: tuple) -> ImpactResult:
+        """One impact from the core's tuple (in the order of ``OUTCOME_FIELDS``): numpy scalars, flags as
+        numpy booleans, written straight into the instance (the hot path of ``pair.impact(50.0)``)."""
+        obj = object.__new__(cls)
+        d = obj.__dict__
+        d.update(zip(OUTCOME_FIELDS, map(np.float64, values)))
+        for i, name in _FLAG_INDEX:
+            d[name] = _TRUE if values[i] == 1.0 else _FALSE
         return obj
 
     @property
@@ -826,12 +838,7 @@ class ContactPair:
             if not 0.0 <= V < math.inf:
                 check_velocity("velocity", V)
             values = mod.outcome(V, *self._args, p)
-            res = ImpactResult._trusted(
-                {
-                    k: (_TRUE if x == 1.0 else _FALSE) if k in FLAG_FIELDS else np.float64(x)
-                    for k, x in zip(OUTCOME_FIELDS, values)
-                }
-            )
+            res = ImpactResult._of_one(values)
             flagged = values[_LARGE] == 1.0
         else:
             V = check_velocity("velocity", velocity)

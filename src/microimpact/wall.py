@@ -252,10 +252,8 @@ def wall_interaction(
     nrm = _vectors("normal", normal)
     if nrm.shape[0] not in (1, N):
         raise ValueError(f"normal must be one vector or one per particle ({N}), got {nrm.shape[0]}")
-    length = np.sqrt(np.einsum("ij,ij->i", nrm, nrm))
-    if np.any(length == 0.0):
-        raise ValueError("normal must not be a zero vector")
-    nrm_in = nrm  # (1, 3) or (N, 3); normalised per particle by the core
+    if nrm.shape[0] == 1 and not np.any(nrm):
+        raise ValueError("normal must not be a zero vector")  # one per particle: found by the core
 
     d = _per_particle("diameter", check_positive("diameter", diameter), N)
     mats = _materials(material, N) if material is not None else None
@@ -297,12 +295,14 @@ def wall_interaction(
         w = _vectors("spin", spin)
         if w.shape[0] not in (1, N):
             raise ValueError(f"spin must have one vector per particle ({N}), got {w.shape[0]}")
-        w = np.broadcast_to(w, (N, 3))
 
-    # One particle's physics is core.wall.wall_impact (the C export is its copy); here only arrays.
-    vT = np.ascontiguousarray(v.T)
-    nT = np.ascontiguousarray(nrm_in.T)
-    wT = np.ascontiguousarray(np.broadcast_to(w, (N, 3)).T) if has_spin else np.zeros((3, 1))
+    # One particle's physics is core.wall.wall_impact (the C export is its copy); here only arrays,
+    # passed as columns (strided views, read in place) and filled into one (N, 13) table.
+    vT = tuple(v[:, j] for j in range(3))
+    nT = tuple(nrm[:, j] if nrm.shape[0] == N else np.array(nrm[0, j]) for j in range(3))
+    wT = (
+        tuple(w[:, j] if w.shape[0] == N else np.array(w[0, j]) for j in range(3)) if has_spin else (np.array(0.0),) * 3
+    )
     if tangential == "rigid":
         F = np.array(-1.0)
     else:
@@ -310,15 +310,19 @@ def wall_interaction(
         F = _compliant_impulse_ratio(
             slip, V0, mu, d, rho, E, p_y, mats, wall_mat, poisson_ratio, effective_shear_modulus
         )
-    out = evaluate(_wall.wall_impact, *vT, *nT, *wT, d, rho, E, p_y, G, mu, F, nout=len(_wall.WALL_FIELDS))
+    table = np.empty((N, len(_wall.WALL_FIELDS)))
+    out = evaluate(_wall.wall_impact, *vT, *nT, *wT, d, rho, E, p_y, G, mu, F, nout=table.shape[1], out=table.T)
     o = dict(zip(_wall.WALL_FIELDS, out))
-    approaching = o["approaching"] == 1.0
-    stuck = o["stuck"] == 1.0
-    v_out = np.ascontiguousarray(out[0:3].T)
-    w_out = np.ascontiguousarray(out[3:6].T) if (has_spin or np.any(mu > 0.0)) else None
+    regime = o["regime"].copy()  # one pass over the strided column, then contiguous
+    if np.isnan(regime).any():
+        raise ValueError("normal must not be a zero vector")
+    approaching = regime != _wall.NONE
+    stuck = regime == _wall.STUCK
+    rolling = regime == _wall.ROLLING
+    v_out = table[:, 0:3]
+    w_out = table[:, 3:6] if (has_spin or np.any(mu > 0.0)) else None
     e, V = o["restitution"], o["normal_speed"]
     Vy, Vs = o["yield_velocity"], o["sticking_velocity"]
-    rolling = o["rolling"] == 1.0
     return WallInteraction(
         velocity=v_out[0] if single else v_out,
         spin=None if w_out is None else (w_out[0] if single else w_out),

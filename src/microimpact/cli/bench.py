@@ -37,6 +37,7 @@ BENCHMARKS = [
     "outcome_vs_copy",
     "threads_1e3",
     "startup",
+    "c_wall",
 ]
 #: The file of the suite that holds each.
 FILES = {
@@ -49,6 +50,7 @@ FILES = {
     "outcome_vs_copy": "test_outcome_array.py",
     "threads_1e3": "test_outcome_array.py",
     "startup": "test_startup.py",
+    "c_wall": "test_c_wall.py",
 }
 
 
@@ -191,7 +193,7 @@ def register(sub) -> None:
     size = p.add_mutually_exclusive_group()
     size.add_argument("--quick", action="store_true", help="sizes 100x smaller (about a minute)")
     size.add_argument("--tiny", action="store_true", help="smallest sizes, no paper run (a smoke test)")
-    p.add_argument("--only", default=None, metavar="N,N", help="comma-separated benchmark numbers (1-9); default all")
+    p.add_argument("--only", default=None, metavar="N,N", help="comma-separated benchmark numbers (1-10); default all")
     p.add_argument(
         "--json",
         default="microimpact-bench.json",

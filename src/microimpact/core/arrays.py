@@ -216,6 +216,9 @@ def _flat(arrays, shape):
         if a.size == 1 or (a.size > 1 and not any(a.strides)):  # one value, or one broadcast to many
             flats.append(np.array([a.flat[0]], dtype=np.float64))
             steps.append(0)
+        elif a.ndim == 1 and a.shape == shape and a.dtype == np.float64:
+            flats.append(a)  # a column of a table, say: the loop reads it in place, strided
+            steps.append(1)
         else:
             b = np.broadcast_to(a, shape) if a.shape != shape else a
             flats.append(np.ascontiguousarray(b, dtype=np.float64).reshape(n))
@@ -240,9 +243,10 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
     backend : {"numba", "python"}, optional
         Default: :func:`backend_for` the number of elements.
     out : ndarray, optional
-        Where to write the results: C-contiguous float64 of shape ``(nout,) + broadcast shape``
-        (for ``nout = 1`` also the broadcast shape itself). Saves allocating (and first touching)
-        the result; returned, reshaped as without it.
+        Where to write the results: float64 of shape ``(nout,) + broadcast shape`` (for ``nout = 1``
+        also the broadcast shape itself), C-contiguous unless it is 2-D ``(nout, n)`` (then any
+        strides: ``buf.T`` of an ``(n, nout)`` table fills its rows). Saves allocating (and first
+        touching) the result; returned, reshaped as without it.
 
     Returns
     -------
@@ -257,7 +261,7 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
         if not (
             isinstance(out, np.ndarray)
             and out.dtype == np.float64
-            and out.flags.c_contiguous
+            and (out.flags.c_contiguous or out.shape == (nout, n))
             and out.flags.writeable
             and out.shape in ((nout,) + shape, shape if nout == 1 else None)
         ):
@@ -265,7 +269,8 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
                 f"out must be a writeable C-contiguous float64 array of shape {(nout,) + shape}, "
                 f"got {getattr(out, 'dtype', type(out).__name__)} of shape {getattr(out, 'shape', None)}"
             )
-        out = out.reshape(nout, n)
+        if out.shape != (nout, n):
+            out = out.reshape(nout, n)  # a view: out is C-contiguous here
     if n == 0:
         return out.reshape((nout,) + shape)
     # a function not marked @jitable (a user's model, say) can only run in Python

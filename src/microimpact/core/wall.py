@@ -23,8 +23,27 @@ from . import adhesion
 from ._jit import jitable
 from .models.thornton_ning_2016 import yield_point
 
-__all__ = ["sphere_mass", "contact_slip", "unit_normal", "approach_and_slip", "wall_impact", "WALL_FIELDS"]
+__all__ = [
+    "sphere_mass",
+    "contact_slip",
+    "unit_normal",
+    "approach_and_slip",
+    "wall_impact",
+    "WALL_FIELDS",
+    "NONE",
+    "ROLLING",
+    "SLIDING",
+    "STUCK",
+]
 
+#: ``regime`` of a particle not approaching the wall (passed through unchanged).
+NONE = 0.0
+#: ``regime`` of a particle whose contact point stopped slipping (within the Coulomb limit).
+ROLLING = 1.0
+#: ``regime`` of a particle that slid throughout (impulse at the Coulomb limit).
+SLIDING = 2.0
+#: ``regime`` of a particle that stuck (adhesion).
+STUCK = 3.0
 #: The results of :func:`wall_impact`, in order.
 WALL_FIELDS = (
     "vx",
@@ -35,9 +54,7 @@ WALL_FIELDS = (
     "wz",
     "restitution",
     "normal_speed",
-    "stuck",
-    "rolling",
-    "approaching",
+    "regime",
     "yield_velocity",
     "sticking_velocity",
 )
@@ -94,8 +111,12 @@ def wall_impact(vx, vy, vz, nx, ny, nz, wx, wy, wz, d, rho, E, p_y, G, mu, F):
     the wall; any length > 0), ``d`` [m] and ``rho`` [kg/m^3] the sphere's, ``E = E*`` [Pa],
     ``p_y`` [Pa] (``inf``: never yields), ``G`` [J/m^2] the work of adhesion, ``mu`` the friction
     coefficient, ``F`` the compliant impulse ratio or ``-1`` for the rigid-body impulse (module
-    docstring). Flags are 1.0 or 0.0.
+    docstring). ``regime`` is :data:`NONE`, :data:`ROLLING`, :data:`SLIDING` or :data:`STUCK`. A
+    zero normal gives NaN everywhere (the caller refuses it).
     """
+    if nx == 0.0 and ny == 0.0 and nz == 0.0:
+        nan = math.nan
+        return nan, nan, nan, nan, nan, nan, nan, nan, nan, nan, nan
     ux, uy, uz = unit_normal(nx, ny, nz)
     r = 0.5 * d
     m = sphere_mass(r, rho)
@@ -103,11 +124,11 @@ def wall_impact(vx, vy, vz, nx, ny, nz, wx, wy, wz, d, rho, E, p_y, G, mu, F):
     Vs = adhesion.sticking_velocity(G, E, r, m) if G > 0.0 else 0.0
     vn, tx, ty, tz, sx, sy, sz = contact_slip(vx, vy, vz, ux, uy, uz, wx, wy, wz, r)
     if not vn < 0.0:  # moving away (or along): no impact
-        return vx, vy, vz, wx, wy, wz, 1.0, 0.0, 0.0, 0.0, 0.0, Vy, Vs
+        return vx, vy, vz, wx, wy, wz, 1.0, 0.0, NONE, Vy, Vs
     V = -vn
     e, stuck = adhesion.restitution(V, Vy, Vs)
     if stuck == 1.0:
-        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, V, 1.0, 0.0, 1.0, Vy, Vs
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, V, STUCK, Vy, Vs
     jn = (1.0 + e) * V  # normal impulse / m
     slip = math.sqrt(sx * sx + sy * sy + sz * sz)
     limit = mu * jn  # Coulomb limit mu J_n / m
@@ -131,9 +152,7 @@ def wall_impact(vx, vy, vz, nx, ny, nz, wx, wy, wz, d, rho, E, p_y, G, mu, F):
         (ux * jy - uy * jx) * k + wz,
         e,
         V,
-        0.0,
-        1.0 if rolling else 0.0,
-        1.0,
+        ROLLING if rolling else SLIDING,
         Vy,
         Vs,
     )
