@@ -15,6 +15,8 @@ number and returns a Python ``float``.
 
 from __future__ import annotations
 
+import sys
+
 import numpy as np
 
 __all__ = [
@@ -44,13 +46,14 @@ def _as_float_array(name: str, value) -> np.ndarray:
         raise ValueError(f"{name} must be a number, got the boolean {value!r} (booleans are not numbers)")
     if isinstance(value, (str, bytes)):
         raise ValueError(f"{name} must be a number, got the text {_describe(value)}")
-    if np.ma.isMaskedArray(value):
-        if np.ma.is_masked(value):
+    ma = sys.modules.get("numpy.ma")  # no masked array can exist before numpy.ma is imported (6 ms)
+    if ma is not None and ma.isMaskedArray(value):
+        if ma.is_masked(value):
             raise ValueError(
-                f"{name} is a masked array with {int(np.ma.count_masked(value))} masked value(s): "
+                f"{name} is a masked array with {int(ma.count_masked(value))} masked value(s): "
                 "fill or drop them first (the mask would be ignored)"
             )
-        value = np.ma.getdata(value)
+        value = ma.getdata(value)
     try:
         raw = np.asarray(value)
     except (TypeError, ValueError):
