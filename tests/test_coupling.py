@@ -485,3 +485,30 @@ def test_throughput_shape_million():
     )
     assert out.velocity.shape == (N, 3) and out.spin.shape == (N, 3)
     assert math.isclose(out.approaching.mean(), 0.5, abs_tol=0.01)
+
+
+@pytest.mark.parametrize("normal", [[0.0, 0.0, 0.0], [[0.0, 0.0, 1.0], [0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]])
+def test_zero_normal_is_refused_whether_one_or_one_per_particle(normal):
+    """One zero normal among many is found by the core (NaN) and refused like a single one."""
+    v = [[0.0, 0.0, -5.0], [1.0, 0.0, -5.0], [-5.0, 0.0, 0.0]]
+    with pytest.raises(ValueError, match="normal must not be a zero vector"):
+        coupling.wall_interaction(v, normal, 5e-6, 1350.0, effective_modulus=1.31e9, limiting_pressure=156e6)
+
+
+def test_wall_reads_strided_columns_and_leaves_inputs_alone():
+    """Velocities given as a view with strides (a column block of a wider table) give the same
+    numbers as a contiguous copy, and no input array is written to."""
+    rng = np.random.default_rng(8)
+    table = rng.normal(0.0, 5.0, (200, 7))
+    table[:, 3] = -rng.uniform(1.0, 80.0, 200)
+    v = table[:, 1:4]  # strided rows
+    d = rng.uniform(1e-6, 1e-5, 200)
+    before = table.copy(), d.copy()
+    kw = dict(effective_modulus=1.31e9, limiting_pressure=156e6, friction=0.3)
+    a = coupling.wall_interaction(v, [0.0, 0.0, 1.0], d, 1350.0, **kw)
+    b = coupling.wall_interaction(np.ascontiguousarray(v), [0.0, 0.0, 1.0], d.copy(), 1350.0, **kw)
+    np.testing.assert_array_equal(a.velocity, b.velocity)
+    np.testing.assert_array_equal(a.spin, b.spin)
+    np.testing.assert_array_equal(a.restitution, b.restitution)
+    np.testing.assert_array_equal(table, before[0])
+    np.testing.assert_array_equal(d, before[1])
