@@ -111,9 +111,43 @@ def test_plot_history_draws_the_history():
         (["history", "50", "--n", "1"], "--n"),
         (["history", "50", "--n", "ten"], "--n"),
         (["history", "50", "--limiting-pressure", "-1"], "--limiting-pressure"),
+        (["history", "50", "--model", "nope"], "model must be one of"),
+        (["history", "50", "--model", "hertz_tsuji"], "damping_ratio"),
+        (["history", "50", "--model", "hertz_tsuji", "--param", "damping_ratio=0.2", "--method", "closed"], "ode"),
+        (["history", "50", "--param", "x=1"], "'x'"),
     ],
 )
 def test_bad_input_exits_2_with_one_line(argv, words, capsys):
     rc, out, err = run(argv, capsys)
     assert rc == 2 and out == ""
     assert err.count("\n") == 1 and words in err and err.startswith("microimpact history: error:")
+
+
+def test_other_models_are_integrated_with_their_own_force(tmp_path, capsys):
+    """--model/--param: the history of a DEM law, integrated; its rebound and contact time are the
+    model's closed form (pair.impact with the same model) and the plot names its stages plainly."""
+    csv, png = tmp_path / "h.csv", tmp_path / "h.png"
+    argv = ["history", "20", "--model", "hertz_tsuji", "--param", "damping_ratio=0.2", "--n", "301"]
+    rc, out, err = run(argv + ["--out", str(csv), "--plot", str(png)], capsys)
+    assert rc == 0 and "(ode, hertz_tsuji)" in out
+    data = np.genfromtxt(csv, delimiter=",", names=True)
+    closed = SILICON.impact(20.0, model="hertz_tsuji", damping_ratio=0.2, warn=False)
+    assert data["approach_velocity_ms"][-1] == pytest.approx(-float(closed.rebound_velocity), rel=1e-7)
+    assert data["time_s"][-1] == pytest.approx(float(closed.contact_time), rel=1e-7)
+    assert "model hertz_tsuji" in csv.read_text()
+
+
+def test_plot_history_names_plain_stages_for_other_models():
+    plt = pytest.importorskip("matplotlib.pyplot")
+    from microimpact.figures.history import plot_history
+
+    axes = plot_history(SILICON.history(20.0, n=51, model="hertz_tsuji", damping_ratio=0.2))
+    labels = [t.get_text() for t in axes[0].get_legend().get_texts()]
+    assert labels == ["loading", "unloading"]
+    assert axes[0].get_title().startswith("hertz_tsuji")
+    plt.close(axes[0].figure)
+    # LIGGGHTS' version of the seed's law keeps the seed's three stages
+    axes = plot_history(SILICON.history(50.0, n=51, model="liggghts_thornton_ning"))
+    labels = [t.get_text() for t in axes[0].get_legend().get_texts()]
+    assert labels == ["1: Hertz loading", "2: plastic loading", "3: elastic unloading"]
+    plt.close(axes[0].figure)

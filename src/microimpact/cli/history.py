@@ -11,7 +11,15 @@ import numpy as np
 
 from .._validation import check_velocity
 from ..io import check_memory
-from ._common import add_pair_arguments, check_outputs, pair_from_args, parse_float, show_progress
+from ._common import (
+    add_pair_arguments,
+    add_single_model_arguments,
+    check_outputs,
+    pair_from_args,
+    parse_float,
+    parse_params,
+    show_progress,
+)
 
 
 def register(sub) -> None:
@@ -19,7 +27,8 @@ def register(sub) -> None:
         "history",
         help="time history of one impact (approach, velocity, force, stage) as CSV, optionally plotted",
         description="Approach, approach velocity, contact force and stage from first contact to separation "
-        "for one impact, evaluated in closed form (or by integrating Newton's equation with --method ode). "
+        "for one impact, evaluated in closed form (or by integrating Newton's equation with --method ode; "
+        "other models than the seed's, --model, are always integrated with their own force law). "
         "Writes CSV with units in the header; --plot draws velocity, force and approach against time "
         "(seed Fig. 10).",
     )
@@ -42,9 +51,11 @@ def register(sub) -> None:
     p.add_argument(
         "--method",
         choices=["closed", "ode"],
-        default="closed",
-        help="closed form (default) or numerical integration of Newton's equation (cross-check)",
+        default=None,
+        help="closed form (the default for the seed's model) or numerical integration of Newton's equation "
+        "(a cross-check; the only way for the other models)",
     )
+    add_single_model_arguments(p, "see `microimpact impact --model list 1`")
     p.add_argument(
         "--quiet", "-q", action="store_true", help="no progress bar (shown for long histories on a terminal)"
     )
@@ -66,11 +77,11 @@ def _count(text: str) -> int:
 BYTES_PER_POINT = 400
 
 
-def _history(pair, V, n, method):
+def _history(pair, V, n, method, model, params):
     """The history, refusing speeds where double precision under- or overflows (no numpy warnings leak)."""
     with warnings.catch_warnings(), np.errstate(all="ignore"):
         warnings.simplefilter("ignore", RuntimeWarning)
-        history = pair.history(V, n=n, method=method)
+        history = pair.history(V, n=n, method=method, model=model, **params)
     cols = [history.time, history.approach, history.approach_velocity, history.force]
     scalars = [history.contact_time, history.max_force, history.rebound_velocity, history.max_approach]
     finite = all(bool(np.all(np.isfinite(c))) for c in cols) and all(math.isfinite(x) for x in scalars)
@@ -88,6 +99,13 @@ def run(args) -> int:
     if not V > 0:
         raise ValueError(f"velocity must be positive for a history (no contact at 0), got {V!r}")
     n = _count(args.n)
+    from ..core import models
+
+    module = models.get(args.model)  # ValueError naming the models when unknown
+    params = parse_params(args.param)
+    models.resolve_params(module, params)  # every input checked before anything is written
+    if args.method == "closed" and module.NAME != models.DEFAULT:
+        raise ValueError(f"--method closed is the seed's model only; {module.NAME} is integrated (--method ode)")
     if args.hertz and not args.plot:
         raise ValueError("--hertz draws into the plot: give --plot FILE.png with it")
     out = None if args.out == "-" else args.out
@@ -96,7 +114,7 @@ def run(args) -> int:
         raise ValueError(f"--out and --plot name the same file {args.out!r}")
     check_memory(n * BYTES_PER_POINT, f"--n {n}", "give a smaller --n")
     pair = pair_from_args(args)
-    history = _history(pair, V, n, args.method)
+    history = _history(pair, V, n, args.method, module.NAME, params)
     if args.plot:
         from ..figures.history import plot_history
         from ..io import save_figure
@@ -114,11 +132,13 @@ def run(args) -> int:
         history.to_csv(sys.stdout, progress=progress)
     else:
         history.to_csv(out, progress=progress)
+        method = args.method or ("closed" if module.NAME == models.DEFAULT else "ode")
         print(
-            f"wrote {len(history)} points ({args.method}) to {args.out}: t_c = {history.contact_time * 1e9:.5g} ns, "
+            f"wrote {len(history)} points ({method}, {module.NAME}) to {args.out}: "
+            f"t_c = {history.contact_time * 1e9:.5g} ns, "
             f"P* = {history.max_force:.5g} N, V_r = {history.rebound_velocity:.5g} m/s"
             + (f"; plot in {args.plot}" if args.plot else "")
         )
-    if bool(np.any(pair.impact(V, warn=False).large_strain)):
+    if bool(np.any(pair.impact(V, warn=False, model=module.NAME, **params).large_strain)):
         print("warning: the contact radius exceeds 0.3 R*: outside the model's small-strain range", file=sys.stderr)
     return 0

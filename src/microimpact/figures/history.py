@@ -20,6 +20,10 @@ __all__ = ["plot_history", "STAGE_COLORS"]
 #: Light fills of the three stages (Okabe & Ito colours: sky blue, orange, bluish green).
 STAGE_COLORS = {1: "#56B4E9", 2: "#E69F00", 3: "#009E73"}
 _STAGE_LABELS = {1: "1: Hertz loading", 2: "2: plastic loading", 3: "3: elastic unloading"}
+#: Stage names of the other models: their force laws have no Hertz/plastic/elastic stages.
+_GENERIC_STAGE_LABELS = {1: "loading", 3: "unloading"}
+#: Models whose stages are the seed's (Hertz loading, plastic loading, elastic unloading).
+_SEED_STAGES = ("thornton_ning_2016", "liggghts_thornton_ning")
 
 _PREFIXES = [
     (1e-15, "f"),
@@ -82,7 +86,8 @@ def plot_history(history, ax=None, *, show_stages=True, show_hertz=False, title=
         Panels for velocity, force and approach (top to bottom); default a new
         figure with three stacked panels sharing the time axis.
     show_stages : bool
-        Shade the three contact stages and mark their boundaries ``t1`` and ``t_L``.
+        Shade the three contact stages and mark their boundaries ``t1`` and ``t_L`` (the seed's
+        model and LIGGGHTS' version of it); for the other models, loading and unloading.
     show_hertz : bool
         Also draw, in the force panel, the Hertz force of the same approach during
         loading (the seed's Fig. 7 comparison,
@@ -121,7 +126,10 @@ def plot_history(history, ax=None, *, show_stages=True, show_hertz=False, title=
     V = float(_get(history, "velocity"))
     Vr = float(_get(history, "rebound_velocity"))
     a_p = float(_get(history, "plastic_approach"))
-    plastic = t1 < tL
+    model = history.get("model") if isinstance(history, dict) else getattr(history, "model", None)
+    seed_stages = model is None or model in _SEED_STAGES
+    labels = _STAGE_LABELS if seed_stages else _GENERIC_STAGE_LABELS
+    plastic = seed_stages and t1 < tL
 
     kws = {"color": "black", "linewidth": 1.3}
     kws.update(line_kws or {})
@@ -214,7 +222,7 @@ def plot_history(history, ax=None, *, show_stages=True, show_hertz=False, title=
                     fontsize=7,
                 )
             handles = [
-                Patch(facecolor=STAGE_COLORS[s], alpha=0.35, linewidth=0, label=_STAGE_LABELS[s]) for s, _, _ in spans
+                Patch(facecolor=STAGE_COLORS[s], alpha=0.35, linewidth=0, label=labels[s]) for s, _, _ in spans
             ]
             a_v.legend(
                 handles=handles,
@@ -235,6 +243,8 @@ def plot_history(history, ax=None, *, show_stages=True, show_hertz=False, title=
                 if isinstance(title, str)
                 else (f"$V$ = {V:.4g} m/s, $V_r$ = {Vr:.4g} m/s, $t_c$ = {tc * ts:.4g} {tunit}")
             )
+            if title is True and not seed_stages:
+                text = f"{model}\n{text}"
             a_v.set_title(text, fontsize=7.5, pad=12 if show_stages else 4)
         for a_ in axes:
             a_.minorticks_on()
