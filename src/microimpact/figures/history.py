@@ -221,9 +221,7 @@ def plot_history(history, ax=None, *, show_stages=True, show_hertz=False, title=
                     va="bottom",
                     fontsize=7,
                 )
-            handles = [
-                Patch(facecolor=STAGE_COLORS[s], alpha=0.35, linewidth=0, label=labels[s]) for s, _, _ in spans
-            ]
+            handles = [Patch(facecolor=STAGE_COLORS[s], alpha=0.35, linewidth=0, label=labels[s]) for s, _, _ in spans]
             a_v.legend(
                 handles=handles,
                 loc="lower left",
