@@ -194,3 +194,28 @@ def test_c_wall_function_matches_the_core_bitwise(tmp_path, G, mu):
         assert wall.ROLLING in seen
     if G > 1.0:
         assert wall.STUCK in seen
+
+
+def test_small_arrays_stay_in_python_only_while_that_is_cheap():
+    """In a new process a small array of the seed's outcome runs in Python (numba not even imported);
+    the same size of a model that integrates its equation of motion (~1 ms per element) is compiled,
+    and gives the numbers of the Python loop bit for bit."""
+    import subprocess
+    import sys
+
+    code = """
+import sys, numpy as np, microimpact as mi
+pair = mi.ContactPair.paper_case("silicon")
+V = np.linspace(1.0, 100.0, 1000)
+pair.impact(V, warn=False)
+print("numba" in sys.modules)
+a = pair.impact(V[:400], model="hertz_viscoelastic", dissipative_constant=1e-9, warn=False).restitution
+print("numba" in sys.modules)
+from microimpact.core import arrays
+from microimpact.core.models import hertz_viscoelastic as hv
+E, R, m, p = (np.float64(x) for x in pair._args)
+b = arrays.evaluate(hv.outcome, V[:400], E, R, m, p, nout=18, params=(1e-9, 1.0), backend="python")[4]
+print(bool(np.array_equal(a, b)))
+"""
+    out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True).stdout.split()
+    assert out == ["False", "True", "True"]

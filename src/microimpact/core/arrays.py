@@ -5,7 +5,9 @@ engines give bitwise the same numbers, because both run the very same source:
 
 * ``"python"``: a loop over the scalar function itself. Used for small arrays while numba is not
   yet imported in this process (importing numba costs ~0.35 s here, the loop ~1-3 us per element),
-  and whenever ``MICROIMPACT_BACKEND=python``.
+  unless one element, timed, shows that the loop would take longer than :data:`PYTHON_BUDGET`
+  (a model that integrates its equation of motion: ~1 ms per element); and whenever
+  ``MICROIMPACT_BACKEND=python``.
 * ``"numba"``: a loop generated once per function as a small Python file in a cache directory,
   compiled by numba with ``cache=True`` (so a new process loads machine code instead of compiling);
   every ``@jitable`` function of the core is registered with
@@ -37,7 +39,16 @@ import numpy as np
 
 from ._jit import JITABLE
 
-__all__ = ["evaluate", "backend_for", "BACKENDS", "SMALL", "PARALLEL_MIN", "PARALLEL_WORK", "cache_dir"]
+__all__ = [
+    "evaluate",
+    "backend_for",
+    "BACKENDS",
+    "SMALL",
+    "PARALLEL_MIN",
+    "PARALLEL_WORK",
+    "PYTHON_BUDGET",
+    "cache_dir",
+]
 
 #: Engines :func:`evaluate` can use.
 BACKENDS = ("numba", "python")
@@ -45,6 +56,9 @@ BACKENDS = ("numba", "python")
 SMALL = 4096
 #: From this many elements on, the compiled loop runs on all cores.
 PARALLEL_MIN = 50_000
+#: Estimated time [s] of the Python loop over a small array beyond which it is compiled instead
+#: (importing numba and loading a cached loop cost about 0.4 s).
+PYTHON_BUDGET = 0.25
 #: Estimated work [s] of one array from which threads are used below PARALLEL_MIN (never below 2048).
 PARALLEL_WORK = 2e-4
 _COST: dict = {}  # measured serial time per element [s] of each compiled loop
@@ -226,7 +240,9 @@ def _flat(arrays, shape):
     return n, flats, steps
 
 
-def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None, out=None) -> np.ndarray:
+def evaluate(
+    fn, *arrays, nout: int = 1, params=None, backend: str | None = None, out=None, costly: bool = False
+) -> np.ndarray:
     """Apply the scalar core function ``fn`` element by element over broadcast float arrays.
 
     Parameters
@@ -242,6 +258,9 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
         Passed unchanged as ``fn``'s last argument (a model's own parameters).
     backend : {"numba", "python"}, optional
         Default: :func:`backend_for` the number of elements.
+    costly : bool
+        ``fn`` takes milliseconds per element (an integration): compile it however small the array,
+        unless ``MICROIMPACT_BACKEND`` forces an engine.
     out : ndarray, optional
         Where to write the results: float64 of shape ``(nout,) + broadcast shape`` (for ``nout = 1``
         also the broadcast shape itself), C-contiguous unless it is 2-D ``(nout, n)`` (then any
@@ -274,7 +293,19 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
     if n == 0:
         return out.reshape((nout,) + shape)
     # a function not marked @jitable (a user's model, say) can only run in Python
-    engine = backend or (backend_for(n) if fn in JITABLE else "python")
+    if backend:
+        engine = backend
+    elif fn not in JITABLE:
+        engine = "python"
+    else:
+        engine = (_forced() or "numba") if costly else backend_for(n)
+        if engine == "python" and not _forced() and n > 8:
+            # A small array in Python only pays while the function is cheap: time one element (the
+            # same numbers either way) and compile when the loop would take longer than that.
+            t0 = time.perf_counter()
+            fn(*(float(f[0]) for f in flats), *((tuple(params),) if params is not None else ()))
+            if (time.perf_counter() - t0) * n > PYTHON_BUDGET:
+                engine = "numba"
     with_params = params is not None
     if engine == "numba":
         kinds = "".join("s" if s == 0 else "a" for s in steps)
