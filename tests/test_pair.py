@@ -223,3 +223,28 @@ def test_pair_restitution_fast_path_equals_full_result():
     assert float(pair.restitution(50.0)) == pytest.approx(
         float(full[V == 50.0][0]) if (V == 50.0).any() else float(pair.impact(50.0, warn=False).restitution), rel=1e-14
     )
+
+
+def test_result_and_pair_show_their_values_with_units():
+    """repr and the notebook table: every field, its unit, a single value or the range, flags counted."""
+    pair = mi.ContactPair.paper_case("silicon")
+    one = pair.impact(50.0, warn=False)
+    text = repr(one)
+    assert text.startswith("ImpactResult(1 impact: velocity = 50 m/s, restitution = 0.724814,")
+    assert "contact_time = 2.47611e-08 s" in text
+    many = pair.impact([5.0, 50.0, 100.0], warn=False)
+    e = many.restitution
+    assert f"3 impacts: velocity = 5 .. 100 m/s, restitution = {e.min():.6g} .. 1," in repr(many)
+    table = many._repr_html_()
+    from microimpact.core.quantities import OUTCOME_FIELDS
+
+    for name in OUTCOME_FIELDS:
+        assert f"<code>{name}</code>" in table
+    assert "<td>2 of 3</td>" in table  # large_strain: 50 and 100 m/s
+    assert "<td>1 of 3</td>" in table  # elastic: 5 m/s
+    empty = pair.impact(np.array([]), warn=False)
+    assert "(empty)" in empty._repr_html_()
+    card = pair._repr_html_()
+    assert "V_y" in card and f"{pair.yield_velocity:.6g}" in card and "kg/m^3" in card
+    elastic = pair.elastic_equivalent()
+    assert "V_y" not in elastic._repr_html_()  # p_y = inf: no yield point to show

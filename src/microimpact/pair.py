@@ -209,7 +209,10 @@ class ImpactResult:
     def __repr__(self) -> str:
         n = int(np.size(self.velocity))
         pick = {r[0]: r for r in self._rows()}
-        parts = [f"{k} = {pick[k][3]} {pick[k][1]}".rstrip() for k in ("velocity", "restitution", "contact_time")]
+        parts = [
+            f"{k} = {pick[k][3]}" + ("" if pick[k][1] == "1" else f" {pick[k][1]}")  # no unit for a ratio
+            for k in ("velocity", "restitution", "contact_time")
+        ]
         return f"ImpactResult({n} impact{'s' if n != 1 else ''}: " + ", ".join(parts) + ")"
 
     def _repr_html_(self) -> str:
