@@ -49,6 +49,8 @@ __all__ = [
     "unloading_time",
     "contact_times",
     "STAGE_NAMES",
+    "GENERIC_STAGE_NAMES",
+    "SEED_STAGE_MODELS",
     "HISTORY_COLUMNS",
     "HISTORY_SCALARS",
     "impact_history",
@@ -397,6 +399,10 @@ STAGE_NAMES = {
     2: "plastic loading (eq. 8)",
     3: "elastic unloading (eq. 10)",
 }
+#: Stage codes of a history of any other model (loading to the maximum approach, then unloading).
+GENERIC_STAGE_NAMES = {0: STAGE_NAMES[0], 1: "loading", 3: "unloading"}
+#: Models whose histories have the seed's stages (Hertz loading, plastic loading, elastic unloading).
+SEED_STAGE_MODELS = ("thornton_ning_2016", "liggghts_thornton_ning")
 
 #: Columns of a history: name -> (unit, description), from the one table of quantities.
 HISTORY_COLUMNS: dict[str, tuple[str, str]] = quantities.table(quantities.HISTORY_FIELDS)
@@ -736,10 +742,14 @@ class ImpactHistory:
         if self.model == _seed.NAME:
             comments = [f"microimpact impact history ({self.method}; seed eqs. 17-26)"]
         else:
-            comments = [f"microimpact impact history ({self.method}; model {self.model})"]
+            comments = [
+                f"microimpact impact history ({self.method}; model {self.model}; each quantity as this model "
+                "defines it, nan where it defines none; equation numbers are the seed's)"
+            ]
         for name, (unit, desc) in HISTORY_SCALARS.items():
             comments.append(f"{name} = {getattr(self, name):.17g} {unit}  ({desc})")
-        comments.append("stage: " + "; ".join(f"{k} = {v}" for k, v in STAGE_NAMES.items()))
+        stages = STAGE_NAMES if self.model in SEED_STAGE_MODELS else GENERIC_STAGE_NAMES
+        comments.append("stage: " + "; ".join(f"{k} = {v}" for k, v in stages.items()))
         columns = [(name, unit, getattr(self, name)) for name, (unit, _) in HISTORY_COLUMNS.items()]
         stage = columns[-1]
         columns[-1] = (stage[0], stage[1], np.asarray(stage[2]).astype(np.int64))

@@ -134,7 +134,10 @@ def test_other_models_are_integrated_with_their_own_force(tmp_path, capsys):
     closed = SILICON.impact(20.0, model="hertz_tsuji", damping_ratio=0.2, warn=False)
     assert data["approach_velocity_ms"][-1] == pytest.approx(-float(closed.rebound_velocity), rel=1e-7)
     assert data["time_s"][-1] == pytest.approx(float(closed.contact_time), rel=1e-7)
-    assert "model hertz_tsuji" in csv.read_text()
+    text = csv.read_text()
+    assert "model hertz_tsuji" in text and "equation numbers are the seed's" in text
+    assert "# stage: 0 = no contact" in text and "1 = loading; 3 = unloading" in text
+    assert set(np.unique(data["stage_1"]).astype(int)) <= {0, 1, 3}
 
 
 def test_plot_history_names_plain_stages_for_other_models():
