@@ -203,9 +203,9 @@ def universal_table(kappa, *, dpsi=0.025, psi_max=None, n_x=31, x_min=1e-3, step
     """The :class:`UniversalTable` of ``kappa`` (built on first use, then cached).
 
     Building integrates ``n_psi x n_x`` impacts (about 10^4, compiled: 3-4 s in a new process with
-    the compiled loop cached on disk), once per process. Its error against direct integration is below ``3e-3`` of ``mu
-    J_n`` (largest 2.96e-3, mean 6e-5, over random ``psi``, ``x`` and ``kappa`` in 0.65–1.2 in
-    ``tests/test_oblique.py``).
+    the compiled loop cached on disk), once per process. Its error against direct integration is
+    below ``3e-3`` of ``mu J_n`` (largest 2.96e-3, mean 6e-5, over random ``psi``, ``x`` and
+    ``kappa`` in 0.65–1.2 in ``tests/test_oblique.py``).
 
     Parameters
     ----------
