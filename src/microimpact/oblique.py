@@ -77,7 +77,7 @@ DEFAULT_STEPS = 400
 def _integrate(u0_hat, kappa, x, steps):
     """Final slip and regime of :func:`~microimpact.core.tangential.integrate_tangential` over arrays."""
     u0_hat, kappa, x = (np.asarray(a, dtype=float) for a in (u0_hat, kappa, x))
-    ur, rg = evaluate(tg.integrate_tangential, u0_hat, kappa, x, np.asarray(float(steps)), nout=2, costly=True)
+    ur, rg = evaluate(tg.integrate_tangential, u0_hat, kappa, x, np.asarray(float(steps)), nout=2)
     return ur, rg.astype(np.int8)
 
 

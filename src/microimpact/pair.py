@@ -947,13 +947,13 @@ class ContactPair:
         numpy scalar or ndarray
             Coefficient of restitution ``e`` [-], shaped like ``velocity``.
         """
-        if out is None and (type(velocity) is float or type(velocity) is int):  # one speed: the scalar core
+        if out is not None:
+            return impact.restitution_coefficient(velocity, self.yield_velocity, out=out)
+        if type(velocity) is float or type(velocity) is int:  # one speed: the core's scalar function itself
             V = float(velocity)
             if not 0.0 <= V < math.inf:
                 check_velocity("velocity", V)
             return np.float64(_seed.restitution_at(V, self.yield_velocity))
-        if out is not None:
-            return impact.restitution_coefficient(velocity, self.yield_velocity, out=out)
         return _scalar_or_array(impact.restitution_coefficient(velocity, self.yield_velocity))
 
     def ning_loading_time(self) -> float:

@@ -45,7 +45,6 @@ import numpy as np
 from ._validation import check_nonnegative, check_positive
 from .core import wall as _wall
 from .core.arrays import evaluate
-from .core.models.thornton_ning_2016 import yield_point as _yield_point
 from .materials import DEFAULT_K, Material, get_material
 from .materials import effective_modulus as _effective_modulus
 
@@ -126,11 +125,6 @@ def _per_particle(name, arr, n):
     if arr.ndim > 1 or (arr.ndim == 1 and arr.size not in (1, n)):
         raise ValueError(f"{name} must be a scalar or have one value per particle ({n}), got shape {arr.shape}")
     return np.broadcast_to(arr.reshape(-1) if arr.ndim else arr, (n,))
-
-
-def _cross(a, b):
-    """Cross product of component rows: ``a``, ``b`` shaped (3, ...)."""
-    return np.stack([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
 
 
 def _materials(material, n):
@@ -297,7 +291,7 @@ def wall_interaction(
             raise ValueError(f"spin must have one vector per particle ({N}), got {w.shape[0]}")
 
     # One particle's physics is core.wall.wall_impact (the C export is its copy); here only arrays,
-    # passed as columns (strided views, read in place) and filled into one (N, 13) table.
+    # passed as columns (strided views, read in place) and filled into one (N, 11) table.
     vT = tuple(v[:, j] for j in range(3))
     nT = tuple(nrm[:, j] if nrm.shape[0] == N else np.array(nrm[0, j]) for j in range(3))
     wT = (
@@ -306,10 +300,8 @@ def wall_interaction(
     if tangential == "rigid":
         F = np.array(-1.0)
     else:
-        V0, slip = evaluate(_wall.approach_and_slip, *vT, *nT, *wT, d, nout=2)
-        F = _compliant_impulse_ratio(
-            slip, V0, mu, d, rho, E, p_y, mats, wall_mat, poisson_ratio, effective_shear_modulus
-        )
+        V0, slip, Vy0 = evaluate(_wall.approach_and_slip, *vT, *nT, *wT, d, rho, E, p_y, nout=3)
+        F = _compliant_impulse_ratio(slip, V0, Vy0, mu, E, mats, wall_mat, poisson_ratio, effective_shear_modulus)
     table = np.empty((N, len(_wall.WALL_FIELDS)))
     out = evaluate(_wall.wall_impact, *vT, *nT, *wT, d, rho, E, p_y, G, mu, F, nout=table.shape[1], out=table.T)
     o = dict(zip(_wall.WALL_FIELDS, out))
@@ -337,7 +329,7 @@ def wall_interaction(
     )
 
 
-def _compliant_impulse_ratio(ut_mag, V, mu, d, rho, E, p_y, mats, wall_mat, poisson_ratio, effective_shear_modulus):
+def _compliant_impulse_ratio(ut_mag, V, Vy, mu, E, mats, wall_mat, poisson_ratio, effective_shear_modulus):
     """``|J_t| / (mu J_n)`` of the compliant model per particle, from the universal tables."""
     from .core.tangential import effective_shear_modulus as _gstar
     from .oblique import universal_table
@@ -364,7 +356,6 @@ def _compliant_impulse_ratio(ut_mag, V, mu, d, rho, E, p_y, mats, wall_mat, pois
         )
     F = np.zeros(n)
     approaching = V > 0.0
-    Vy = evaluate(_yield_point, E, 0.5 * d, evaluate(_wall.sphere_mass, 0.5 * d, rho)[0], p_y, nout=3)[2]
     with np.errstate(invalid="ignore", divide="ignore"):
         psi = np.where(approaching & (mu > 0.0), kappa * ut_mag / (mu * np.where(V > 0, V, 1.0)), 0.0)
         x = np.where(V > 0.0, Vy / np.where(V > 0, V, 1.0), 1.0)

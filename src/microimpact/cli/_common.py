@@ -142,42 +142,6 @@ def check_outputs(files=(), figures=(), directories=()) -> None:
             check_output_path(path, directory=True)
 
 
-def add_single_model_arguments(parser: argparse.ArgumentParser, note: str) -> None:
-    """``--model NAME`` and ``--param NAME=VALUE`` (repeatable), as ``impact`` and ``history`` take them."""
-    from ..core.models import DEFAULT
-
-    parser.add_argument(
-        "--model",
-        default=DEFAULT,
-        metavar="NAME",
-        help=f"impact model (default {DEFAULT}); `microimpact impact --model list 1` lists them",
-    )
-    parser.add_argument(
-        "--param",
-        action="append",
-        default=[],
-        metavar="NAME=VALUE",
-        help=f"a parameter of the model (repeat for several); {note}",
-    )
-
-
-def parse_params(items) -> dict:
-    """``["name=value", ...]`` as ``{name: float}``; ValueError naming ``--param`` and the item."""
-    out = {}
-    for item in items:
-        name, sep, value = item.partition("=")
-        name = name.strip()
-        if not sep or not name:
-            raise ValueError(f"--param must be NAME=VALUE, got {item!r}")
-        if name in out:
-            raise ValueError(f"--param {name} was given twice")
-        try:
-            out[name] = float(value)
-        except ValueError:
-            raise ValueError(f"--param {name} must be a number, got {value!r}") from None
-    return out
-
-
 def add_pair_arguments(parser: argparse.ArgumentParser) -> None:
     """Options naming a contact pair: a paper case, two materials, or effective values."""
     g = parser.add_argument_group(

@@ -12,12 +12,13 @@ import numpy as np
 from .._validation import check_velocity
 from ..io import check_memory
 from ._common import (
+    add_model_arguments,
     add_pair_arguments,
-    add_single_model_arguments,
     check_outputs,
     pair_from_args,
     parse_float,
-    parse_params,
+    parse_model_params,
+    parse_models,
     show_progress,
 )
 
@@ -55,7 +56,7 @@ def register(sub) -> None:
         help="closed form (the default for the seed's model) or numerical integration of Newton's equation "
         "(a cross-check; the only way for the other models)",
     )
-    add_single_model_arguments(p, "see `microimpact impact --model list 1`")
+    add_model_arguments(p, many=False)
     p.add_argument(
         "--quiet", "-q", action="store_true", help="no progress bar (shown for long histories on a terminal)"
     )
@@ -101,8 +102,12 @@ def run(args) -> int:
     n = _count(args.n)
     from ..core import models
 
-    module = models.get(args.model)  # ValueError naming the models when unknown
-    params = parse_params(args.param)
+    names = parse_models(args.model) or [models.DEFAULT]  # ValueError naming the models when unknown
+    if len(names) != 1:
+        raise ValueError(f"--model: a history is of one model, got {args.model!r}")
+    name = names[0]
+    module = models.get(name)
+    params = parse_model_params(args.param, [name]).get(name, {})
     models.resolve_params(module, params)  # every input checked before anything is written
     if args.method == "closed" and module.NAME != models.DEFAULT:
         raise ValueError(f"--method closed is the seed's model only; {module.NAME} is integrated (--method ode)")

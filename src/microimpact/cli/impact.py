@@ -12,7 +12,7 @@ from .._validation import check_velocity
 from ..core import models
 from ..io import write_json
 from ..pair import RESULT_FIELDS, LargeStrainWarning
-from ._common import add_pair_arguments, add_single_model_arguments, pair_from_args, parse_params, parse_values
+from ._common import add_pair_arguments, pair_from_args, parse_values
 
 #: Memory per speed [bytes]: 18 result arrays with their temporaries, and the JSON or table text.
 BYTES_PER_SPEED = 2000
@@ -44,9 +44,38 @@ def register(sub) -> None:
     )
     p.add_argument("velocities", nargs="+", metavar="V", help="impact speed(s) [m/s], e.g. 30 50 70 or 1:120:12")
     add_pair_arguments(p)
-    add_single_model_arguments(p, "fields a model does not define print as nan")
+    p.add_argument(
+        "--model",
+        default=models.DEFAULT,
+        metavar="NAME",
+        help=f"impact model (default {models.DEFAULT}); `microimpact impact --model list 1` lists them",
+    )
+    p.add_argument(
+        "--param",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="a parameter of the model (repeat for several); fields a model does not define print as nan",
+    )
     p.add_argument("--json", action="store_true", help="print JSON (SI units) instead of a table")
     p.set_defaults(func=run)
+
+
+def parse_params(items) -> dict:
+    """``["name=value", ...]`` as ``{name: float}``; ValueError naming ``--param`` and the item."""
+    out = {}
+    for item in items:
+        name, sep, value = item.partition("=")
+        name = name.strip()
+        if not sep or not name:
+            raise ValueError(f"--param must be NAME=VALUE, got {item!r}")
+        if name in out:
+            raise ValueError(f"--param {name} was given twice")
+        try:
+            out[name] = float(value)
+        except ValueError:
+            raise ValueError(f"--param {name} must be a number, got {value!r}") from None
+    return out
 
 
 def _fmt(value, scale, fmt):

@@ -26,9 +26,11 @@ STICKING_CONSTANT = 14.18
 def sticking_velocity(G, E, R, m):
     """``V_s = (14.18/m*)^(1/2) (G^5 R*^4 / E*^2)^(1/6)`` [m/s] (Thornton & Ning 1998); 0 without adhesion.
 
-    The integer powers as products (one ``pow`` left, the sixth root): the same bits in Python,
-    numba (which expands ``x**5`` into products itself) and C.
+    The integer powers as products (one ``pow`` left, the sixth root, skipped without adhesion): the
+    same bits in Python, numba (which expands ``x**5`` into products itself) and C.
     """
+    if not G > 0.0:
+        return 0.0
     g2 = G * G
     return math.sqrt(STICKING_CONSTANT / m) * (g2 * g2 * G * ((R * R) * (R * R)) / (E * E)) ** (1.0 / 6.0)
 

@@ -62,6 +62,7 @@ PYTHON_BUDGET = 0.25
 #: Estimated work [s] of one array from which threads are used below PARALLEL_MIN (never below 2048).
 PARALLEL_WORK = 2e-4
 _COST: dict = {}  # measured serial time per element [s] of each compiled loop
+_PY_COST: dict = {}  # measured time of one Python call [s] of each function
 
 _CORE = Path(__file__).resolve().parent
 _KERNELS: dict = {}
@@ -240,9 +241,7 @@ def _flat(arrays, shape):
     return n, flats, steps
 
 
-def evaluate(
-    fn, *arrays, nout: int = 1, params=None, backend: str | None = None, out=None, costly: bool = False
-) -> np.ndarray:
+def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None, out=None) -> np.ndarray:
     """Apply the scalar core function ``fn`` element by element over broadcast float arrays.
 
     Parameters
@@ -258,9 +257,6 @@ def evaluate(
         Passed unchanged as ``fn``'s last argument (a model's own parameters).
     backend : {"numba", "python"}, optional
         Default: :func:`backend_for` the number of elements.
-    costly : bool
-        ``fn`` takes milliseconds per element (an integration): compile it however small the array,
-        unless ``MICROIMPACT_BACKEND`` forces an engine.
     out : ndarray, optional
         Where to write the results: float64 of shape ``(nout,) + broadcast shape`` (for ``nout = 1``
         also the broadcast shape itself), C-contiguous unless it is 2-D ``(nout, n)`` (then any
@@ -298,13 +294,16 @@ def evaluate(
     elif fn not in JITABLE:
         engine = "python"
     else:
-        engine = (_forced() or "numba") if costly else backend_for(n)
+        engine = backend_for(n)
         if engine == "python" and not _forced() and n > 8:
-            # A small array in Python only pays while the function is cheap: time one element (the
-            # same numbers either way) and compile when the loop would take longer than that.
-            t0 = time.perf_counter()
-            fn(*(float(f[0]) for f in flats), *((tuple(params),) if params is not None else ()))
-            if (time.perf_counter() - t0) * n > PYTHON_BUDGET:
+            # A small array in Python only pays while the function is cheap: time one element once
+            # per function (the same numbers either way) and compile when the loop would take longer.
+            cost = _PY_COST.get(fn)
+            if cost is None:
+                t0 = time.perf_counter()
+                fn(*(float(f[0]) for f in flats), *((tuple(params),) if params is not None else ()))
+                cost = _PY_COST[fn] = time.perf_counter() - t0
+            if cost * n > PYTHON_BUDGET:
                 engine = "numba"
     with_params = params is not None
     if engine == "numba":

@@ -112,8 +112,13 @@ HERTZ_TIME_CONSTANT = 0.8 * BETA_25_12 * (15.0 / 16.0) ** 0.4
 
 
 @jitable
-def _horner(coeffs, k, x):
-    """Piece ``k`` of a :mod:`~microimpact.core.hertz_beta_table` table at ``x`` in ``[-1, 1]`` (Horner's rule)."""
+def _piece(coeffs, t):
+    """A :mod:`~microimpact.core.hertz_beta_table` table at ``t`` (``u`` or ``s``): Horner's rule on
+    the piece holding ``t``, in its local variable ``x = 2 t/WIDTH - (2k + 1)`` in ``[-1, 1]`` (formed
+    with powers of two only: exact)."""
+    y = t * (2.0 / WIDTH)
+    k = min(int(y * 0.5), PIECES - 1)
+    x = y - (2.0 * k + 1.0)
     base = k * (DEGREE + 1)
     r = coeffs[base + DEGREE]
     for j in range(DEGREE - 1, -1, -1):
@@ -139,21 +144,14 @@ def hertz_beta_scaled(u):
 
 @jitable
 def hertz_beta_scaled_u(u):
-    """``G(u)`` (:func:`hertz_beta_scaled`) for ``0 <= u < U_SPLIT``, from the pieces in ``u``.
-
-    The local variable is formed with powers of two only (``x = 32 u - (2k + 1)``), exact.
-    """
-    y = u * (2.0 / WIDTH)
-    k = min(int(y * 0.5), PIECES - 1)
-    return _horner(U_COEFFS, k, y - (2.0 * k + 1.0))
+    """``G(u)`` (:func:`hertz_beta_scaled`) for ``0 <= u < U_SPLIT``, from the pieces in ``u``."""
+    return _piece(U_COEFFS, u)
 
 
 @jitable
 def hertz_beta_scaled_s(s):
     """``G(1 - s^2)`` (:func:`hertz_beta_scaled`) for ``0 <= s <= (1 - U_SPLIT)^(1/2)``, from the pieces in ``s``."""
-    y = s * (2.0 / WIDTH)
-    k = min(int(y * 0.5), PIECES - 1)
-    return _horner(S_COEFFS, k, y - (2.0 * k + 1.0))
+    return _piece(S_COEFFS, s)
 
 
 @jitable

@@ -96,11 +96,14 @@ def unit_normal(nx, ny, nz):
 
 
 @jitable
-def approach_and_slip(vx, vy, vz, nx, ny, nz, wx, wy, wz, d):
-    """``(V, |u_t|)``: normal impact speed (0 if not approaching) and slip speed [m/s], as :func:`wall_impact` sees them."""
+def approach_and_slip(vx, vy, vz, nx, ny, nz, wx, wy, wz, d, rho, E, p_y):
+    """``(V, |u_t|, V_y)``: normal impact speed (0 if not approaching), slip speed and yield velocity
+    [m/s], as :func:`wall_impact` sees them (what the compliant impulse ratio is looked up with)."""
     ux, uy, uz = unit_normal(nx, ny, nz)
-    vn, tx, ty, tz, sx, sy, sz = contact_slip(vx, vy, vz, ux, uy, uz, wx, wy, wz, 0.5 * d)
-    return (-vn if vn < 0.0 else 0.0), math.sqrt(sx * sx + sy * sy + sz * sz)
+    r = 0.5 * d
+    vn, tx, ty, tz, sx, sy, sz = contact_slip(vx, vy, vz, ux, uy, uz, wx, wy, wz, r)
+    Vy = yield_point(E, r, sphere_mass(r, rho), p_y)[2]
+    return (-vn if vn < 0.0 else 0.0), math.sqrt(sx * sx + sy * sy + sz * sz), Vy
 
 
 @jitable
@@ -121,7 +124,7 @@ def wall_impact(vx, vy, vz, nx, ny, nz, wx, wy, wz, d, rho, E, p_y, G, mu, F):
     r = 0.5 * d
     m = sphere_mass(r, rho)
     Vy = yield_point(E, r, m, p_y)[2]
-    Vs = adhesion.sticking_velocity(G, E, r, m) if G > 0.0 else 0.0
+    Vs = adhesion.sticking_velocity(G, E, r, m)
     vn, tx, ty, tz, sx, sy, sz = contact_slip(vx, vy, vz, ux, uy, uz, wx, wy, wz, r)
     if not vn < 0.0:  # moving away (or along): no impact
         return vx, vy, vz, wx, wy, wz, 1.0, 0.0, NONE, Vy, Vs

@@ -56,9 +56,9 @@ def plastic_stage(v, dv):
     """Normalised outcome of a plastic impact at ``v = V/V_y > 1``, ``dv = v - 1`` (eqs. 22, 14, 11, 9, 27).
 
     Returns ``(A, Phat, alpha_p_hat, R_p_hat, e)``: ``alpha*/alpha_y`` (eq. 22), ``P*/P_y`` (eq. 14),
-    ``alpha_p/alpha_y`` (eq. 11), ``R_p/R*`` (eq. 9) and the restitution coefficient (eq. 27). All are
-    computed from ``q = s/v = ((24 - 4/v^2)/5)^(1/2)``, with ``s = 2 P*/P_y``, so that nothing
-    overflows before ``v`` does.
+    ``alpha_p/alpha_y`` (eq. 11), ``R_p/R*`` (eq. 9) and the restitution coefficient (eq. 27, by
+    :func:`restitution`). All are computed from ``q = s/v = ((24 - 4/v^2)/5)^(1/2)``, with
+    ``s = 2 P*/P_y``, so that nothing overflows before ``v`` does.
 
     ``alpha_p_hat = A - Phat/A^(1/2)`` cancels as ``v -> 1`` (both terms tend to 1; it vanishes as
     ``(v - 1)^2``). Below ``v = 2`` it is computed from the identity
@@ -70,14 +70,13 @@ def plastic_stage(v, dv):
     A = (1.0 + v * q) / 3.0
     Phat = 0.5 * v * q
     sqA = math.sqrt(A)
-    e = 0.5 * q / math.sqrt(sqA)  # P^*/(alpha^*^(1/4) v) with the v cancelled
     if dv < 1.0:
         s = v * q
         d = 24.0 * dv * (v + 1.0) / (5.0 * (s + 2.0))  # s - 2
         ap = d * d * (4.0 * s + 1.0) / (108.0 * (A * sqA + Phat) * sqA)
     else:
         ap = max(A - Phat / sqA, 0.0)
-    return A, Phat, ap, A * sqA / Phat, e
+    return A, Phat, ap, A * sqA / Phat, restitution(v)
 
 
 @jitable
@@ -94,12 +93,15 @@ def normalized_outcome(v):
     return plastic_stage(v, v - 1.0)
 
 
+_THIRD = 1.0 / 3.0
+
+
 @jitable
 def restitution(v):
     """Restitution coefficient at ``v = V/V_y`` [-] (eq. 27): 1 for ``v <= 1``, 0 at ``v = inf``.
 
-    The operations of :func:`plastic_stage` with two divisions instead of four (``/5`` and ``/3``
-    as products; the last bit can differ from there), written without early returns (the formula on
+    ``e = P^/(A^(1/4) v) = (q/2) (3/(1 + v q))^(1/4)``, with ``/5`` and ``/3`` as products (two
+    divisions), written without early returns (the formula on
     ``max(v, 1)``, then a select) so that the compiled loop vectorises: at ``v = 1`` it gives 1
     exactly (``q = 2``, ``A = 1``) and at ``v = inf`` it gives 0 (``A = inf``).
     """
@@ -107,9 +109,6 @@ def restitution(v):
     q = math.sqrt((24.0 - 4.0 / (vp * vp)) * 0.2)
     e = 0.5 * q / math.sqrt(math.sqrt((1.0 + vp * q) * _THIRD))
     return e if v > 1.0 else 1.0
-
-
-_THIRD = 1.0 / 3.0
 
 
 @jitable
@@ -191,9 +190,9 @@ def outcome(V, E, R, m, p_y, params):
         e = 0.0
         max_approach = max_force = plastic = R_p = recovery = inf
     else:
-        A, Phat, ap_hat, Rp_hat, _ = plastic_stage(v, (V - Vy) / Vy)
-        e = restitution(v)  # the restitution-only path's very operations: the same bits
+        A, Phat, ap_hat, Rp_hat, e = plastic_stage(v, (V - Vy) / Vy)
         # elastic recovery alpha* - alpha_p = alpha* P*/F_e (eq. 11) = alpha_y P^/A^(1/2): no cancellation
+        # (not A R*/R_p: A^(3/2) in R_p overflows two hundred decades before A does)
         recovery = a_y * min(Phat / math.sqrt(A), A)
         max_approach = a_y * A
         max_force = P_y * Phat
