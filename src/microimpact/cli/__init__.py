@@ -203,5 +203,23 @@ def main(argv=None) -> int:
     return int(rc or 0)
 
 
+def console_main() -> int:
+    """The ``microimpact`` command (and ``python -m microimpact``): :func:`main`, then exit.
+
+    After an interrupt the process ends at once, once :func:`main` has returned (every output is
+    cleaned up by then): it does not wait for worker threads of a chunked sweep that may still hold
+    queued blocks (dask's pool finishes its queue at exit), which could keep a SIGTERM'd run alive.
+    """
+    rc = main()
+    if rc in (128 + signal.SIGINT, 128 + signal.SIGTERM):
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError):
+                pass
+        os._exit(rc)
+    return rc
+
+
 if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
+    sys.exit(console_main())
