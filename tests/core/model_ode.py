@@ -42,7 +42,11 @@ def _run(model, V, E, R, m, p_y, params, ts, rtol):
     def rhs2(t, y):
         return [y[1], -f(y[0] * xs, y[1] * V, amax, E, R, m, p_y, params) * c]
 
-    sep = model.separation_approach(E, R, m, p_y, params) / xs if hasattr(model, "separation_approach") else 0.0
+    sep = (
+        model.separation_approach(E, R, m, p_y, params) / xs
+        if getattr(model, "separation_approach", None) is not None
+        else 0.0
+    )
 
     def zero_overlap(t, y):
         return y[0] - sep

@@ -16,6 +16,7 @@ import sys
 
 import numpy as np
 
+from .. import models
 from .._validation import check_positive
 from ..core import quantities
 from ..materials import PAPER_CASES, list_materials
@@ -176,7 +177,7 @@ def run(args) -> int:
         # velocity always becomes a dimension; other inputs only when two or more values are given
         values[dest] = v if (v.size > 1 or dest == "velocity") else float(v[0])
     names = parse_models(args.model)
-    params = parse_model_params(args.param, names or ["thornton_ning_2016"])
+    params = parse_model_params(args.param, names or [models.DEFAULT])
     npoints = int(np.prod([np.size(v) for v in values.values()])) * len(names or [0])
     if kind == ".csv":  # about 20 numbers of about 22 characters per row
         _check_disk(out, npoints * 520)
