@@ -46,11 +46,15 @@ __all__ = [
     "STYLE",
     "COMPARE_OPTIONS",
     "LAMMPS_TANGENTIAL",
+    "I_RESTITUTION",
+    "I_CONTACT_TIME",
     "restitution_of_yield_velocity",
 ]
 
-_E = OUTCOME_FIELDS.index("restitution")
-_TC = OUTCOME_FIELDS.index("contact_time")
+#: Position of ``restitution`` in an outcome tuple.
+I_RESTITUTION = OUTCOME_FIELDS.index("restitution")
+#: Position of ``contact_time`` in an outcome tuple.
+I_CONTACT_TIME = OUTCOME_FIELDS.index("contact_time")
 
 #: The tangential part of LAMMPS ``pair_coeff`` lines: no tangential force (a normal impact).
 LAMMPS_TANGENTIAL = "tangential linear_nohistory 0.0 0.0"
@@ -66,7 +70,7 @@ def run(model, velocity, pair_values, params):
     E, R, m, p_y = pair_values
     p = tuple(float(x) for x in params)
     rows = [model.outcome(float(v), E, R, m, p_y, p) for v in np.atleast_1d(velocity)]
-    return np.array([r[_E] for r in rows]), np.array([r[_TC] for r in rows])
+    return np.array([r[I_RESTITUTION] for r in rows]), np.array([r[I_CONTACT_TIME] for r in rows])
 
 
 def limit_force_option(value, law) -> float:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from ..core.models import hertz_tsuji as law
-from ._base import _E, LAMMPS_TANGENTIAL, limit_force_option
+from ._base import I_RESTITUTION, LAMMPS_TANGENTIAL, limit_force_option
 
 __all__ = ["STYLE", "calibrate", "lammps", "liggghts"]
 
@@ -26,7 +26,7 @@ def calibrate(pair_values, velocity, target_restitution, target_contact_time, *,
     e_t = float(target_restitution.mean())
 
     def f(a):
-        return law.outcome(1.0, E, R, m, p_y, (a, limit))[_E] - e_t
+        return law.outcome(1.0, E, R, m, p_y, (a, limit))[I_RESTITUTION] - e_t
 
     if e_t == 1.0:
         return (0.0, limit)
@@ -38,7 +38,7 @@ def calibrate(pair_values, velocity, target_restitution, target_contact_time, *,
 
 
 def lammps(cal):
-    """``hertz 4/3E* e_n ... damping coeff_restitution`` with the ``e_n`` that gives ``alpha_T``."""
+    """LAMMPS ``pair_coeff`` arguments: ``hertz`` with damping ``coeff_restitution`` at the ``e_n`` that gives ``alpha_T``."""
     p = cal.as_dict()
     k_n = 4.0 / 3.0 * cal.effective_modulus
     lim = " limit_damping" if p["limit_force"] == 1.0 else ""

@@ -65,7 +65,7 @@ def _dissipative_constant(V, e_t, limit, pv):
 
 
 def lammps(cal):
-    """``hertz 4/3E* eta_n0 ... damping viscoelastic`` with ``eta_n0 = 4 E* A/(3 m*)``."""
+    """LAMMPS ``pair_coeff`` arguments: ``hertz`` with damping ``viscoelastic``, ``eta_n0 = 4 E* A/(3 m*)``."""
     p = cal.as_dict()
     A = p["dissipative_constant"]
     k_n = 4.0 / 3.0 * cal.effective_modulus

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ..core.models import linear_spring_dashpot as law
-from ._base import _E, _TC, LAMMPS_TANGENTIAL, limit_force_option
+from ._base import I_CONTACT_TIME, I_RESTITUTION, LAMMPS_TANGENTIAL, limit_force_option
 
 __all__ = ["STYLE", "calibrate", "lammps", "liggghts"]
 
@@ -25,7 +25,7 @@ def calibrate(pair_values, velocity, target_restitution, target_contact_time, *,
     if limit == 1.0:
         # e(e_n) with the force clipped: increasing in e_n, from its value at e_n -> 0 to 1
         def f(en):
-            return law.outcome(1.0, E, R, m, p_y, (1.0, en, 1.0))[_E] - e_t
+            return law.outcome(1.0, E, R, m, p_y, (1.0, en, 1.0))[I_RESTITUTION] - e_t
 
         lo = 1e-300
         if f(lo) > 0.0:
@@ -36,13 +36,14 @@ def calibrate(pair_values, velocity, target_restitution, target_contact_time, *,
         e_n = 1.0 if e_t == 1.0 else brentq(f, lo, 1.0, xtol=1e-300, rtol=1e-15, maxiter=500)
     else:
         e_n = e_t
-    t1 = law.outcome(1.0, E, R, m, p_y, (1.0, e_n, limit))[_TC]
+    t1 = law.outcome(1.0, E, R, m, p_y, (1.0, e_n, limit))[I_CONTACT_TIME]
     return ((t1 / t_t) ** 2, e_n, limit)
 
 
 def lammps(cal):
-    """``hooke k e_n ... damping coeff_restitution`` (LAMMPS ``doc/src/pair_granular.rst``), with the
-    legacy ``pair_style gran/hooke`` line (``gamma_n = eta/m*``) as a comment."""
+    """LAMMPS ``pair_coeff`` arguments: ``hooke`` with damping ``coeff_restitution``.
+
+    As in LAMMPS ``doc/src/pair_granular.rst``, with the legacy ``pair_style gran/hooke`` line (``gamma_n = eta/m*``) as a comment."""
     p = cal.as_dict()
     k, e = p["stiffness"], p["restitution"]
     lim = " limit_damping" if p["limit_force"] == 1.0 else ""

@@ -64,7 +64,9 @@ def calibrate(
 
 
 def liggghts(cal, poisson, wall):
-    """``plasticity_depth > 0``: ``gran model hooke/hysteresis``, whose ``k1`` comes from
+    """LIGGGHTS lines of Luding's law: ``gran model hooke/hysteresis``.
+
+    Needs ``plasticity_depth > 0``. Its ``k1`` comes from
     ``youngsModulus``/``poissonsRatio`` and ``characteristicVelocity``
     (``kn = 16/15 R^(1/2) Y* (15 m v_c^2/(16 R^(1/2) Y*))^(1/5)``, ``src/normal_model_hooke.h``),
     here ``youngsModulus = 2 (1 - nu^2) E*`` so that ``Y* = E*``, and ``v_c`` solved for ``k1``;

@@ -22,7 +22,7 @@ that this module states so that their *actual* ``e`` can be computed:
   (a fit by Marshall 2009, as printed in the LAMMPS documentation of 2 Sep 2026).
 
 ``e`` and the contact time come from integrating the scaled equation
-``x'' = -(x^(3/2) + kappa x^(1/4) x')`` with the integrator of :mod:`.hertz_viscoelastic`
+``x'' = -(x^(3/2) + kappa x^(1/4) x')`` with the integrator of :mod:`~microimpact.core.models.hertz_viscoelastic`
 (``kappa = alpha_T (4/3)^(1/2) (rho X^(1/2) T^2 / m*)^(1/2) ...`` reduces to the constant
 ``kappa = alpha_T (4/3)^(1/2) / (4/3)^(1/2) = alpha_T``: with ``rho = 4/3 E* R*^(1/2)`` the scaled
 damping coefficient is exactly ``alpha_T``, for every speed and pair; derived here).
