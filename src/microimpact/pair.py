@@ -843,13 +843,16 @@ class ContactPair:
             values = mod.outcome(V, *self._args, p)
             res = ImpactResult._of_one(values)
             flagged = values[_LARGE] == 1.0
+            vmin = V
         else:
             V = check_velocity("velocity", velocity)
             out = impact.outcome_arrays(mod, V, *(np.float64(a) for a in self._args), p)
             res = ImpactResult._trusted({k: _scalar_or_array(v) for k, v in out.items()})
             flagged = res.any_large_strain
+            vmin = None
         if warn and flagged:
-            vmin = np.min(np.asarray(res.velocity)[np.asarray(res.large_strain)])
+            if vmin is None:
+                vmin = np.min(np.asarray(res.velocity)[np.asarray(res.large_strain)])
             warnings.warn(
                 f"contact radius exceeds {LARGE_STRAIN_RATIO} R* from V = {vmin:.4g} m/s: "
                 "outside the small-strain range of the model (results flagged in .large_strain)",
