@@ -8,6 +8,7 @@ delegates to the vectorized functions of :mod:`microimpact.contact`,
 
 from __future__ import annotations
 
+import functools
 import html
 import math
 import warnings
@@ -758,20 +759,26 @@ class ContactPair:
         return replace(self, limiting_pressure=math.inf, label=(self.label + " (elastic)").strip())
 
     # ----------------------------------------------------------------- yield point
+    @functools.cached_property
+    def _yield_point(self):
+        # the core's scalar function, once per pair (the pair is frozen): pair.restitution(50.0) paid
+        # for it at every call
+        return _seed.yield_point(*self._args)
+
     @property
     def yield_velocity(self) -> float:
         """``V_y`` [m/s], the speed below which impacts are elastic (eq. 28, general energy form)."""
-        return _seed.yield_point(*self._args)[2]  # the core's scalar function: no array round trip
+        return self._yield_point[2]
 
     @property
     def yield_approach(self) -> float:
         """``alpha_y`` [m] (eq. 5)."""
-        return _seed.yield_point(*self._args)[0]
+        return self._yield_point[0]
 
     @property
     def yield_force(self) -> float:
         """``P_y`` [N] (eq. 7)."""
-        return _seed.yield_point(*self._args)[1]
+        return self._yield_point[1]
 
     @property
     def yield_contact_radius(self) -> float:
