@@ -147,6 +147,37 @@ class Calibration:
         """``{parameter name: value}``."""
         return dict(zip(self.names, self.params))
 
+    @classmethod
+    def of(cls, pair, model: str, params: dict, velocity=50.0) -> Calibration:
+        """A :class:`Calibration` of given parameters (no fit): to print or run a law chosen by hand.
+
+        ``params`` maps the law's parameter names to values (missing ones take the model's
+        defaults; a missing one without a default is a ValueError naming it); ``velocity`` [m/s]
+        is where ``restitution`` and ``contact_time`` are evaluated (targets: the seed's there).
+        """
+        if model not in DEM_MODELS:
+            raise ValueError(f"model must be one of {', '.join(DEM_MODELS)}; got {model!r}")
+        mod = _models.get(model)
+        names = tuple(p[0] for p in mod.PARAMETERS)
+        values = _models.resolve_params(mod, dict(params))
+        pv = _pair_values(pair)
+        V = _speeds(velocity)
+        e_c, t_c = _run(model, V, pv, values)
+        seed_e, seed_t = _run(_models.DEFAULT, V, pv, ())
+        return cls(
+            model=model,
+            params=values,
+            names=names,
+            velocity=V,
+            target_restitution=seed_e,
+            restitution=e_c,
+            target_contact_time=seed_t,
+            contact_time=t_c,
+            effective_modulus=pv[0],
+            effective_radius=pv[1],
+            effective_mass=pv[2],
+        )
+
     # ------------------------------------------------------------------ LAMMPS
     def lammps(
         self, wall: str = "zplane 0.0 NULL", damping: str = "coeff_restitution", tsuji_sqrt2: bool = False

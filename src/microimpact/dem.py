@@ -149,6 +149,8 @@ class Deck:
         Radius [m] and mass [kg] of each particle.
     predicted_restitution, predicted_contact_time : float
         The law's ``e`` [-] and contact time [s] at ``velocity``.
+    record : str
+        Name of the file the run writes its per-step record to (in its working directory).
     """
 
     text: str
@@ -163,6 +165,7 @@ class Deck:
     mass: float
     predicted_restitution: float
     predicted_contact_time: float
+    record: str = "record.txt"
 
 
 def predict(calibration, velocity: float) -> tuple[float, float]:
@@ -199,6 +202,7 @@ def deck(
     geometry: str = "wall",
     time_step: float | None = None,
     steps_per_contact: int = _DEFAULT_STEPS,
+    record: str = "record.txt",
     **options,
 ) -> Deck:
     """A complete input deck of one impact that runs the printed lines of ``calibration`` in ``code``.
@@ -219,6 +223,8 @@ def deck(
         Time step [s]; default: the law's contact time at ``velocity`` over ``steps_per_contact``.
     steps_per_contact : int
         Steps per contact time when ``time_step`` is not given (default 5000).
+    record : str
+        File name of the per-step record the run writes (time, positions, velocities, force).
     **options
         Passed to the printing method (e.g. ``damping="tsuji"`` for LAMMPS).
 
@@ -234,6 +240,8 @@ def deck(
     _check_code(code)
     if geometry not in GEOMETRIES:
         raise ValueError(f"geometry must be one of {', '.join(GEOMETRIES)}; got {geometry!r}")
+    if not (isinstance(record, str) and record and all(c.isalnum() or c in "._-" for c in record)):
+        raise ValueError(f"record must be a plain file name (letters, digits, '._-'), got {record!r}")
     V = _speed(velocity)
     if isinstance(steps_per_contact, bool) or not isinstance(steps_per_contact, (int, np.integer)):
         raise ValueError(f"steps_per_contact must be an integer >= 20, got {steps_per_contact!r}")
@@ -320,14 +328,14 @@ def deck(
         f"timestep {dt!r}",
         "variable v0 equal step*dt",
         *(f"variable v{i} equal {v}" for i, v in enumerate(out_vars, start=1)),
-        f'fix rec all print 1 "{names}" file record.txt screen no {title}',
+        f'fix rec all print 1 "{names}" file {record} screen no {title}',
         f"run {steps}",
     ]
     head = [
         f"# microimpact: one {'sphere-wall' if geometry == 'wall' else 'sphere-sphere'} impact at {V!r} m/s, "
         f"{calibration.model} as printed by Calibration.{code}()",
         f"# time step {dt!r} s = predicted contact time {t_p!r} s / {t_p / dt:.6g}; predicted e = {e_p!r}",
-        f"# run: {'lmp' if code == 'lammps' else 'liggghts'} -in <this file>  (writes record.txt: t, "
+        f"# run: {'lmp' if code == 'lammps' else 'liggghts'} -in <this file>  (writes {record}: t, "
         + ", ".join(out_vars)
         + ")",
     ]
@@ -345,6 +353,7 @@ def deck(
         mass=mass,
         predicted_restitution=e_p,
         predicted_contact_time=t_p,
+        record=record,
     )
 
 
@@ -424,7 +433,7 @@ def run(d: Deck, executable: str | None = None, *, keep: str | os.PathLike | Non
             tail = "\n".join(out.strip().splitlines()[-6:])
             raise RuntimeError(f"{d.code} stopped with an error (exit {proc.returncode}):\n{tail}")
         recs = []
-        for line in (work / "record.txt").read_text().splitlines():
+        for line in (work / d.record).read_text().splitlines():
             parts = line.split()
             try:
                 recs.append([float(p) for p in parts])
