@@ -366,7 +366,7 @@ def plot_report(ds, axes=None, *, reference=None):
     ax.set_xlabel("particle diameter d [um]")
     ax.set_ylabel("fraction of injected particles [-]")
     ax.set_ylim(-0.02, 1.02)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="center right")
     ax.grid(alpha=0.3)
     for ax, key, unit in (
         (axes[1], "speed", "normal impact speed [m/s]"),
