@@ -94,7 +94,9 @@ def test_jackson_green_eq_27_at_the_switch():
         B = 0.14 * math.exp(23 * Y0 / E0)
         a = R0 * math.pi * C * Y0 / (2 * E0) * math.sqrt(1.9 * (1.9 / 1.9) ** B)
         H = 2.84 - 0.92 * (1 - math.cos(math.pi * a / R0))
-        by_hand = math.exp(-0.25 * 1.9 ** (5 / 12)) * 1.9**1.5 + 4 * H / C * (1 - math.exp(-(1.9 ** (5 / 9)) / 25)) * 1.9
+        by_hand = (
+            math.exp(-0.25 * 1.9 ** (5 / 12)) * 1.9**1.5 + 4 * H / C * (1 - math.exp(-(1.9 ** (5 / 9)) / 25)) * 1.9
+        )
         F = fl.jg_plastic_force(1.9, E0, R0, Y0, nu)
         assert F / fl.jg_critical_force(E0, R0, Y0, nu) == pytest.approx(by_hand, rel=1e-14)
         ratios[nu] = F / hertz.force(1.9 * dc, E0, R0)
@@ -255,7 +257,9 @@ def test_validity_flags():
     speeds = [V1 * 10.0**k for k in (0.5, 1, 1.5, 2, 2.5, 3)]
     for V in speeds:
         o = fields(jg, V, E0, R0, M0, 1e9, p)
-        assert o["large_strain"] == (1.0 if (o["max_approach"] > 0.05 * R0 or o["max_contact_radius"] > 0.3 * R0) else 0.0)
+        assert o["large_strain"] == (
+            1.0 if (o["max_approach"] > 0.05 * R0 or o["max_contact_radius"] > 0.3 * R0) else 0.0
+        )
     assert any(fields(jg, V, E0, R0, M0, 1e9, p)["large_strain"] == 1.0 for V in speeds)
     ok = fields(ke, 3 * _switch_speed(ke, 1, E0, R0, M0, (Y0, 0.3))[0], E0, R0, M0, 1e9, (Y0, 0.3))
     assert ok["large_strain"] == 0.0  # E/Y = 367
