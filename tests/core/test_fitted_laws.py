@@ -311,3 +311,27 @@ def test_ode_across_the_jumps(mod, law, x):
     assert abs(o["restitution"] - d["restitution"]) < 1e-8
     for k in ("max_approach", "max_force", "loading_time", "contact_time"):
         assert rel(o[k], d[k]) < 1e-8, (k, o[k], d[k])
+
+
+def test_available_to_fit_and_compare():
+    """fit_restitution recovers the yield strength that made the data; compare_models takes the laws
+    by name with their parameters."""
+    import numpy as np
+
+    import microimpact as mi
+
+    pair = mi.ContactPair.from_materials("steel", "steel", 10e-6)
+    V = np.geomspace(0.05, 5.0, 8)
+    e = np.asarray(pair.impact(V, model=ke.NAME, yield_strength=3e8, warn=False).restitution)
+    fit = mi.fitting.fit_restitution(
+        V, e, pair, params=["yield_strength"], model=ke.NAME, model_params={"yield_strength": 1.5e8}
+    )
+    assert fit.params["yield_strength"] == pytest.approx(3e8, rel=1e-9)
+    ds = mi.compare_models(
+        pair,
+        [0.05, 0.5],
+        models=[jg.NAME, ke.NAME],
+        params={jg.NAME: {"yield_strength": 3e8}, ke.NAME: {"yield_strength": 3e8}},
+    )
+    assert list(ds["model"].values) == [jg.NAME, ke.NAME]
+    assert np.all(ds["restitution"].values < 1.0)
