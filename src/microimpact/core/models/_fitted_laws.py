@@ -402,26 +402,37 @@ def signed_force(law, alpha, alpha_max, E, R, Y, nu, twin):
 
 @jitable
 def max_approach(law, V, E, R, m, Y, nu, twin):
-    """Maximum approach [m] of an impact at ``V`` beyond the switch: ``int_0^alpha* P = m* V^2/2`` (Newton's method;
-    the loading work is convex, so the iterates fall monotonically onto the root after the first)."""
+    """Maximum approach [m] of an impact at ``V`` beyond the switch: ``int_0^alpha* P = m* V^2/2``.
+
+    Newton's method on the loading work (convex where the force grows: the iterates then fall
+    monotonically onto the root after the first), kept inside a bracket that every iterate
+    narrows (bisection where a step would leave it); the work at each iterate from the last one's
+    by one short quadrature.
+    """
     a1 = switch_approach(law, E, R, Y, nu, twin)
     K = 0.5 * m * V * V
+    lo = a1
+    hi = math.inf
     a = hertz.max_approach(V, E, R, m)
     if a <= a1:
         a = a1 * (1.0 + 1e-9)
     W = loading_work(law, 0.0, a, E, R, Y, nu, twin)
-    for _ in range(200):
+    for _ in range(400):
+        if W > K:
+            hi = a
+        elif W < K:
+            lo = a
+        else:
+            return a
         nxt = a - (W - K) / loading_force(law, a, E, R, Y, nu, twin)
-        if nxt <= a1:
-            nxt = 0.5 * (a + a1)
+        if not (lo < nxt < hi):
+            nxt = 0.5 * (lo + hi) if hi < math.inf else 2.0 * a
         if abs(nxt - a) <= 4e-16 * a:
             return nxt
-        # the work at the next iterate from the work here (one short quadrature, not from zero)
-        W = (
-            W + loading_work(law, a, nxt, E, R, Y, nu, twin)
-            if nxt > a
-            else W - loading_work(law, nxt, a, E, R, Y, nu, twin)
-        )
+        if nxt > a:
+            W += loading_work(law, a, nxt, E, R, Y, nu, twin)
+        else:
+            W -= loading_work(law, nxt, a, E, R, Y, nu, twin)
         a = nxt
     return a
 

@@ -27,7 +27,9 @@ laws' critical interferences agree to 0.08 %.)
 
 **Unloading** (Etsion, Kligerman & Kadin 2005, Int. J. Solids Struct.) as the public code
 ``tmd-lab/microslip-rough-contact`` ``ROUTINES/FRIC_MODELS/PLASTIC/SPHERE_PLASTIC_PRE2.m``
-(@21706045, "Elastic Unloading (From Etsion Paper)") writes it: Hertzian from ``(omega*, P*)``
+(@21706045, "Elastic Unloading (From Etsion Paper)") writes it, and its ``TESTS/
+test_plastic_contact_unload.m`` labels it "Etsion et al.: based on am", taken from Jackson,
+Green & Marghitu's (2010) prediction of the coefficient of restitution: Hertzian from ``(omega*, P*)``
 with the contact radius ``a*`` of the loading kept continuous, residual interference
 ``delta_bar = omega* (1 - 3 P*/(4 E* a* omega*))`` and radius ``R_bar = 4 E* a*^3/(3 P*)``. The
 paper's own empirical fits of the unloading curve and of the residual interference were not in
