@@ -32,6 +32,7 @@ import numpy as np
 
 from .. import hertz
 from .._jit import jitable
+from ..constants import LARGE_STRAIN_RATIO
 from ..special import BETA_25_12
 from .thornton_ning_2016 import elastic_stage_time
 
@@ -540,7 +541,7 @@ def impact(law, V, E, R, m, Y, nu, twin, a_limit):
         astar = hertz.max_approach(V, E, R, m)
         half = 0.4 * BETA_25_12 * hertz.time_scale(V, E, R, m)
         a = math.sqrt(R * astar)
-        large = 1.0 if a / R > 0.3 else 0.0
+        large = 1.0 if a / R > LARGE_STRAIN_RATIO else 0.0
         return (V, Vy, V / Vy, 1.0, 1.0, V, astar, 0.0, hertz.force(astar, E, R), R, 0.0, a, large, half, 0.0,
                 half, half, 2.0 * half)  # fmt: skip
     astar = max_approach(law, V, E, R, m, Y, nu, twin)
@@ -549,7 +550,7 @@ def impact(law, V, E, R, m, Y, nu, twin, a_limit):
     t2 = plastic_loading_time(law, a1, astar, E, R, m, Y, nu, twin)
     tL = t1 + t2
     Wu = unloading_work(astar, d, Rb, E)
-    large = 1.0 if (a / R > 0.3 or astar > a_limit) else 0.0
+    large = 1.0 if (a / R > LARGE_STRAIN_RATIO or astar > a_limit) else 0.0
     WL = loading_work(law, 0.0, astar, E, R, Y, nu, twin)  # = m* V^2/2 to rounding
     if Wu > WL:  # retraces the loading: e = 1
         return (V, Vy, V / Vy, 0.0, 1.0, V, astar, 0.0, P, n, 0.0, a, large, t1, t2, tL, tL, 2.0 * tL)

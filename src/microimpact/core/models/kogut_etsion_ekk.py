@@ -50,7 +50,8 @@ where the published unloading would return more work than the loading stored, th
 as reversible and unloads along its loading curve (``e = 1``, ``plastic_approach = 0``,
 ``unloading_radius`` NaN, ``elastic`` 0), in :func:`outcome` and :func:`force` alike. ``e`` is
 continuous at the band's end, ``x = 1.50`` for every pair (the laws are scale-free), reached at
-1.66 times the speed that reaches ``omega_c``.
+1.66 times the speed that reaches ``omega_c``. The later jumps show in ``e(V)``: for steel on steel (``nu = 0.29``)
+``e`` jumps up by 0.008 where ``omega*`` crosses ``6 omega_c`` and by 0.037 at ``110 omega_c``.
 
 **Parameters of this model** (``params``, in this order):
 
