@@ -26,6 +26,7 @@ arrays of the calibration speeds' shape, to calibrate to measurements or another
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -33,7 +34,7 @@ import numpy as np
 from . import models as _models
 from .core.quantities import OUTCOME_FIELDS
 
-__all__ = ["Calibration", "calibrate", "calibrate_all", "DEM_MODELS"]
+__all__ = ["Calibration", "CalibrationWarning", "calibrate", "calibrate_all", "DEM_MODELS"]
 
 
 #: The DEM laws: the models whose face has a calibration of its own (at import; models added later
@@ -86,6 +87,34 @@ def _run(model, V, pv, params):
     return run(_models.get(model), V, pv, params)
 
 
+class CalibrationWarning(UserWarning):
+    """The calibrated law matches the target at the calibration speeds but behaves unlike it elsewhere
+    (its ``e(V)`` rises and falls between a tenth of the lowest and ten times the highest speed)."""
+
+
+def _check_monotonic(model, params, V, pv):
+    """Warn (:class:`CalibrationWarning`) when the law's ``e(V)`` is not monotonic from ``min(V)/10`` to ``10 max(V)``."""
+    grid = np.geomspace(float(np.min(V)) / 10.0, float(np.max(V)) * 10.0, 41)
+    e, _ = _run(model, grid, pv, params)
+    ok = np.isfinite(e)
+    g, e = grid[ok], e[ok]
+    d = np.diff(e)
+    tol = 1e-9
+    if (d > tol).any() and (d < -tol).any():
+        sign = np.sign(d[np.abs(d) > tol])
+        first = sign[0]
+        k = int(np.flatnonzero(np.sign(d) == -first)[0])  # the first step the other way: e turns at g[k]
+        way = ("falls", "rises") if first < 0 else ("rises", "falls")
+        warnings.warn(
+            f"the calibrated {model} law's e(V) is not monotonic: it {way[0]} from {e[0]:.4g} at {g[0]:.4g} m/s "
+            f"to {e[k]:.4g} at {g[k]:.4g} m/s, then {way[1]} ({e[-1]:.4g} at {g[-1]:.4g} m/s); it was calibrated "
+            f"at {', '.join(f'{v:.4g}' for v in np.atleast_1d(V)[:5])} m/s and does not follow the target "
+            "away from there",
+            CalibrationWarning,
+            stacklevel=3,
+        )
+
+
 @dataclass(frozen=True)
 class Calibration:
     """Inputs of one DEM contact law matched to a target ``e(V)`` (see :func:`calibrate`).
@@ -124,8 +153,41 @@ class Calibration:
         """``{parameter name: value}``."""
         return dict(zip(self.names, self.params))
 
+    @classmethod
+    def of(cls, pair, model: str, params: dict, velocity=50.0) -> Calibration:
+        """A :class:`Calibration` of given parameters (no fit): to print or run a law chosen by hand.
+
+        ``params`` maps the law's parameter names to values (missing ones take the model's
+        defaults; a missing one without a default is a ValueError naming it); ``velocity`` [m/s]
+        is where ``restitution`` and ``contact_time`` are evaluated (targets: the seed's there).
+        """
+        if model not in DEM_MODELS:
+            raise ValueError(f"model must be one of {', '.join(DEM_MODELS)}; got {model!r}")
+        mod = _models.get(model)
+        names = tuple(p[0] for p in mod.PARAMETERS)
+        values = _models.resolve_params(mod, dict(params))
+        pv = _pair_values(pair)
+        V = _speeds(velocity)
+        e_c, t_c = _run(model, V, pv, values)
+        seed_e, seed_t = _run(_models.DEFAULT, V, pv, ())
+        return cls(
+            model=model,
+            params=values,
+            names=names,
+            velocity=V,
+            target_restitution=seed_e,
+            restitution=e_c,
+            target_contact_time=seed_t,
+            contact_time=t_c,
+            effective_modulus=pv[0],
+            effective_radius=pv[1],
+            effective_mass=pv[2],
+        )
+
     # ------------------------------------------------------------------ LAMMPS
-    def lammps(self, wall: str = "zplane 0.0 NULL") -> str:
+    def lammps(
+        self, wall: str = "zplane 0.0 NULL", damping: str = "coeff_restitution", tsuji_sqrt2: bool = False
+    ) -> str:
         """LAMMPS input lines (``units si``) for this law: ``pair_style granular`` + ``pair_coeff`` and
         the matching ``fix wall/gran granular`` for a flat wall (``wall``: its wallstyle arguments).
 
@@ -134,8 +196,29 @@ class Calibration:
         friction, ``limit_damping``) and ``doc/src/fix_wall_gran.rst``; the normal model's arguments
         and a comment line come from the model's face (``lammps``). A law LAMMPS has no normal model
         for (the hysteretic spring): ValueError.
+
+        ``damping="tsuji"`` (Marshall's polynomial; for the laws whose face takes it, Hertz with
+        Tsuji's damping): the ``e_n`` printed is then the one whose ``alpha_T`` is the law's for the
+        LAMMPS version: ``tsuji_sqrt2=False`` (default) for LAMMPS 22 Jul 2025 and earlier, ``True``
+        for the development source that multiplies the polynomial by ``2^(1/2)``
+        (:func:`microimpact.core.models.hertz_tsuji.alpha_tsuji`).
         """
-        coeff, legacy = _models.face(self.model).lammps(self)
+        if damping not in ("coeff_restitution", "tsuji"):
+            raise ValueError(f"damping must be 'coeff_restitution' or 'tsuji', got {damping!r}")
+        if not isinstance(tsuji_sqrt2, bool):
+            raise ValueError(f"tsuji_sqrt2 must be True or False, got {tsuji_sqrt2!r}")
+        face = _models.face(self.model)
+        if damping == "coeff_restitution":
+            coeff, legacy = face.lammps(self)
+        else:
+            import inspect
+
+            takes = [n for n in DEM_MODELS if "damping" in inspect.signature(_models.face(n).lammps).parameters]
+            if self.model not in takes:
+                raise ValueError(
+                    f"damping='tsuji' is for model {' or '.join(map(repr, takes))} only, not {self.model!r}"
+                )
+            coeff, legacy = face.lammps(self, damping=damping, tsuji_sqrt2=tsuji_sqrt2)
         return "\n".join(
             [
                 f"# {self.model}: {', '.join(f'{n} = {v:.12g}' for n, v in zip(self.names, self.params))}",
@@ -208,6 +291,14 @@ def calibrate(
     ValueError
         Unknown model, bad speed or option (named), or a target the law cannot reach.
 
+    Warns
+    -----
+    CalibrationWarning
+        When the calibrated law's ``e(V)`` is not monotonic between a tenth of the lowest and ten
+        times the highest calibration speed: Luding's law with ``plasticity=True`` (LIGGGHTS'
+        ``hooke/hysteresis`` runs show the same, it is the law's), whose ``e`` rises again once the
+        largest overlap passes the plasticity depth, while the seed's keeps falling.
+
     Examples
     --------
     >>> import microimpact as mi
@@ -238,6 +329,7 @@ def calibrate(
         raise ValueError(f"target_contact_time must be positive and finite, got {float(t_t[bad][0])!r}")
     params = face.calibrate(pv, V, e_t, t_t, **options)
     e_c, t_c = _run(model, V, pv, params)
+    _check_monotonic(model, params, V, pv)
     return Calibration(
         model=model,
         params=tuple(float(p) for p in params),

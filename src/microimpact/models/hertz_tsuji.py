@@ -37,14 +37,35 @@ def calibrate(pair_values, velocity, target_restitution, target_contact_time, *,
     return (brentq(f, 0.0, hi, xtol=1e-16, rtol=1e-15, maxiter=500), limit)
 
 
-def lammps(cal):
-    """LAMMPS ``pair_coeff`` arguments: ``hertz`` with damping ``coeff_restitution`` at the ``e_n`` that gives ``alpha_T``."""
+def lammps(cal, damping="coeff_restitution", tsuji_sqrt2=False):
+    """LAMMPS ``pair_coeff`` arguments: ``hertz`` with damping ``coeff_restitution`` (or ``tsuji``) at the ``e_n`` that gives ``alpha_T``."""
     p = cal.as_dict()
     k_n = 4.0 / 3.0 * cal.effective_modulus
     lim = " limit_damping" if p["limit_force"] == 1.0 else ""
+    if damping == "tsuji":
+        e_n = _tsuji_input(p["damping_ratio"], tsuji_sqrt2)
+        coeff = f"hertz {k_n:.12g} {e_n:.12g} {LAMMPS_TANGENTIAL} damping tsuji{lim}"
+        return coeff, "# damping tsuji: eta_n = alpha_T (m* k_nd)^(1/2), alpha_T = Marshall's polynomial of e_n" + (
+            " times 2^(1/2) (LAMMPS development source after July 2026)"
+            if tsuji_sqrt2
+            else " (LAMMPS 22 Jul 2025 and earlier)"
+        )
     e_n = law.code_restitution(p["damping_ratio"])
     coeff = f"hertz {k_n:.12g} {e_n:.12g} {LAMMPS_TANGENTIAL} damping coeff_restitution{lim}"
     return coeff, "# coeff_restitution with hertz: eta_n = alpha_T (m* k_nd)^(1/2), k_nd = 4/3 E* a"
+
+
+def _tsuji_input(alpha, sqrt2):
+    """The ``e_n`` LAMMPS' ``damping tsuji`` turns into ``alpha`` (Marshall's polynomial decreases on [0, 1])."""
+    from scipy.optimize import brentq
+
+    lo, hi = law.alpha_tsuji(1.0, sqrt2), law.alpha_tsuji(0.0, sqrt2)
+    if not lo <= alpha <= hi:
+        raise ValueError(
+            f"damping tsuji cannot give damping_ratio {alpha!r}: its e_n in [0, 1] covers {lo:.6g} to {hi:.6g}; "
+            "use damping='coeff_restitution'"
+        )
+    return brentq(lambda x: law.alpha_tsuji(x, sqrt2) - alpha, 0.0, 1.0, xtol=1e-15, rtol=1e-15, maxiter=500)
 
 
 def liggghts(cal, poisson, wall):
@@ -63,5 +84,5 @@ def liggghts(cal, poisson, wall):
         f"fix m2 all property/global poissonsRatio peratomtype {poisson:.12g}",
         f"fix m3 all property/global coefficientRestitution peratomtypepair 1 {e_n:.12g}",
         "fix m4 all property/global coefficientFriction peratomtypepair 1 0.0",
-        f"fix wall all wall/gran model hertz tangential no_history limitForce {lim} primitive type 1 {wall}",
+        f"fix wall all wall/gran model hertz tangential no_history primitive type 1 {wall} limitForce {lim}",
     ]

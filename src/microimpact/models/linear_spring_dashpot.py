@@ -66,5 +66,6 @@ def liggghts(cal, poisson, wall):
         f"fix m2 all property/global kt peratomtypepair 1 {2.0 / 7.0 * k:.12g}",
         f"fix m3 all property/global gamman peratomtypepair 1 {gamma_n:.12g}",
         "fix m4 all property/global gammat peratomtypepair 1 0.0",
-        f"fix wall all wall/gran model hooke/stiffness tangential no_history limitForce {lim} primitive type 1 {wall}",
+        "fix m5 all property/global coefficientFriction peratomtypepair 1 0.0",
+        f"fix wall all wall/gran model hooke/stiffness tangential no_history primitive type 1 {wall} limitForce {lim}",
     ]
