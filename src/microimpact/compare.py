@@ -290,12 +290,11 @@ def dem_input_lines(ds, pair=None, params=None) -> dict:
             continue
         given = dict(params.get(n, {}))
         if bool(cal_flag):
-            options = {"limit_force": int(given["limit_force"])} if "limit_force" in given else {}
+            face = _models.face(n)
+            options = {**face.COMPARE_OPTIONS, **{k: given[k] for k in face.options if k in given}}
             with warnings.catch_warnings():  # compare_models warned already
                 warnings.simplefilter("ignore", _calibrate.CalibrationWarning)
-                cal = _calibrate.calibrate(
-                    pair, n, float(ds.attrs["reference_velocity"]), plasticity=(n == "luding_hysteretic"), **options
-                )
+                cal = _calibrate.calibrate(pair, n, float(ds.attrs["reference_velocity"]), **options)
         else:
             cal = _calibrate.Calibration.of(pair, n, given)
         texts = {}

@@ -221,7 +221,7 @@ def _dem_decks(args, pair, codes):
     """``(velocity, decks, skipped)``: every deck checked and built before anything is written."""
     import warnings
 
-    from .. import dem
+    from .. import dem, models
     from ..calibrate import DEM_MODELS, CalibrationWarning, calibrate
 
     Vy = pair.yield_velocity
@@ -238,7 +238,7 @@ def _dem_decks(args, pair, codes):
     for model in DEM_MODELS:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", CalibrationWarning)
-            cal = calibrate(pair, model, V, plasticity=(model == "luding_hysteretic"))
+            cal = calibrate(pair, model, V, **models.face(model).COMPARE_OPTIONS)
         note = "; ".join(str(w.message) for w in caught)
         for code in codes:
             for geometry in dem.GEOMETRIES:
