@@ -41,7 +41,7 @@ def _switch_speed(mod, law, E, R, m, params):
 
 @pytest.mark.parametrize("mod", [jg, ke], ids=lambda m: m.NAME)
 def test_contract(mod):
-    assert mod.NAME in models.available() and models.get(mod.NAME) is mod
+    assert mod.NAME in models.available() and models.get(mod.NAME).module is mod
     assert len(mod.DEFAULTS) == len(mod.PARAMETERS)
     assert math.isnan(mod.DEFAULTS[0])  # the yield strength has no default
     assert models.parameters(mod.NAME)["poisson_ratio"][2] == 0.3
