@@ -17,6 +17,7 @@ import numpy as np
 
 from ._validation import check_nonnegative, check_positive
 from .adhesion import STICKING_CONSTANT, adhesive_restitution, sticking_velocity
+from .core.tangential import stiffness_ratio, stiffness_ratio_same_poisson
 
 __all__ = [
     "restitution_table",
@@ -228,7 +229,7 @@ _C_TEMPLATE = r"""/*
  *   normal:     the elastic-plastic restitution e_p(V/V_y) of Aerosol Sci. Tech. 50(4):321 (2016),
  *               eqs. 22, 27, 28, with the adhesive loss of Thornton & Ning (1998):
  *               e^2 = e_p^2 - (V_s/V)^2, stick when e_p V <= V_s,
- *               V_s = (14.18/m)^(1/2) (G^5 R^4 / E*^2)^(1/6), G = work of adhesion
+ *               V_s = (14.1844/m)^(1/2) (G^5 R^4 / E*^2)^(1/6), G = work of adhesion
  *               (NOT the surface energy per surface: G = 2 gamma for identical surfaces);
  *   tangential: rigid-body Coulomb impulse model of a solid sphere (I = 2/5 m r^2):
  *               rolling (slip stopped, J_t = -2m/7 u_t) if |J_t| <= mu J_n, else sliding.
@@ -525,12 +526,12 @@ def _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus):
         Gs = float(check_positive("effective_shear_modulus", effective_shear_modulus))
         if math.isinf(Gs):
             raise ValueError(f"effective_shear_modulus must be finite, got {effective_shear_modulus!r}")
-        return 4.0 * Gs / E  # as wall_interaction: 4 G*/E* with the E* in use
+        return stiffness_ratio(Gs, E)  # as wall_interaction: 4 G*/E* with the E* in use
     if poisson_ratio is not None:
         from ._validation import check_poisson
 
         nu = float(check_poisson("poisson_ratio", poisson_ratio, scalar=True))
-        return 2.0 * (1.0 - nu) / (2.0 - nu)
+        return stiffness_ratio_same_poisson(nu)
     if pair is None or getattr(pair, "particle", None) is None or getattr(pair, "surface", None) is None:
         raise ValueError(
             "tangential='mindlin' needs poisson_ratio=..., effective_shear_modulus=... or a pair built from materials"

@@ -136,7 +136,9 @@ def hertz_contact_time(velocity, effective_modulus, effective_radius, effective_
     return evaluate(hertz.contact_time, V, E, R, m)[0]
 
 
-def deresiewicz_contact_time(velocity, effective_modulus, effective_radius, effective_mass, constant=2.87):
+def deresiewicz_contact_time(
+    velocity, effective_modulus, effective_radius, effective_mass, constant=_special.HERTZ_TIME_CONSTANT_PRINTED
+):
     """Deresiewicz's (1968) elastic contact time, ``t_c = 2.87 (m*^2/(R* E*^2 V))^(1/5)`` [s] (seed eq. 30).
 
     ``constant`` is the seed's printed 2.87 by default; the exact value is
@@ -549,7 +551,7 @@ def impact_history(
     elastic = bool(out["elastic"])
     a_star, a_p, P_star, V_r = out["max_approach"], out["plastic_approach"], out["max_force"], out["rebound_velocity"]
     alpha_m = float(elastic_max_approach(V, E, R, m))
-    T_m = 0.4 * BETA_25_12 * alpha_m / V  # time of a purely elastic impact to reach alpha_m
+    T_m = hertz.rise_time(alpha_m, V)  # time of a purely elastic impact to reach alpha_m
 
     t = _time_grid(n, times, (t1, t_L), t_c)
     stage = _stage_of(t, t1, t_L, t_c)
@@ -841,7 +843,7 @@ def integrate_impact(
     T = L / V  # time scale
     F = m * V**2 / L  # force scale
 
-    def hertz(a):
+    def hertz_force(a):
         return float(contact.hertz_force(max(a, 0.0), E, R))
 
     def plastic_force(a):
@@ -850,7 +852,7 @@ def integrate_impact(
     def make_rhs(force):
         return lambda t, y: [y[1], -force(L * y[0]) / F]
 
-    tm_elastic = 0.4 * BETA_25_12  # scaled time of the elastic loading
+    tm_elastic = hertz.rise_time(1.0, 1.0)  # scaled time of the elastic loading
     nfev = 0
     pieces = []
 
@@ -860,12 +862,12 @@ def integrate_impact(
         x_y = float(contact.yield_approach(p_y, E, R)) / L
         events.append(_event(lambda t, y: y[0] - x_y, 1))
     pc, which, t_ev, y_ev, nf = _integrate_phase(
-        make_rhs(hertz), 0.0, [0.0, 1.0], 1.2 * tm_elastic, events, method, rtol, atol
+        make_rhs(hertz_force), 0.0, [0.0, 1.0], 1.2 * tm_elastic, events, method, rtol, atol
     )
     pieces += [(a, b, s, 1) for a, b, s in pc]
     nfev += nf
     t1 = t_ev
-    loading_force = hertz
+    loading_force = hertz_force
     if which == 1:
         # Stage 2: plastic loading until rest.
         y_ev[0] = x_y  # the event's own state, exactly on the boundary
@@ -929,7 +931,7 @@ def integrate_impact(
     approach, vel = _free_flight(t, V, T * t_c, a_p, V_r)
     force = np.zeros_like(t)
     tau = t / T
-    force_of = {1: hertz, 2: plastic_force, 3: unloading}
+    force_of = {1: hertz_force, 2: plastic_force, 3: unloading}
     for k in (1, 2, 3):
         idx = np.flatnonzero(stage == k)
         for a, b, sol, st in pieces:

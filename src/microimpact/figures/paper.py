@@ -33,7 +33,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy import optimize
 
 from .. import contact
 from ..pair import ContactPair
@@ -132,8 +131,9 @@ def _groups(table, key):
 def large_strain_velocity(pair) -> float:
     """Impact speed [m/s] above which the contact radius exceeds ``0.3 R*`` (small strain ends).
 
-    Found by root finding on ``pair.impact(V).max_contact_radius / R* - 0.3``;
-    ``inf`` if not reached below 1e6 m/s.
+    The seed's model in closed form
+    (:func:`~microimpact.core.models.thornton_ning_2016.large_strain_velocity`);
+    ``inf`` if above 1e6 m/s.
 
     Parameters
     ----------
@@ -150,17 +150,9 @@ def large_strain_velocity(pair) -> float:
     >>> round(large_strain_velocity(ContactPair.paper_case("silicon")), 1)
     23.3
     """
-    R = pair.effective_radius
+    from ..compare import seed_large_strain_velocity
 
-    def f(V):
-        return float(pair.impact(V, warn=False).max_contact_radius) / R - 0.3
-
-    lo, hi = 1e-6, 1e6
-    if f(hi) <= 0:
-        return math.inf
-    if f(lo) > 0:
-        return 0.0
-    return float(optimize.brentq(f, lo, hi, xtol=1e-12, rtol=1e-13))
+    return seed_large_strain_velocity(pair)
 
 
 def _fmt_value(x):
