@@ -1,4 +1,4 @@
-"""Tests of microimpact.coupling: wall interaction, adhesion, tables, C export, export CLI."""
+"""Tests of the coupling to flow codes: wall interaction, adhesion, tables, C export, export CLI."""
 
 from __future__ import annotations
 
@@ -16,20 +16,13 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 
 import microimpact as mi
-from microimpact import coupling
+from microimpact import adhesion, wall
+from microimpact.adhesion import adhesive_restitution, sticking_velocity, work_of_adhesion
+from microimpact.cexport import generate_c_source, restitution_table, write_c_source, write_tables
 from microimpact.cli import main
-from microimpact.coupling import (
-    adhesive_restitution,
-    generate_c_source,
-    restitution_table,
-    sticking_velocity,
-    wall_interaction,
-    work_of_adhesion,
-    write_c_source,
-    write_tables,
-)
 from microimpact.impact import thornton_ning_restitution
 from microimpact.pair import LargeStrainWarning
+from microimpact.wall import wall_interaction
 
 SILICON = dict(effective_modulus=1.31e9, limiting_pressure=156e6)
 
@@ -60,8 +53,8 @@ def test_sticking_constant_is_the_jkr_separation_work():
     assert -P(a_min) == pytest.approx(1.5 * np.pi * w * R, rel=1e-12)
     work = quad(lambda a: -P(a) * ddelta(a), af, a0, epsabs=0, epsrel=1e-13)[0]
     # the derived constant (Thornton & Ning print it rounded, 14.18): the integral to quad's accuracy
-    assert 2 * work == pytest.approx(coupling.STICKING_CONSTANT, rel=1e-12)
-    assert round(coupling.STICKING_CONSTANT, 2) == 14.18
+    assert 2 * work == pytest.approx(adhesion.STICKING_CONSTANT, rel=1e-12)
+    assert round(adhesion.STICKING_CONSTANT, 2) == 14.18
     # sticking_velocity: 1/2 m V_s^2 = 7.0922 (G^5 R^4/E^2)^(1/3), scaled to a real particle
     G, Es, Rs = 0.2, 2.0e9, 1.5e-6
     m = _sphere_mass(2 * Rs, 2000.0)
@@ -493,7 +486,7 @@ def test_zero_normal_is_refused_whether_one_or_one_per_particle(normal):
     """One zero normal among many is found by the core (NaN) and refused like a single one."""
     v = [[0.0, 0.0, -5.0], [1.0, 0.0, -5.0], [-5.0, 0.0, 0.0]]
     with pytest.raises(ValueError, match="normal must not be a zero vector"):
-        coupling.wall_interaction(v, normal, 5e-6, 1350.0, effective_modulus=1.31e9, limiting_pressure=156e6)
+        wall.wall_interaction(v, normal, 5e-6, 1350.0, effective_modulus=1.31e9, limiting_pressure=156e6)
 
 
 def test_wall_reads_strided_columns_and_leaves_inputs_alone():
@@ -506,10 +499,22 @@ def test_wall_reads_strided_columns_and_leaves_inputs_alone():
     d = rng.uniform(1e-6, 1e-5, 200)
     before = table.copy(), d.copy()
     kw = dict(effective_modulus=1.31e9, limiting_pressure=156e6, friction=0.3)
-    a = coupling.wall_interaction(v, [0.0, 0.0, 1.0], d, 1350.0, **kw)
-    b = coupling.wall_interaction(np.ascontiguousarray(v), [0.0, 0.0, 1.0], d.copy(), 1350.0, **kw)
+    a = wall.wall_interaction(v, [0.0, 0.0, 1.0], d, 1350.0, **kw)
+    b = wall.wall_interaction(np.ascontiguousarray(v), [0.0, 0.0, 1.0], d.copy(), 1350.0, **kw)
     np.testing.assert_array_equal(a.velocity, b.velocity)
     np.testing.assert_array_equal(a.spin, b.spin)
     np.testing.assert_array_equal(a.restitution, b.restitution)
     np.testing.assert_array_equal(table, before[0])
     np.testing.assert_array_equal(d, before[1])
+
+
+def test_the_old_coupling_module_warns_and_names_the_new_home():
+    """microimpact.coupling (the re-exports of before the split) works one more release, with a warning."""
+    from microimpact import cexport, coupling
+
+    for name, home in coupling.MOVED.items():
+        with pytest.warns(DeprecationWarning, match=f"microimpact.{home}.{name}"):
+            value = getattr(coupling, name)
+        assert value is getattr({"adhesion": adhesion, "wall": wall, "cexport": cexport}[home], name)
+    with pytest.raises(AttributeError):
+        coupling.no_such_name  # noqa: B018

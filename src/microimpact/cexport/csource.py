@@ -1,226 +1,17 @@
-"""Export for CFD codes: restitution tables (CSV) and a self-contained C99 wall function.
-
-Tables of the adhesive restitution (:func:`restitution_table`, :func:`write_tables`) and a
-C function computing the same outgoing velocity, spin and stick flag as
-:func:`microimpact.wall.wall_interaction` for one particle, for Fluent UDFs and OpenFOAM patch
-interaction models (:func:`generate_c_source`), with the rigid or the compliant
-(``tangential="mindlin"``) tangential model. :func:`write_band` writes both for a fit's
-estimate and the two ends of its confidence band. Sign conventions are those of
-:mod:`microimpact.wall`.
-"""
+"""A self-contained C99 wall function: the core's wall impact (:mod:`microimpact.core.wall`), copied bit for bit."""
 
 from __future__ import annotations
 
 import math
 
-import numpy as np
+from .._validation import check_nonnegative, check_positive
+from ..adhesion import STICKING_CONSTANT
+from ..core.tangential import stiffness_ratio, stiffness_ratio_same_poisson
+from ._common import comment_text
 
-from ._validation import check_nonnegative, check_positive
-from .adhesion import STICKING_CONSTANT, adhesive_restitution, sticking_velocity
-from .core.tangential import stiffness_ratio, stiffness_ratio_same_poisson
-
-__all__ = [
-    "restitution_table",
-    "write_tables",
-    "generate_c_source",
-    "write_c_source",
-    "BAND_ENDS",
-    "band_pairs",
-    "write_band",
-]
+__all__ = ["generate_c_source", "write_c_source"]
 
 
-def restitution_table(v_over_vy, vs_over_vy_values):
-    """Normal restitution ``e`` against ``V/V_y`` for several ``V_s/V_y`` (a lookup table for other codes).
-
-    Everything scales: ``e`` depends on ``V`` only through ``V/V_y`` (seed
-    eq. 27) and on adhesion only through ``V_s/V`` (:func:`adhesive_restitution`).
-
-    Parameters
-    ----------
-    v_over_vy : array_like (M,)
-        Normal impact speed over the yield velocity, ``V/V_y`` >= 0.
-    vs_over_vy_values : array_like (K,)
-        Sticking velocity over yield velocity, ``V_s/V_y`` >= 0 (0: no adhesion).
-
-    Returns
-    -------
-    ndarray (M, K)
-        ``e``; 0 where the particle sticks.
-
-    Examples
-    --------
-    >>> restitution_table([0.5, 2.0, 10.0], [0.0, 0.5]).round(4)
-    array([[1.    , 0.    ],
-           [0.9306, 0.8964],
-           [0.6586, 0.6567]])
-    """
-    v = np.atleast_1d(check_nonnegative("v_over_vy", v_over_vy)).reshape(-1)
-    s = np.atleast_1d(check_nonnegative("vs_over_vy_values", vs_over_vy_values)).reshape(-1)
-    return adhesive_restitution(v[:, None], 1.0, s[None, :])
-
-
-def _fmt_num(x):
-    """Shortest text that reads back to the same double."""
-    x = float(x)
-    if not math.isfinite(x):
-        return "inf" if x > 0 else ("-inf" if x < 0 else "nan")
-    return str(int(x)) if x.is_integer() and abs(x) < 1e15 else repr(x)
-
-
-def _slug(text):
-    keep = "".join(c if c.isalnum() else "_" for c in str(text).lower())
-    return "_".join(p for p in keep.split("_") if p) or "pair"
-
-
-def _write_csv(path, comments, header, columns):
-    """One table in the project's CSV layout (:mod:`microimpact.io`), written atomically."""
-    from .io import write_csv
-
-    write_csv(path, [(name, unit, col) for (name, unit), col in zip(header, columns)], comments)
-
-
-def _comment_text(text) -> str:
-    """``text`` made safe inside a C block comment and on one line of a CSV comment.
-
-    Control characters and line breaks become spaces, anything outside printable
-    ASCII becomes ``?``, and the comment delimiters ``*/`` and ``/*`` are broken
-    apart (``* /``, ``/ *``), so a label cannot end the comment and inject code.
-    """
-    out = "".join(
-        c if 32 <= ord(c) < 127 else (" " if ord(c) < 32 or c in "\u2028\u2029\x85" else "?") for c in str(text)
-    )
-    while "*/" in out or "/*" in out:
-        out = out.replace("*/", "* /").replace("/*", "/ *")
-    return out
-
-
-def _sized_pair(pair, diameter):
-    if pair.density is None:
-        raise ValueError("the pair needs a particle density to be rescaled to other diameters")
-    return pair.vary(diameter=float(check_positive("diameter", diameter)))
-
-
-#: Default grid of :func:`write_tables`: ``V/V_y`` from 0 to 100.
-DEFAULT_V_OVER_VY = np.concatenate([np.linspace(0.0, 2.0, 41)[:-1], np.geomspace(2.0, 100.0, 80)])
-#: Default ``V_s/V_y`` columns of the dimensionless table.
-DEFAULT_VS_OVER_VY = (0.0, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0)
-#: Default normal speeds of the per-size tables [m/s].
-DEFAULT_SPEEDS = np.geomspace(0.01, 200.0, 161)
-
-
-def write_tables(
-    directory,
-    pairs,
-    diameters=None,
-    velocities=None,
-    *,
-    work_of_adhesion=0.0,
-    v_over_vy=None,
-    vs_over_vy_values=DEFAULT_VS_OVER_VY,
-):
-    """Write restitution tables as CSV for use in other codes.
-
-    Files (units in the header; ``#`` lines are comments):
-
-    * ``restitution_vs_v_over_vy.csv``: ``e`` against ``V/V_y`` with one column
-      per ``V_s/V_y`` value (:func:`restitution_table`); valid for any pair.
-    * ``restitution_<pair>_d<diameter>um.csv`` for each pair and diameter:
-      normal impact speed [m/s], ``e`` [1] and the stick flag (0/1), with the
-      pair's ``V_y`` and the size's ``V_s`` in the comments.
-
-    Layout: the project's CSV layout (:mod:`microimpact.io`): the header
-    ``name [unit]`` on the first line, then ``#`` comment lines, then the rows.
-    Each file is written to a temporary name and renamed into place when
-    complete; a label reaches the comments only made safe (one line, printable).
-
-    Parameters
-    ----------
-    directory : path
-        Created if missing.
-    pairs : ContactPair or sequence of ContactPair
-        Sphere-on-flat pairs with a known density (rescaled to each diameter).
-    diameters : sequence of float, optional
-        Particle diameters [m]; default each pair's own.
-    velocities : array_like, optional
-        Normal impact speeds [m/s]; default :data:`DEFAULT_SPEEDS` (0.01-200 m/s).
-    work_of_adhesion : float, optional
-        ``G`` [J/m^2] (work of adhesion, not surface energy; see :func:`work_of_adhesion`).
-    v_over_vy, vs_over_vy_values : array_like, optional
-        Grid of the dimensionless table.
-
-    Returns
-    -------
-    list of pathlib.Path
-        The files written.
-    """
-    from pathlib import Path
-
-    from .pair import ContactPair
-
-    out_dir = Path(directory)
-    pairs = [pairs] if isinstance(pairs, ContactPair) else list(pairs)
-    if not pairs:
-        raise ValueError("pairs: give at least one ContactPair")
-    G = float(check_nonnegative("work_of_adhesion", work_of_adhesion))
-    v = DEFAULT_V_OVER_VY if v_over_vy is None else np.atleast_1d(check_nonnegative("v_over_vy", v_over_vy))
-    s = np.atleast_1d(check_nonnegative("vs_over_vy_values", vs_over_vy_values)).reshape(-1)
-    V = DEFAULT_SPEEDS if velocities is None else np.atleast_1d(check_nonnegative("velocities", velocities))
-    multi = len(pairs) > 1
-    jobs = []  # every size checked before any file is written
-    for i, pair in enumerate(pairs):
-        sizes = [2.0 * pair.effective_radius] if diameters is None else list(np.atleast_1d(diameters))
-        tag = f"{_slug(pair.label or f'pair{i}')}_" if multi else ""
-        jobs += [(pair, tag, d, _sized_pair(pair, d)) for d in sizes]
-    out_dir.mkdir(parents=True, exist_ok=True)
-    written = [_write_universal_table(out_dir, v, s)]
-    for pair, tag, d, p in jobs:
-        path = out_dir / f"restitution_{tag}d{float(d) * 1e6:g}um.csv"
-        _write_size_table(path, pair, d, p, V, G)
-        written.append(path)
-    return written
-
-
-def _write_universal_table(out_dir, v, s):
-    """``restitution_vs_v_over_vy.csv`` of :func:`write_tables`; returns its path."""
-    path = out_dir / "restitution_vs_v_over_vy.csv"
-    table = restitution_table(v, s)
-    _write_csv(
-        path,
-        [
-            "microimpact: normal restitution e against V/V_y, one column per V_s/V_y",
-            "seed eq. 27 with the adhesive loss of Thornton & Ning (1998): e^2 = e_p^2 - (V_s/V)^2, "
-            "e = 0 (stick) when e_p V <= V_s",
-            "V: normal impact speed, V_y: yield velocity (eq. 28), V_s: sticking velocity",
-        ],
-        [("V/V_y", "1")] + [(f"e at V_s/V_y={_fmt_num(x)}", "1") for x in s],
-        [v, *np.asarray(table).T],
-    )
-    return path
-
-
-def _write_size_table(path, pair, d, p, V, G, extra=()):
-    """One per-size table of :func:`write_tables` (``p`` is ``pair`` at diameter ``d``)."""
-    Vy = p.yield_velocity
-    Vs = float(sticking_velocity(G, p.effective_modulus, p.effective_radius, p.effective_mass))
-    e = adhesive_restitution(V, Vy, Vs)
-    stuck = (Vs > 0.0) & (e == 0.0)
-    _write_csv(
-        path,
-        [
-            f"microimpact: normal restitution of {_comment_text(pair.label or 'a sphere')} on a flat, "
-            f"diameter {float(d):.6g} m",
-            f"E* = {p.effective_modulus:.6g} Pa, p_y = {p.limiting_pressure:.6g} Pa, "
-            f"density = {pair.density:.6g} kg/m^3, work of adhesion G = {G:.6g} J/m^2",
-            f"yield velocity V_y = {Vy:.10g} m/s, sticking velocity V_s = {Vs:.10g} m/s",
-            *(_comment_text(x) for x in extra),
-        ],
-        [("normal speed", "m/s"), ("restitution e", "1"), ("stuck", "1")],
-        [V, e, np.broadcast_to(stuck, np.shape(V)).astype(np.int8)],
-    )
-
-
-# ----------------------------------------------------------------------------- C export
 _C_TEMPLATE = r"""/*
  * microimpact_wall.c -- bounce or stick of one particle at a wall (generated by microimpact {version}).
  *
@@ -480,7 +271,7 @@ def generate_c_source(
         ``poisson_ratio`` or ``effective_shear_modulus`` with ``"rigid"`` is refused
         too (it would be ignored).
     """
-    from . import __version__
+    from .. import __version__
 
     E = effective_modulus if effective_modulus is not None else (pair.effective_modulus if pair else None)
     p_y = limiting_pressure if limiting_pressure is not None else (pair.limiting_pressure if pair else None)
@@ -493,12 +284,12 @@ def generate_c_source(
     if math.isinf(G) or math.isinf(mu):
         raise ValueError("work_of_adhesion and friction must be finite")
     kappa = _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus)
-    label = f"{_comment_text(pair.label)}; " if pair is not None and pair.label else ""
+    label = f"{comment_text(pair.label)}; " if pair is not None and pair.label else ""
     desc = f"{label}E* = {E:.6g} Pa, p_y = {p_y:.6g} Pa, G = {G:.6g} J/m^2, mu = {mu:.6g}"
     if kappa is not None:
         desc += f"; tangential: mindlin, kappa = 4 G* / E* = {kappa:.6g}"
     if comment is not None:
-        desc += "\n *\n * " + _comment_text(comment)
+        desc += "\n *\n * " + comment_text(comment)
     text = _C_TEMPLATE.format(
         version=__version__,
         description=desc,
@@ -528,7 +319,7 @@ def _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus):
             raise ValueError(f"effective_shear_modulus must be finite, got {effective_shear_modulus!r}")
         return stiffness_ratio(Gs, E)  # as wall_interaction: 4 G*/E* with the E* in use
     if poisson_ratio is not None:
-        from ._validation import check_poisson
+        from .._validation import check_poisson
 
         nu = float(check_poisson("poisson_ratio", poisson_ratio, scalar=True))
         return stiffness_ratio_same_poisson(nu)
@@ -536,7 +327,7 @@ def _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus):
         raise ValueError(
             "tangential='mindlin' needs poisson_ratio=..., effective_shear_modulus=... or a pair built from materials"
         )
-    from .oblique import stiffness_ratio_of
+    from ..oblique import stiffness_ratio_of
 
     return stiffness_ratio_of(pair)
 
@@ -571,7 +362,7 @@ _MINDLIN_EDITS = (
 
 def _mindlin_source(text, kappa):
     """The rigid source ``text`` turned into the compliant one for ``kappa``."""
-    from .oblique import table_c_source, universal_table
+    from ..oblique import table_c_source, universal_table
 
     for old, new in _MINDLIN_EDITS:
         if text.count(old) != 1:  # pragma: no cover - the template changed
@@ -616,7 +407,7 @@ def write_c_source(path, pair=None, **kwargs):
     """
     from pathlib import Path
 
-    from .io import atomic_write
+    from ..io import atomic_write
 
     path = Path(path)
     if path.is_dir():
@@ -626,223 +417,3 @@ def write_c_source(path, pair=None, **kwargs):
     with atomic_write(path) as fh:
         fh.write(text)
     return path
-
-
-# ----------------------------------------------------------------------------- confidence band
-#: Names of the three parameter sets :func:`write_band` exports, in file names.
-BAND_ENDS = ("estimate", "lower", "upper")
-#: File names an export directory consists of (so that either export may replace the other's).
-BAND_OWNED = ("README.txt", "restitution_*.csv", "microimpact_wall*.c")
-
-
-def band_pairs(fit) -> list[dict]:
-    """The fitted pair at the estimate and at the two ends of the fit's confidence band.
-
-    For each of :data:`BAND_ENDS` a dict with ``"name"``, ``"pair"`` (:class:`ContactPair`),
-    ``"parameter"``, ``"value"`` (SI) and ``"text"`` (one line saying which end, the
-    parameter's value and the confidence). ``"lower"`` and ``"upper"`` name the ends of the
-    *restitution* band, which is what a CFD run with the band's ends needs: the seed's
-    ``e`` depends on the free parameter only through ``V/V_y`` and grows with ``V_y``, so
-    the end with the smaller ``V_y`` gives the lower ``e`` at every speed (for
-    ``limiting_pressure`` that is the lower end of its interval; for ``density`` the upper
-    one).
-
-    Parameters
-    ----------
-    fit : FitResult
-        A fit of the seed's model (:func:`~microimpact.fitting.fit_restitution`) with one
-        free parameter and a closed confidence interval.
-
-    Returns
-    -------
-    list of dict
-
-    Raises
-    ------
-    ValueError
-        Another model than the seed's (the export writes the seed's model), not one free
-        parameter, or an interval open at one end (the data do not bound it; no table can
-        stand for that end).
-    """
-    from .fitting import FREE_PARAMETERS, SEED_MODEL, FitResult
-
-    if not isinstance(fit, FitResult):
-        raise ValueError(f"fit must be a FitResult (from fit_restitution), got {type(fit).__name__}")
-    if fit.model != SEED_MODEL:
-        raise ValueError(f"fit: the export writes the seed's model ({SEED_MODEL}); this fit is of {fit.model!r}")
-    if len(fit.params) != 1:
-        raise ValueError(f"fit: the band's ends need exactly one free parameter, this fit has {len(fit.params)}")
-    name = fit.free[0]
-    unit = FREE_PARAMETERS.get(name, {}).get("si", "") or "-"
-    conf = f"{100.0 * fit.confidence:g} %"
-    ends = fit.band_ends()
-    for end in ends:
-        if not (0.0 < end["value"] < math.inf):
-            raise ValueError(
-                f"fit: the {end['end']} end of the {conf} interval of {name} is open ({end['value']:g}): the data do "
-                "not bound it, so no table can stand for it (lower the confidence or add points above V_y)"
-            )
-    if ends[0]["pair"].yield_velocity > ends[1]["pair"].yield_velocity:
-        ends = ends[::-1]  # the smaller V_y gives the lower restitution
-    out = [
-        {
-            "name": "estimate",
-            "pair": fit.pair,
-            "parameter": name,
-            "value": float(fit.params[name]),
-            "text": f"best estimate of the fit: {name} = {fit.params[name]:.10g} {unit} "
-            f"(V_y = {fit.pair.yield_velocity:.6g} m/s); the {conf} confidence band is in the *_lower and *_upper files",
-        }
-    ]
-    for band_end, end in zip(("lower", "upper"), ends):
-        out.append(
-            {
-                "name": band_end,
-                "pair": end["pair"],
-                "parameter": name,
-                "value": end["value"],
-                "text": f"{band_end} end of the {conf} confidence band of e(V): {name} = {end['value']:.10g} {unit} "
-                f"({end['end']} end of its {conf} interval, {fit.interval}; V_y = {end['pair'].yield_velocity:.6g} m/s)",
-            }
-        )
-    return out
-
-
-def write_band(
-    fit,
-    directory,
-    diameters=None,
-    velocities=None,
-    *,
-    work_of_adhesion=0.0,
-    friction=0.0,
-    v_over_vy=None,
-    vs_over_vy_values=DEFAULT_VS_OVER_VY,
-    c_source=True,
-    tangential="rigid",
-    poisson_ratio=None,
-    effective_shear_modulus=None,
-    source=None,
-):
-    """Write the tables and C source of a fit at its estimate and at both ends of its band.
-
-    So that a CFD user can run with the band's ends (:func:`band_pairs` says which
-    parameter value each end is). One output directory, written whole
-    (:func:`microimpact.io.atomic_directory`: built beside it and swapped into place when
-    complete; nothing is written unless every input is good):
-
-    * ``README.txt``: the fit, the confidence, and which file is which;
-    * ``restitution_vs_v_over_vy.csv``: the dimensionless table (the same for every end:
-      ``e`` depends on the fit only through ``V_y``);
-    * ``restitution_d<diameter>um_<end>.csv`` for each diameter and each ``<end>`` of
-      ``estimate``, ``lower``, ``upper`` (of the restitution band), as :func:`write_tables`;
-    * ``microimpact_wall_<end>.c`` (unless ``c_source=False``), as :func:`write_c_source`.
-
-    Every file has a comment line saying which end it is and at which confidence.
-
-    Parameters
-    ----------
-    fit : FitResult
-        A fit of the seed's model with one free parameter (:func:`band_pairs`); its pair
-        needs a density (the tables are rescaled to each diameter).
-    directory : path
-        The output directory (replaced whole if it holds only files of this export).
-    diameters, velocities, work_of_adhesion, v_over_vy, vs_over_vy_values
-        As :func:`write_tables` (diameters [m], speeds [m/s], ``G`` [J/m^2]).
-    friction, tangential, poisson_ratio, effective_shear_modulus
-        As :func:`generate_c_source` (``mu`` [-], ``G*`` [Pa]); C source only.
-    c_source : bool
-        Write the C files (default True).
-    source : str, optional
-        Where the data came from (a file name), quoted in the comments.
-
-    Returns
-    -------
-    list of pathlib.Path
-        The files written (at their final place).
-
-    Examples
-    --------
-    >>> import numpy as np, tempfile, microimpact as mi
-    >>> from microimpact.fitting import fit_restitution
-    >>> pair = mi.ContactPair.paper_case("silicon")
-    >>> V = np.array([5.0, 10.0, 20.0, 40.0, 80.0])
-    >>> fit = fit_restitution(V, pair.restitution(V) + [0.0, 0.01, -0.01, 0.005, -0.005], pair)
-    >>> with tempfile.TemporaryDirectory() as tmp:
-    ...     files = write_band(fit, tmp + "/band")
-    >>> sorted(p.name for p in files)[:3]
-    ['README.txt', 'microimpact_wall_estimate.c', 'microimpact_wall_lower.c']
-    """
-    from pathlib import Path
-
-    from .io import atomic_directory, atomic_write
-
-    ends = band_pairs(fit)
-    if not c_source and (tangential != "rigid" or poisson_ratio is not None or effective_shear_modulus is not None):
-        raise ValueError("tangential, poisson_ratio and effective_shear_modulus set the C source: c_source=False")
-    mu = float(check_nonnegative("friction", friction))
-    G = float(check_nonnegative("work_of_adhesion", work_of_adhesion))
-    if math.isinf(G):
-        raise ValueError(f"work_of_adhesion must be finite, got {work_of_adhesion!r}")
-    v = DEFAULT_V_OVER_VY if v_over_vy is None else np.atleast_1d(check_nonnegative("v_over_vy", v_over_vy))
-    s = np.atleast_1d(check_nonnegative("vs_over_vy_values", vs_over_vy_values)).reshape(-1)
-    V = DEFAULT_SPEEDS if velocities is None else np.atleast_1d(check_nonnegative("velocities", velocities))
-    where = f" to {_comment_text(source)}" if source else ""
-    # every input checked and every text made before anything is written
-    jobs = []
-    sources = {}
-    for end in ends:
-        pair = end["pair"]
-        sizes = [2.0 * pair.effective_radius] if diameters is None else list(np.atleast_1d(diameters))
-        jobs += [(end, d, _sized_pair(pair, d)) for d in sizes]
-        if c_source:
-            sources[end["name"]] = generate_c_source(
-                pair,
-                work_of_adhesion=G,
-                friction=mu,
-                tangential=tangential,
-                poisson_ratio=poisson_ratio,
-                effective_shear_modulus=effective_shear_modulus,
-                comment=f"fit{where}: {end['text']}",
-            )
-    readme = _band_readme(fit, ends, where, c_source)
-    target = Path(directory)
-    names = []
-    with atomic_directory(target, owned=BAND_OWNED) as tmp:
-        with atomic_write(tmp / "README.txt") as fh:
-            fh.write(readme)
-        names.append("README.txt")
-        names.append(_write_universal_table(tmp, v, s).name)
-        for end, d, p in jobs:
-            name = f"restitution_d{float(d) * 1e6:g}um_{end['name']}.csv"
-            _write_size_table(tmp / name, end["pair"], d, p, V, G, extra=[f"fit{where}: {end['text']}"])
-            names.append(name)
-        for end_name, text in sources.items():
-            with atomic_write(tmp / f"microimpact_wall_{end_name}.c") as fh:
-                fh.write(text)
-            names.append(f"microimpact_wall_{end_name}.c")
-    return [target / n for n in names]
-
-
-def _band_readme(fit, ends, where, c_source) -> str:
-    name = ends[0]["parameter"]
-    lines = [
-        f"microimpact export of a fit{where}: restitution tables"
-        + (" and C wall functions" if c_source else "")
-        + f" at the estimate and at both ends of the {100.0 * fit.confidence:g} % confidence band.",
-        "",
-        f"Model: {fit.model} (seed eqs. 22, 27, 28); free parameter: {name}; {fit.n_points} points; "
-        f"loss {fit.loss}; interval {fit.interval}.",
-        "",
-    ]
-    for end in ends:
-        lines.append(f"*_{end['name']}: {end['text']}")
-    lines += [
-        "",
-        "The band is pointwise in the speed, but each end is one parameter value: the seed's e depends on the",
-        "parameter only through V/V_y and grows with V_y, so the 'lower' files give the lowest e of the band at",
-        "every speed and the 'upper' files the highest (fitting.FitResult.predict(V, band=True)).",
-        "restitution_vs_v_over_vy.csv is the same for every end (e against V/V_y).",
-        "",
-    ]
-    return "\n".join(_comment_text(x) if x else "" for x in lines)

@@ -1,0 +1,35 @@
+"""Export for CFD codes: restitution tables (CSV) and a self-contained C99 wall function.
+
+Tables of the adhesive restitution (:func:`restitution_table`, :func:`write_tables`) and a
+C function computing the same outgoing velocity, spin and stick flag as
+:func:`microimpact.wall.wall_interaction` for one particle, for Fluent UDFs and OpenFOAM patch
+interaction models (:func:`generate_c_source`), with the rigid or the compliant
+(``tangential="mindlin"``) tangential model. :func:`write_band` writes both for a fit's
+estimate and the two ends of its confidence band. Sign conventions are those of
+:mod:`microimpact.wall`.
+
+One module a subject: :mod:`~microimpact.cexport.tables` (CSV tables),
+:mod:`~microimpact.cexport.csource` (the C source), :mod:`~microimpact.cexport.band`
+(a fit's confidence band); every name is importable from here.
+"""
+
+from __future__ import annotations
+
+from .band import (
+    BAND_ENDS,
+    BAND_OWNED,  # noqa: F401  (read by the export command)
+    band_pairs,
+    write_band,
+)
+from .csource import generate_c_source, write_c_source
+from .tables import DEFAULT_SPEEDS, DEFAULT_V_OVER_VY, DEFAULT_VS_OVER_VY, restitution_table, write_tables  # noqa: F401  (the defaults, as before)
+
+__all__ = [
+    "restitution_table",
+    "write_tables",
+    "generate_c_source",
+    "write_c_source",
+    "BAND_ENDS",
+    "band_pairs",
+    "write_band",
+]
