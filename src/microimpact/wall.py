@@ -108,7 +108,7 @@ class WallInteraction:
         return int(np.size(self.stuck))
 
 
-def _vectors(name, value, n_expected=None):
+def _vectors(name, value):
     arr = np.asarray(value, dtype=float)
     if arr.ndim == 1:
         arr = arr[None, :]

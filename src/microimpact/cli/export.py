@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import math
 from pathlib import Path
 
@@ -107,8 +108,9 @@ def run(args) -> int:
     diameters = parse_values(args.diameters, "--diameters") if args.diameters else None
     if diameters is not None:
         check_positive("--diameters", diameters)
+    pair_args = args  # the options the pair is built from (args itself is never changed)
     if (args.particle or args.surface) and args.radius is None and args.diameter is None and diameters is not None:
-        args.diameter = float(diameters[0])
+        pair_args = argparse.Namespace(**{**vars(args), "diameter": float(diameters[0])})
     if args.surface_energy is not None:
         gammas = parse_values(args.surface_energy, "--surface-energy")
         if gammas.size > 2:
@@ -133,7 +135,7 @@ def run(args) -> int:
         fit, caught = _fit(args)
         pair = fit.pair
     else:
-        pair = pair_from_args(args)
+        pair = pair_from_args(pair_args)
     if diameters is not None:
         rho = pair.density if pair.density is not None else float("nan")
         for d in diameters:
