@@ -8,21 +8,20 @@ interaction models (:func:`generate_c_source`), with the rigid or the compliant
 estimate and the two ends of its confidence band. Sign conventions are those of
 :mod:`microimpact.wall`.
 
-One module a subject: :mod:`~microimpact.cexport.tables` (CSV tables),
-:mod:`~microimpact.cexport.csource` (the C source), :mod:`~microimpact.cexport.band`
-(a fit's confidence band); every name is importable from here.
+One private module a subject: ``_tables`` (CSV tables), ``_csource`` (the C
+source), ``_band`` (a fit's confidence band); every name is importable from here.
 """
 
 from __future__ import annotations
 
-from .band import (
+from ._band import (
     BAND_ENDS,
     BAND_OWNED,  # noqa: F401  (read by the export command)
     band_pairs,
     write_band,
 )
-from .csource import generate_c_source, write_c_source
-from .tables import DEFAULT_SPEEDS, DEFAULT_V_OVER_VY, DEFAULT_VS_OVER_VY, restitution_table, write_tables  # noqa: F401  (the defaults, as before)
+from ._csource import generate_c_source, write_c_source
+from ._tables import DEFAULT_SPEEDS, DEFAULT_V_OVER_VY, DEFAULT_VS_OVER_VY, restitution_table, write_tables  # noqa: F401  (the defaults, as before)
 
 __all__ = [
     "restitution_table",

@@ -16,8 +16,8 @@ import sys
 
 import numpy as np
 
+from .. import quantities
 from .._validation import check_positive
-from ..core import quantities
 from ..materials import DEFAULT_K, PAPER_CASES, list_materials
 from ..pair import ContactPair
 from ..sweep import SWEEP_DIMENSIONS

@@ -9,10 +9,10 @@ Only the paper's *quoted* numbers are constants here (:data:`PAPER_QUOTES`);
 every computed value comes from the public API at run time
 (:func:`compare_with_paper`).
 
-One module a subject: :mod:`~microimpact.paper.claims` (the quoted numbers and
-the statements, checked), :mod:`~microimpact.paper.reproduce` (the figure
-driver and :class:`PaperReport`), :mod:`~microimpact.paper.report` (Markdown and
-HTML); the figures themselves are :mod:`microimpact.figures.paper`, the CSV
+One private module a subject: ``_claims`` (the quoted numbers and the
+statements, checked), ``_driver`` (the figure driver and :class:`PaperReport`),
+``_report`` (Markdown and HTML), ``_setup`` (the seed's cases, the figures'
+inputs); the figures themselves are :mod:`microimpact.figures.paper`, the CSV
 layout :func:`microimpact.io.write_table`. Every name is importable from here.
 
 Seed: "Dynamic impact model of plastic deformation between micro-particles and
@@ -23,7 +23,9 @@ from __future__ import annotations
 
 import warnings
 
-from ._setup import (
+from ._claims import PAPER_QUOTES, PAPER_STATEMENTS, check_statements, compare_with_paper
+from ._driver import PaperReport, load_measurements, reproduce
+from ._setup import (  # noqa: F401  (the figures' inputs, importable as before)
     DEFAULT_OUT_DIR,
     FIG3_PRESSURES,
     FIG4_MODULI,
@@ -36,8 +38,6 @@ from ._setup import (
     FIGURES,
     TOLERANCE,
 )
-from .claims import PAPER_QUOTES, PAPER_STATEMENTS, check_statements, compare_with_paper
-from .reproduce import PaperReport, load_measurements, reproduce
 
 __all__ = [
     "PAPER_QUOTES",
@@ -50,14 +50,6 @@ __all__ = [
     "check_statements",
     "reproduce",
     "load_measurements",
-    "FIG3_PRESSURES",
-    "FIG4_MODULI",
-    "FIG4_SURFACE",
-    "FIG5_DENSITIES",
-    "FIG6_VELOCITIES",
-    "FIG7_VELOCITY",
-    "FIG9_MAX_VELOCITY",
-    "FIG10_VELOCITY",
 ]
 
 

@@ -8,8 +8,8 @@ import numpy as np
 
 from .._validation import check_nonnegative
 from ._common import comment_text, sized_pair
-from .csource import generate_c_source
-from .tables import DEFAULT_SPEEDS, DEFAULT_V_OVER_VY, DEFAULT_VS_OVER_VY, write_size_table, write_universal_table
+from ._csource import generate_c_source
+from ._tables import DEFAULT_SPEEDS, DEFAULT_V_OVER_VY, DEFAULT_VS_OVER_VY, write_size_table, write_universal_table
 
 __all__ = ["BAND_ENDS", "BAND_OWNED", "band_pairs", "write_band"]
 

@@ -12,6 +12,8 @@ import numpy as np
 
 from ..figures import paper as figs
 from ..io import write_table
+from ._claims import PAPER_QUOTES, PAPER_STATEMENTS, check_statements, compare_with_paper
+from ._report import report_blocks, to_html, to_markdown
 from ._setup import (
     DEFAULT_OUT_DIR,
     FIG3_PRESSURES,
@@ -25,8 +27,6 @@ from ._setup import (
     SEED,
     TOLERANCE,
 )
-from .claims import PAPER_QUOTES, PAPER_STATEMENTS, check_statements, compare_with_paper
-from .report import report_blocks, to_html, to_markdown
 
 __all__ = ["PaperReport", "reproduce", "load_measurements"]
 
