@@ -785,6 +785,32 @@ def _integrate_phase(rhs, t0, y0, span, events, method, rtol, atol, tries=60):
     raise RuntimeError("integration did not reach the end of the stage")  # pragma: no cover
 
 
+def _sample_pieces(pieces, stages, tau, stage, X, V, out, force_of):
+    """Fill ``out = (approach, approach_velocity, force)`` at the scaled times ``tau`` from the dense
+    solutions ``pieces`` (``(tau_start, tau_end, sol, stage)``, the phases of :func:`_integrate_phase`).
+
+    ``X`` and ``V`` turn the scaled state back into metres and m/s; ``force_of(k, a, b, tau_sel,
+    approach_sel)`` gives the force at the selected times of stage ``k`` in the piece ``[a, b]``.
+    The last piece of a stage also takes the times just past its end (rounding at the boundary).
+    The one stitching loop of :func:`integrate_impact` and :func:`integrate_model`.
+    """
+    approach, vel, force = out
+    for k in stages:
+        idx = np.flatnonzero(stage == k)
+        ends = [p[1] for p in pieces if p[3] == k]
+        last_b = max(ends) if ends else None
+        for a, b, sol, st in pieces:
+            if st != k or idx.size == 0:
+                continue
+            sel = idx[(tau[idx] >= a) & ((tau[idx] <= b) | (b == last_b))]
+            if sel.size:
+                y = sol(np.clip(tau[sel], a, b))
+                approach[sel] = X * y[0]
+                vel[sel] = V * y[1]
+                force[sel] = force_of(k, a, b, tau[sel], approach[sel])
+            idx = np.setdiff1d(idx, sel)
+
+
 def integrate_impact(
     velocity,
     effective_modulus,
@@ -930,21 +956,10 @@ def integrate_impact(
     stage = _stage_of(t, T * t1, T * t_L, T * t_c)
     approach, vel = _free_flight(t, V, T * t_c, a_p, V_r)
     force = np.zeros_like(t)
-    tau = t / T
-    force_of = {1: hertz_force, 2: plastic_force, 3: unloading}
-    for k in (1, 2, 3):
-        idx = np.flatnonzero(stage == k)
-        for a, b, sol, st in pieces:
-            if st != k or idx.size == 0:
-                continue
-            last = b == max(p[1] for p in pieces if p[3] == k)
-            sel = idx[(tau[idx] >= a) & ((tau[idx] <= b) | last)]
-            if sel.size:
-                y = sol(np.clip(tau[sel], a, b))
-                approach[sel] = L * y[0]
-                vel[sel] = V * y[1]
-                force[sel] = [force_of[k](x) for x in approach[sel]]
-            idx = np.setdiff1d(idx, sel)
+    laws = {1: hertz_force, 2: plastic_force, 3: unloading}
+    _sample_pieces(
+        pieces, (1, 2, 3), t / T, stage, L, V, (approach, vel, force), lambda k, a, b, ts, xs: [laws[k](x) for x in xs]
+    )
     out.update(time=t, approach=approach, approach_velocity=vel, force=force, stage=stage)
     return out
 
@@ -1160,19 +1175,15 @@ def integrate_model(
     stage = np.where((t < 0.0) | (t > T * tc), 0, stage).astype(np.int8)
     approach, vel = _free_flight(t, V, T * tc, a_end, V_r)
     force = np.zeros_like(t)
-    tau = t / T
-    for k in (1, 3):
-        idx = np.flatnonzero(stage == k)
-        last_b = max(p_[1] for p_ in pieces if p_[3] == k)
-        for a, b, sol, st in pieces:
-            if st != k or idx.size == 0:
-                continue
-            sel = idx[(tau[idx] >= a) & ((tau[idx] <= b) | (b == last_b))]
-            if sel.size:
-                y = sol(np.clip(tau[sel], a, b))
-                approach[sel] = X * y[0]
-                vel[sel] = V * y[1]
-                force[sel] = [force_at(min(max(x, a), b)) for x in tau[sel]]
-            idx = np.setdiff1d(idx, sel)
+    _sample_pieces(
+        pieces,
+        (1, 3),
+        t / T,
+        stage,
+        X,
+        V,
+        (approach, vel, force),
+        lambda k, a, b, ts, xs: [force_at(min(max(x, a), b)) for x in ts],
+    )
     out.update(time=t, approach=approach, approach_velocity=vel, force=force, stage=stage)
     return out
