@@ -10,9 +10,8 @@ import sys
 import numpy as np
 
 from .._validation import check_positive
-from ..core.wall import sphere_mass
 from ..io import check_figure_path, check_input_file, check_memory, check_output_path
-from ..materials import DEFAULT_K, PAPER_CASES, list_materials
+from ..materials import DEFAULT_K, PAPER_CASES, list_materials, sphere_mass
 from ..pair import ContactPair
 
 __all__ = [
@@ -199,10 +198,7 @@ def _size_option(args) -> str:
 
 
 def _check_mass(radius, density, option, value):
-    try:
-        m = sphere_mass(radius, density)
-    except OverflowError:
-        m = math.inf
+    m = float(sphere_mass(radius, density))
     if not (m > 0 and math.isfinite(m)):
         raise ValueError(
             f"{option} {value:g} m is outside what double precision can model: the particle mass "

@@ -8,8 +8,8 @@ from pathlib import Path
 
 from ..adhesion import work_of_adhesion
 from ..cexport import BAND_OWNED, DEFAULT_VS_OVER_VY, generate_c_source, write_band, write_c_source, write_tables
-from ..core.wall import sphere_mass
 from ..fitting import INTERVALS, LOSSES
+from ..materials import sphere_mass
 from ._common import (
     add_pair_arguments,
     check_input_file,
@@ -137,12 +137,10 @@ def run(args) -> int:
     else:
         pair = pair_from_args(pair_args)
     if diameters is not None:
-        rho = pair.density if pair.density is not None else float("nan")
+        if pair.density is None:
+            raise ValueError("--diameters needs the particle's density (--density, or a particle material)")
         for d in diameters:
-            try:
-                m = sphere_mass(0.5 * float(d), rho)
-            except OverflowError:
-                m = math.inf
+            m = float(sphere_mass(0.5 * float(d), pair.density))
             if not (m > 0 and math.isfinite(m)):
                 raise ValueError(
                     f"--diameters {float(d):g} m is outside what double precision can model: the particle mass "
