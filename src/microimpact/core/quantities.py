@@ -195,6 +195,11 @@ QUANTITIES: dict[str, Quantity] = dict(
         ),
         _q("force", "N", "contact force P", "2, 8, 10", "P", "$P$", "uN", 1e6),
         _q("stage", "1", "0 no contact, 1 Hertz loading, 2 plastic loading, 3 elastic unloading"),
+        # the seed's normalised contact (eqs. 12-15)
+        _q(
+            "normalized_approach", "1", "normalised approach alpha/alpha_y", "12", "alpha/alpha_y", r"$\alpha/\alpha_y$"
+        ),
+        _q("normalized_force", "1", "normalised force P/P_y", "13-15", "P/P_y", "$P/P_y$"),
         # derived quantities of the figures and reports
         _q("plastic_ratio", "1", "plastic share alpha_p / alpha*", "", "alpha_p/alpha*", r"$\alpha_p/\alpha^*$"),
         _q("deresiewicz_time", "s", "Deresiewicz's elastic contact time", "30", "t_D", "$t_D$", **_NS),
