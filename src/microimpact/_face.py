@@ -16,7 +16,7 @@ import textwrap
 
 import numpy as np
 
-from ._validation import check_nonnegative, check_positive
+from ._validation import check_nonnegative, check_positive, check_velocity
 from .core.arrays import evaluate
 from .core.quantities import QUANTITIES
 
@@ -36,11 +36,17 @@ CHECKS = {
     "nonnegative": (check_nonnegative, ">= 0"),
     "positive": (check_positive, "positive"),
     "positive_or_inf": (_positive_or_inf, "positive (``inf`` allowed)"),
+    "velocity": (check_velocity, ">= 0 and finite"),
     "any": (_any, "any real number"),
 }
 
 #: Parameter names that are not quantity names.
-_ALIASES = {"alpha": "approach", "alpha_hat": "normalized_approach", "max_alpha_hat": "normalized_approach"}
+_ALIASES = {
+    "alpha": "approach",
+    "alpha_hat": "normalized_approach",
+    "max_alpha_hat": "normalized_approach",
+    "v": "normalized_velocity",
+}
 
 
 def _parameter_doc(param, check, note):
@@ -55,7 +61,9 @@ def _parameter_doc(param, check, note):
     return f"{param} : array_like\n    {text[0].upper()}{text[1:]}{'; ' + note if note else ''}."
 
 
-def array_function(namespace, name, core_function, parameters, returns, summary, notes="", examples=""):
+def array_function(
+    namespace, name, core_function, parameters, returns, summary, notes="", examples="", output=(0, 1), order=None
+):
     """Define ``name`` in ``namespace`` (a module's ``globals()``): ``core_function`` over arrays.
 
     Parameters
@@ -66,7 +74,7 @@ def array_function(namespace, name, core_function, parameters, returns, summary,
         The public name.
     core_function : callable
         The scalar ``@jitable`` function of :mod:`microimpact.core` it evaluates element by element
-        (its first output is returned).
+        (the output ``output`` names is returned).
     parameters : sequence of tuple
         ``(parameter, check)`` or ``(parameter, check, note)`` in the core function's order;
         ``parameter`` a quantity name (or ``alpha`` for the approach), ``check`` a key of
@@ -77,6 +85,12 @@ def array_function(namespace, name, core_function, parameters, returns, summary,
         The docstring's first paragraph (the formula and the seed equation).
     notes, examples : str, optional
         Further paragraphs of the docstring and its ``Examples`` section (doctests).
+    output : tuple of int, optional
+        ``(index, count)``: the core function returns ``count`` values, the array function the
+        one at ``index`` (default: the only one).
+    order : sequence of str, optional
+        The parameters in the order the core function takes them, where it differs from the
+        public signature's (each is checked in the signature's order first).
 
     Returns
     -------
@@ -85,8 +99,11 @@ def array_function(namespace, name, core_function, parameters, returns, summary,
     """
     params = [p if len(p) == 3 else (p[0], p[1], "") for p in parameters]
     args = ", ".join(p for p, _, _ in params)
-    checked = ", ".join(f"_checks[{c!r}][0]({p!r}, {p})" for p, c, _ in params)
-    source = f"def {name}({args}):\n    return _evaluate(_core_{name}, {checked})[0]\n"
+    checks = "".join(f"    {p} = _checks[{c!r}][0]({p!r}, {p})\n" for p, c, _ in params)
+    checked = ", ".join(order or [p for p, _, _ in params])
+    index, count = output
+    nout = f", nout={count}" if count != 1 else ""
+    source = f"def {name}({args}):\n{checks}    return _evaluate(_core_{name}, {checked}{nout})[{index}]\n"
     namespace.setdefault("_evaluate", evaluate)
     namespace.setdefault("_checks", CHECKS)
     namespace[f"_core_{name}"] = core_function
