@@ -28,6 +28,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from . import contact
+from ._face import array_function
 from ._validation import check_nonnegative, check_pair, check_positive, check_velocity
 from .core import hertz, quantities
 from .core import special as _special
@@ -97,43 +98,29 @@ def incomplete_beta(u, a=0.4, b=0.5):
     return evaluate(_special.incomplete_beta, u, a, b)[0]
 
 
-def hertz_contact_time(velocity, effective_modulus, effective_radius, effective_mass):
-    """Duration of a perfectly elastic Hertz impact, ``(4/5) B(2/5,1/2) alpha_m / V`` [s].
-
-    Equals ``2.868 (m*^2/(R* E*^2 V))^(1/5)``: the seed's eq. 30 with its exact
-    constant :data:`HERTZ_TIME_CONSTANT`. ``inf`` at ``V = 0`` (the limit), 0 at
-    ``V = inf``.
-
-    Parameters
-    ----------
-    velocity : array_like
-        Impact speed ``V`` [m/s], >= 0.
-    effective_modulus : array_like
-        Effective modulus ``E*`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-    effective_mass : array_like
-        Effective mass ``m*`` [kg].
-
-    Returns
-    -------
-    ndarray
-        Contact time ``t_c`` [s] of the elastic impact.
-
-    Raises
-    ------
-    ValueError
-        If ``velocity`` is negative or a pair property is not positive.
-
-    Examples
-    --------
-    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
-    >>> round(float(hertz_contact_time(7.6, 1.31e9, 2.45e-6, m)) * 1e6, 5)  # us
-    0.03347
-    """
-    V = check_velocity("velocity", velocity)
-    E, R, m, _ = check_pair(effective_modulus, effective_radius, effective_mass, np.inf)
-    return evaluate(hertz.contact_time, V, E, R, m)[0]
+hertz_contact_time = array_function(
+    globals(),
+    "hertz_contact_time",
+    hertz.contact_time,
+    [
+        ("velocity", "velocity"),
+        ("effective_modulus", "positive"),
+        ("effective_radius", "positive"),
+        ("effective_mass", "positive"),
+    ],
+    ("contact_time", "Contact time ``t_c`` of the elastic impact"),
+    "Duration of a perfectly elastic Hertz impact, ``(4/5) B(2/5,1/2) alpha_m / V`` [s].",
+    notes="""
+        Equals ``2.868 (m*^2/(R* E*^2 V))^(1/5)``: the seed's eq. 30 with its exact
+        constant :data:`HERTZ_TIME_CONSTANT`. ``inf`` at ``V = 0`` (the limit), 0 at
+        ``V = inf``.
+    """,
+    examples="""
+        >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
+        >>> round(float(hertz_contact_time(7.6, 1.31e9, 2.45e-6, m)) * 1e6, 5)  # us
+        0.03347
+    """,
+)
 
 
 def deresiewicz_contact_time(
@@ -179,68 +166,36 @@ def deresiewicz_contact_time(
         return constant * (m**2 / (R * E**2 * V)) ** 0.2
 
 
-def plastic_frequency(limiting_pressure, effective_radius, effective_mass):
-    """Angular frequency of the plastic stage, ``omega = (pi p_y R*/m*)^(1/2)`` [rad/s].
-
-    The plastic loading force (seed eq. 8) is linear in the approach with
-    stiffness ``pi p_y R*``, so stage 2 is a harmonic oscillation (eqs. 18-23).
-
-    Parameters
-    ----------
-    limiting_pressure : array_like
-        Limiting contact pressure ``p_y`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-    effective_mass : array_like
-        Effective mass ``m*`` [kg].
-
-    Returns
-    -------
-    ndarray
-        Angular frequency ``omega`` [rad/s].
-
-    Raises
-    ------
-    ValueError
-        If an argument is not positive (``p_y`` may be ``inf``).
-    """
-    p_y = check_positive("limiting_pressure", limiting_pressure, allow_inf=True)
-    R = check_positive("effective_radius", effective_radius)
-    m = check_positive("effective_mass", effective_mass)
-    return evaluate(_seed.plastic_frequency, p_y, R, m)[0]
+plastic_frequency = array_function(
+    globals(),
+    "plastic_frequency",
+    _seed.plastic_frequency,
+    [("limiting_pressure", "positive_or_inf"), ("effective_radius", "positive"), ("effective_mass", "positive")],
+    ("plastic_frequency", "Angular frequency ``omega``"),
+    "Angular frequency of the plastic stage, ``omega = (pi p_y R*/m*)^(1/2)`` [rad/s].",
+    notes="""
+        The plastic loading force (seed eq. 8) is linear in the approach with
+        stiffness ``pi p_y R*``, so stage 2 is a harmonic oscillation (eqs. 18-23).
+    """,
+)
 
 
-def ning_loading_time(limiting_pressure, effective_radius, effective_mass):
-    """Ning's (1995) loading time at high impact speed, ``t_L = (pi/2)(m*/(pi p_y R*))^(1/2)`` [s] (seed eq. 31).
-
-    The quarter period of the plastic-stage oscillation: the limit of ``t1 + t2`` as ``V -> inf``.
-
-    Parameters
-    ----------
-    limiting_pressure : array_like
-        Limiting contact pressure ``p_y`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-    effective_mass : array_like
-        Effective mass ``m*`` [kg].
-
-    Returns
-    -------
-    ndarray
-        Loading time ``t_L`` [s] in the limit ``V -> inf``.
-
-    Raises
-    ------
-    ValueError
-        If an argument is not positive.
-
-    Examples
-    --------
-    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
-    >>> round(float(ning_loading_time(156e6, 2.45e-6, m)) * 1e6, 5)  # us; seed: 0.01307
-    0.01307
-    """
-    return 0.5 * np.pi / plastic_frequency(limiting_pressure, effective_radius, effective_mass)
+ning_loading_time = array_function(
+    globals(),
+    "ning_loading_time",
+    _seed.ning_loading_time,
+    [("limiting_pressure", "positive_or_inf"), ("effective_radius", "positive"), ("effective_mass", "positive")],
+    ("loading_time", "Loading time ``t_L`` in the limit ``V -> inf``"),
+    "Ning's (1995) loading time at high impact speed, ``t_L = (pi/2)(m*/(pi p_y R*))^(1/2)`` [s] (seed eq. 31).",
+    notes="""
+        The quarter period of the plastic-stage oscillation: the limit of ``t1 + t2`` as ``V -> inf``.
+    """,
+    examples="""
+        >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
+        >>> round(float(ning_loading_time(156e6, 2.45e-6, m)) * 1e6, 5)  # us; seed: 0.01307
+        0.01307
+    """,
+)
 
 
 def elastic_stage_time(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure):

@@ -201,6 +201,7 @@ QUANTITIES: dict[str, Quantity] = dict(
         ),
         _q("normalized_force", "1", "normalised force P/P_y", "13-15", "P/P_y", "$P/P_y$"),
         # derived quantities of the figures and reports
+        _q("plastic_frequency", "rad/s", "angular frequency of the plastic stage omega", "18-23", "omega", r"$\omega$"),
         _q("plastic_ratio", "1", "plastic share alpha_p / alpha*", "", "alpha_p/alpha*", r"$\alpha_p/\alpha^*$"),
         _q("deresiewicz_time", "s", "Deresiewicz's elastic contact time", "30", "t_D", "$t_D$", **_NS),
         _q("ning_loading_time", "s", "Ning's high-speed loading time", "31", "t_N", "$t_N$", **_NS),

@@ -173,6 +173,12 @@ def plastic_frequency(p_y, R, m):
 
 
 @jitable
+def ning_loading_time(p_y, R, m):
+    """Ning's (1995) loading time at high speed, ``pi/(2 omega)`` [s] (eq. 31): the limit of ``t1 + t2``."""
+    return 0.5 * math.pi / plastic_frequency(p_y, R, m)
+
+
+@jitable
 def outcome(V, E, R, m, p_y, params):
     """Outcome and contact times of one impact (eqs. 5-33), in the order of ``OUTCOME_FIELDS``."""
     inf = math.inf
