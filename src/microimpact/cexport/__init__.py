@@ -14,12 +14,7 @@ source), ``_band`` (a fit's confidence band); every name is importable from here
 
 from __future__ import annotations
 
-from ._band import (
-    BAND_ENDS,
-    BAND_OWNED,  # noqa: F401  (read by the export command)
-    band_pairs,
-    write_band,
-)
+from ._band import BAND_ENDS, band_pairs, write_band
 from ._csource import generate_c_source, write_c_source
 from ._tables import DEFAULT_SPEEDS, DEFAULT_V_OVER_VY, DEFAULT_VS_OVER_VY, restitution_table, write_tables  # noqa: F401  (the defaults, as before)
 
