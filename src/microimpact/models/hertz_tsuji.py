@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+from ..core import hertz
 from ..core.models import hertz_tsuji as law
 from ._base import I_RESTITUTION, LAMMPS_TANGENTIAL, limit_force_option
 
@@ -76,7 +77,7 @@ def liggghts(cal, poisson, wall):
     if not e_n > 0.05:
         raise ValueError(f"LIGGGHTS requires coefficientRestitution > 0.05; this law needs {e_n!r}")
     lim = "on" if p["limit_force"] == 1.0 else "off"
-    Y = 2.0 * (1.0 - poisson**2) * cal.effective_modulus
+    Y = hertz.equal_bodies_modulus(cal.effective_modulus, poisson)
     return [
         f"pair_style gran model hertz tangential no_history limitForce {lim}",
         "pair_coeff * *",

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from ..core import hertz
 from ..core.models import hertz_viscoelastic as law
 from ._base import LAMMPS_TANGENTIAL, limit_force_option, run
 
@@ -48,7 +49,7 @@ def _dissipative_constant(V, e_t, limit, pv):
             if hi > 1e6:
                 raise ValueError(f"target_restitution {e0!r} cannot be reached by the viscoelastic law")
         kappa = brentq(f, 0.0, hi, xtol=1e-16, rtol=1e-15, maxiter=500)
-        return kappa * T(float(V[0]))
+        return kappa * hertz.dem_time_scale(float(V[0]), E, R, m)
 
     model = law  # the module has the contract's outcome: run() needs only .outcome
 

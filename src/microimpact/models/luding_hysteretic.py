@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from ..core import hertz
 from ..core.models import luding_hysteretic as law
 from ._base import run
 
@@ -35,7 +36,7 @@ def calibrate(
         if unloading_ratio is not None:
             raise ValueError(f"unloading_ratio applies to plasticity=True only, got {unloading_ratio!r}")
         e_mean = float(np.mean(e_t))
-        k1 = m * (math.pi * (1.0 + e_mean) / (2.0 * float(np.mean(t_t)))) ** 2
+        k1 = law.loading_stiffness_for(e_mean, float(np.mean(t_t)), m)
         return (k1, k1 / (e_mean * e_mean), 0.0)
     e0 = float(e_t[0]) if V.size == 1 else float(np.mean(e_t))
     t0 = float(np.mean(t_t))
@@ -44,12 +45,10 @@ def calibrate(
         ratio = 2.0 / (e0 * e0)
     if isinstance(ratio, bool) or not (ratio > 1.0 / (e0 * e0) and math.isfinite(ratio)):
         raise ValueError(f"unloading_ratio must be finite and > 1/e^2 = {1.0 / (e0 * e0):.6g}, got {ratio!r}")
-    k1 = m * (math.pi * (1.0 + e0) / (2.0 * t0)) ** 2
+    k1 = law.loading_stiffness_for(e0, t0, m)
     k2 = ratio * k1
     if V.size == 1:
-        a1 = float(V[0]) * math.sqrt(m / k1)
-        dp = (k2 - k1) * a1 / (k1 / (e0 * e0) - k1)
-        return (k1, k2, dp * (k2 - k1) / (k2 * 2.0 * R))
+        return (k1, k2, law.plasticity_depth_for(float(V[0]), e0, k1, k2, m, R))
 
     from scipy.optimize import minimize_scalar
 
@@ -80,9 +79,8 @@ def liggghts(cal, poisson, wall):
         )
     k1, k2, phi = p["loading_stiffness"], p["unloading_stiffness"], p["plasticity_depth"]
     E, R, m = cal.effective_modulus, cal.effective_radius, cal.effective_mass
-    sq = math.sqrt(R)
-    vc = math.sqrt((15.0 * k1 / (16.0 * sq * E)) ** 5 * 16.0 * sq * E / (15.0 * m))
-    Y = 2.0 * (1.0 - poisson**2) * E
+    vc = law.characteristic_velocity(k1, E, R, m)
+    Y = hertz.equal_bodies_modulus(E, poisson)
     return [
         "pair_style gran model hooke/hysteresis tangential no_history",
         "pair_coeff * *",
