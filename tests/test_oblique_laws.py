@@ -155,3 +155,85 @@ def test_live_run(dem, code, law, angle):
     assert out.tangential_restitution[0] == pytest.approx(row["tangential_restitution"], abs=1e-3)
     assert out.rebound_spin[0] == pytest.approx(row["spin_rad_s"], rel=5e-3)
     assert math.isclose(row["normal_restitution"], 1.0, abs_tol=1e-4)
+
+
+@pytest.mark.parametrize("law", ["lammps_mindlin", "di_renzo_di_maio"])
+def test_c_export_of_a_law_equals_wall_interaction(tmp_path, law):
+    """The C file of a law (its universal table baked in) gives wall_interaction(tangential=law) to rounding,
+    negative impulse ratios (a law that creates energy) included."""
+    from test_cexport import _run
+    from test_coupling import _compiler, _random_cases, build_driver
+
+    from microimpact.cexport import write_c_source
+    from microimpact.wall import wall_interaction
+
+    cc = _compiler()
+    if cc is None:
+        pytest.skip("no C compiler on this machine")
+    write_c_source(
+        tmp_path, effective_modulus=1.31e9, limiting_pressure=156e6, friction=0.3, tangential=law, poisson_ratio=0.3
+    )
+    text = (tmp_path / "microimpact_wall.c").read_text()
+    assert f"tangential: {law}" in text
+    exe = build_driver(cc, tmp_path)
+    rng = np.random.default_rng(22)
+    v, n, w, d, rho, E, py, G, mu = _random_cases(rng, 2000)
+    G = np.zeros_like(G)
+    got = _run(exe, np.column_stack([v, n, w, d, rho, E, py, G, mu]))
+    ref = wall_interaction(
+        v, n, d, rho, effective_modulus=E, limiting_pressure=py, friction=mu, spin=w, tangential=law, poisson_ratio=0.3
+    )
+    vscale = np.maximum(np.linalg.norm(v, axis=1), 1e-300)[:, None]
+    wscale = np.maximum(np.linalg.norm(w, axis=1), np.linalg.norm(v, axis=1) / (0.5 * d))[:, None]
+    assert np.max(np.abs(got[:, 1:4] - ref.velocity) / vscale) < 1e-12
+    assert np.max(np.abs(got[:, 4:7] - ref.spin) / wscale) < 1e-12
+
+
+def test_wall_interaction_runs_each_law_through_its_table():
+    """wall_interaction(tangential=law) is oblique_impact's table path of the law (the same impact in 3-D)."""
+    from microimpact.wall import wall_interaction
+
+    ang = np.array([2.0, 8.0, 20.0, 45.0])
+    rad = np.radians(ang)
+    vel = np.stack([3.9 * np.sin(rad), 0 * rad, -3.9 * np.cos(rad)], 1)
+    for law in ("lammps_mindlin", "lammps_mindlin_force", "lammps_mindlin_rescale", "di_renzo_di_maio"):
+        w = wall_interaction(
+            vel,
+            [0, 0, 1],
+            5e-3,
+            4000.0,
+            effective_modulus=PAIR.effective_modulus,
+            limiting_pressure=np.inf,
+            friction=0.092,
+            tangential=law,
+            poisson_ratio=0.23,
+        )
+        o = ob.oblique_impact(PAIR, 3.9, ang, 0.092, poisson_ratio=0.23, tangential=law)
+        np.testing.assert_allclose(w.velocity[:, 0] / vel[:, 0], o.tangential_restitution, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(-w.spin[:, 1], o.rebound_spin, rtol=1e-10)
+
+
+def test_cli_oblique_several_laws(tmp_path, capsys):
+    from microimpact.cli import main
+
+    png = tmp_path / "laws.png"
+    rc = main(
+        [
+            "oblique",
+            "--alumina",
+            "--angles",
+            "10,40",
+            "--tangential",
+            "lammps_mindlin,di_renzo_di_maio",
+            "--plot",
+            str(png),
+        ]
+    )
+    out = capsys.readouterr().out
+    assert rc == 0 and png.stat().st_size > 10000
+    assert "# tangential model: lammps_mindlin\n" in out and "# tangential model: di_renzo_di_maio\n" in out
+    ref = ob.oblique_impact(PAIR, 3.9, [10.0, 40.0], 0.092, poisson_ratio=0.23, tangential="di_renzo_di_maio")
+    block = out.split("# tangential model: di_renzo_di_maio\n")[1].splitlines()[1:3]
+    assert [float(line.split()[3]) for line in block] == pytest.approx(ref.tangential_restitution, rel=1e-4)
+    assert main(["oblique", "--alumina", "--tangential", "lammps_mindlin,nope"]) == 2
+    assert "nope" in capsys.readouterr().err

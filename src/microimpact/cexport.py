@@ -443,8 +443,10 @@ def generate_c_source(
         ``G`` [J/m^2], the work of adhesion (``2 gamma`` for identical surfaces); default 0.
     friction : float, optional
         Coulomb coefficient ``mu`` [-]; default 0.
-    tangential : {"rigid", "mindlin"}, optional
-        Tangential model, as ``tangential=`` of :func:`~microimpact.wall.wall_interaction`.
+    tangential : str, optional
+        Tangential model, as ``tangential=`` of :func:`~microimpact.wall.wall_interaction`:
+        ``"rigid"``, ``"mindlin"`` or a DEM code's law of
+        :data:`microimpact.core.tangential_laws.LAWS` (through its universal table, as there).
         ``"rigid"`` (default): the rigid-body Coulomb impulse (the source is the same,
         byte for byte, as before the option existed). ``"mindlin"``: the compliant contact
         of :mod:`microimpact.oblique`; the file then also holds the
@@ -455,10 +457,10 @@ def generate_c_source(
         is a compile-time constant (``MICROIMPACT_KAPPA``): a struct with another
         ``E*`` keeps the ``kappa`` given here.
     poisson_ratio : float, optional
-        ``"mindlin"`` only: one Poisson's ratio for particle and wall,
+        Compliant laws only: one Poisson's ratio for particle and wall,
         ``kappa = 2(1 - nu)/(2 - nu)``.
     effective_shear_modulus : float, optional
-        ``"mindlin"`` only: ``G*`` [Pa], ``kappa = 4 G*/E*`` with the ``E*`` used here.
+        Compliant laws only: ``G*`` [Pa], ``kappa = 4 G*/E*`` with the ``E*`` used here.
         Without either, ``kappa`` comes from the pair's particle and surface materials
         (:func:`~microimpact.oblique.stiffness_ratio_of`).
     comment : str, optional
@@ -495,7 +497,7 @@ def generate_c_source(
     label = f"{_comment_text(pair.label)}; " if pair is not None and pair.label else ""
     desc = f"{label}E* = {E:.6g} Pa, p_y = {p_y:.6g} Pa, G = {G:.6g} J/m^2, mu = {mu:.6g}"
     if kappa is not None:
-        desc += f"; tangential: mindlin, kappa = 4 G* / E* = {kappa:.6g}"
+        desc += f"; tangential: {tangential}, kappa = 4 G* / E* = {kappa:.6g}"
     if comment is not None:
         desc += "\n *\n * " + _comment_text(comment)
     text = _C_TEMPLATE.format(
@@ -507,17 +509,19 @@ def generate_c_source(
         mu=_c_double(mu),
         stick=repr(STICKING_CONSTANT),
     )
-    return text if kappa is None else _mindlin_source(text, kappa)
+    return text if kappa is None else _mindlin_source(text, kappa, tangential)
 
 
 def _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus):
     """``kappa = 4 G*/E*`` of the compliant model, or None for the rigid one (inputs checked)."""
-    if tangential not in ("rigid", "mindlin"):
-        raise ValueError(f"tangential must be 'rigid' or 'mindlin', got {tangential!r}")
+    from .core.tangential_laws import LAWS
+
+    if tangential not in ("rigid", "mindlin", *LAWS):
+        raise ValueError(f"tangential must be 'rigid', 'mindlin' or one of {LAWS}, got {tangential!r}")
     if tangential == "rigid":
         for name, value in (("poisson_ratio", poisson_ratio), ("effective_shear_modulus", effective_shear_modulus)):
             if value is not None:
-                raise ValueError(f"{name} is used by tangential='mindlin' only, got it with tangential='rigid'")
+                raise ValueError(f"{name} is used by the compliant laws only, got it with tangential='rigid'")
         return None
     if poisson_ratio is not None and effective_shear_modulus is not None:
         raise ValueError("give poisson_ratio or effective_shear_modulus, not both (each sets kappa)")
@@ -533,7 +537,7 @@ def _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus):
         return 2.0 * (1.0 - nu) / (2.0 - nu)
     if pair is None or getattr(pair, "particle", None) is None or getattr(pair, "surface", None) is None:
         raise ValueError(
-            "tangential='mindlin' needs poisson_ratio=..., effective_shear_modulus=... or a pair built from materials"
+            f"tangential={tangential!r} needs poisson_ratio=..., effective_shear_modulus=... or a pair built from materials"
         )
     from .oblique import stiffness_ratio_of
 
@@ -568,15 +572,26 @@ _MINDLIN_EDITS = (
 )
 
 
-def _mindlin_source(text, kappa):
-    """The rigid source ``text`` turned into the compliant one for ``kappa``."""
+def _mindlin_source(text, kappa, law="mindlin"):
+    """The rigid source ``text`` turned into the compliant one for ``kappa`` (and the tangential ``law``)."""
     from .oblique import table_c_source, universal_table
 
     for old, new in _MINDLIN_EDITS:
         if text.count(old) != 1:  # pragma: no cover - the template changed
             raise RuntimeError("the C template no longer has the rigid tangential block")
         text = text.replace(old, new)
-    table = table_c_source(universal_table(kappa), "microimpact_oblique")
+    if law not in ("mindlin", "lammps_mindlin_rescale_force"):
+        old = _MINDLIN_EDITS[0][1].splitlines(keepends=True)[0]
+        text = text.replace(
+            old,
+            f" *   tangential: the DEM law {law} (microimpact.core.tangential_laws; LIGGGHTS's arm taken as r),\n"
+            " *               loaded along the seed's normal history, of a solid sphere:\n",
+        )
+        text = text.replace(
+            " *               along the seed's normal history; microimpact.oblique) of a solid sphere:\n", "", 1
+        )
+    table_law = "lammps_mindlin" if law == "liggghts_history" else law  # the same spring with the arm r
+    table = table_c_source(universal_table(kappa, law=table_law), "microimpact_oblique")
     table = table.replace("#include <math.h>\n", "")  # already included
     table += (
         f"\n/* kappa = 4 G* / E* of psi, unrounded (the table is built for it rounded to 12 digits) */\n"

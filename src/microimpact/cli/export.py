@@ -7,6 +7,7 @@ from pathlib import Path
 
 from ..adhesion import work_of_adhesion
 from ..cexport import BAND_OWNED, DEFAULT_VS_OVER_VY, generate_c_source, write_band, write_c_source, write_tables
+from ..core.tangential_laws import LAWS
 from ..core.wall import sphere_mass
 from ..fitting import INTERVALS, LOSSES
 from ._common import (
@@ -65,9 +66,10 @@ def register(sub) -> None:
     t = p.add_argument_group("tangential model of the C file")
     t.add_argument(
         "--tangential",
-        choices=("rigid", "mindlin"),
+        choices=("rigid", "mindlin", *LAWS),
         help="rigid: rigid-body Coulomb impulse (default); mindlin: compliant contact (Mindlin's no-slip spring "
-        "with a Coulomb limit) through the universal table of kappa = 4 G*/E*, baked into the C file; needs "
+        "with a Coulomb limit) through the universal table of kappa = 4 G*/E*, baked into the C file; the DEM "
+        "codes' laws (lammps_mindlin, ..., liggghts_history, di_renzo_di_maio) likewise; needs "
         "--poisson-ratio, --shear-modulus or --particle/--surface",
     )
     k = t.add_mutually_exclusive_group()
@@ -147,7 +149,7 @@ def run(args) -> int:
                     f"is {m:g} kg"
                 )
     out = Path(args.out)
-    c_kw = {"tangential": tangential, **kappa_kw} if tangential == "mindlin" else {}
+    c_kw = {"tangential": tangential, **kappa_kw} if tangential != "rigid" else {}
     if fit is not None:
         written = write_band(
             fit,
@@ -196,7 +198,9 @@ def _tangential_options(args):
             raise ValueError(f"{given[0][0]} is used by --tangential mindlin only (the rigid model has no stiffness)")
         return tangential, {}
     if args.no_c:
-        raise ValueError("--tangential mindlin and --no-c cannot be used together (the model is in the C file only)")
+        raise ValueError(
+            f"--tangential {tangential} and --no-c cannot be used together (the model is in the C file only)"
+        )
     if args.poisson_ratio is not None:
         nu = parse_float(args.poisson_ratio, "--poisson-ratio")
         check_poisson("--poisson-ratio", nu)
@@ -209,7 +213,7 @@ def _tangential_options(args):
         return tangential, {"effective_shear_modulus": g}
     if not (args.particle and args.surface):
         raise ValueError(
-            "--tangential mindlin needs the tangential stiffness: give --poisson-ratio NU or --shear-modulus G* "
+            f"--tangential {tangential} needs the tangential stiffness: give --poisson-ratio NU or --shear-modulus G* "
             "(or --particle and --surface, whose moduli give it)"
         )
     return tangential, {}

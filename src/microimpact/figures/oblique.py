@@ -19,7 +19,15 @@ import numpy as np
 from .. import oblique as ob
 from . import style as _style
 
-__all__ = ["LABELS", "LAW_MODELS", "oblique_data", "plot_oblique", "plot_tangential_laws", "universal_data", "plot_universal"]
+__all__ = [
+    "LABELS",
+    "LAW_MODELS",
+    "oblique_data",
+    "plot_oblique",
+    "plot_tangential_laws",
+    "universal_data",
+    "plot_universal",
+]
 
 _MODELS = ("mindlin", "rigid")
 #: Legend labels of the tangential models.
