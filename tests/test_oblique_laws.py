@@ -57,7 +57,7 @@ def test_the_script_describes_the_case_oblique_impact_computes(dem):
     assert dem.E_STAR == pytest.approx(PAIR.effective_modulus, rel=1e-15)
     assert dem.MASS == pytest.approx(PAIR.effective_mass, rel=1e-14)
     assert 4 * dem.G_STAR / dem.E_STAR == pytest.approx(ob.stiffness_ratio_of(PAIR, 0.23), rel=1e-14)
-    assert set(dem.LAWS) == set(ob.TANGENTIAL_MODELS) - {"mindlin", "rigid"}
+    assert set(dem.LAWS) == set(ob.TANGENTIAL_MODELS) - {"mindlin", "rigid", "stronge"}  # no DEM code runs it
 
 
 def test_every_law_and_angle_was_run_and_converged(dem, rows):
@@ -237,3 +237,18 @@ def test_cli_oblique_several_laws(tmp_path, capsys):
     assert [float(line.split()[3]) for line in block] == pytest.approx(ref.tangential_restitution, rel=1e-4)
     assert main(["oblique", "--alumina", "--tangential", "lammps_mindlin,nope"]) == 2
     assert "nope" in capsys.readouterr().err
+
+
+def test_compare_tangential_is_oblique_impact_per_law():
+    pytest.importorskip("xarray")
+    from microimpact.compare import compare_tangential
+
+    laws = ["mindlin", "lammps_mindlin", "liggghts_history", "stronge", "rigid"]
+    ds = compare_tangential(PAIR, 3.9, [4.0, 15.0, 50.0], 0.092, laws, poisson_ratio=0.23)
+    assert list(ds["tangential"].values) == laws and ds["tangential_restitution"].dims == ("tangential", "angle")
+    for i, law in enumerate(laws):
+        o = ob.oblique_impact(PAIR, 3.9, [4.0, 15.0, 50.0], 0.092, poisson_ratio=0.23, tangential=law)
+        assert np.array_equal(ds["rebound_spin"].values[i], o.rebound_spin)
+        assert list(ds["regime"].values[i]) == list(o.regime)
+    with pytest.raises(ValueError, match="tangential must be among"):
+        compare_tangential(PAIR, 3.9, [4.0], 0.092, ["nope"], poisson_ratio=0.23)

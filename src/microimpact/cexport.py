@@ -514,7 +514,7 @@ def generate_c_source(
 
 def _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus):
     """``kappa = 4 G*/E*`` of the compliant model, or None for the rigid one (inputs checked)."""
-    from .core.tangential_laws import LAWS
+    from .core.tangential_laws import ALL_LAWS as LAWS
 
     if tangential not in ("rigid", "mindlin", *LAWS):
         raise ValueError(f"tangential must be 'rigid', 'mindlin' or one of {LAWS}, got {tangential!r}")

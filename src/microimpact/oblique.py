@@ -63,7 +63,7 @@ __all__ = [
 #: Tangential models :func:`oblique_impact` knows, by name: the compliant contact of
 #: :mod:`microimpact.core.tangential`, the rigid-body impulse, and the DEM codes' laws of
 #: :mod:`microimpact.core.tangential_laws` (``"lammps_mindlin_rescale_force"`` is ``"mindlin"``).
-TANGENTIAL_MODELS = ("mindlin", "rigid", *tl.LAWS)
+TANGENTIAL_MODELS = ("mindlin", "rigid", *tl.ALL_LAWS)
 #: Laws whose outcome is a universal curve of ``psi``, ``kappa`` and ``V_y/V_n`` (tabulated for
 #: ``method="table"``). LIGGGHTS's arm ``R - delta/2`` adds ``alpha_m/R``, and a constant stiffness
 #: given in N/m makes ``kappa`` depend on the speed: those two are always integrated.
@@ -89,8 +89,18 @@ def _integrate(u0_hat, kappa, x, steps, law="mindlin"):
     if law in ("mindlin", "lammps_mindlin_rescale_force"):
         ur, rg = evaluate(tg.integrate_tangential, u0_hat, kappa, x, np.asarray(float(steps)), nout=2)
         return ur, rg.astype(np.int8)
+    if law == "stronge":
+        e = np.vectorize(lambda v: tg.history_constants(v)[13], otypes=[float])(x)
+        return _integrate_stronge(u0_hat, kappa, e, steps)
     vr, wr, rg = _integrate_law(law, u0_hat, 0.0, kappa, x, 0.0, steps)
     return vr + wr, rg
+
+
+def _integrate_stronge(u0_hat, kappa, e, steps):
+    """Final slip and regime of :func:`~microimpact.core.tangential_laws.integrate_stronge` over arrays."""
+    args = (np.asarray(a, dtype=float) for a in (u0_hat, kappa, e))
+    ur, rg = evaluate(tl.integrate_stronge, *args, np.asarray(float(steps)), nout=2)
+    return ur, rg.astype(np.int8)
 
 
 def _integrate_law(law, v0_hat, w0_hat, kappa, x, eps, steps):
@@ -388,7 +398,8 @@ def oblique_impact(
         (module docstring), or a DEM code's law (:mod:`microimpact.core.tangential_laws`):
         ``"lammps_mindlin"``, ``"lammps_mindlin_force"``, ``"lammps_mindlin_rescale"``,
         ``"lammps_mindlin_rescale_force"`` (the same as ``"mindlin"``), ``"lammps_linear_history"``,
-        ``"liggghts_history"``, ``"di_renzo_di_maio"``.
+        ``"liggghts_history"``, ``"di_renzo_di_maio"``, or Stronge's compliant impact ``"stronge"``
+        (its own linear normal spring with the seed's ``e``; only the tangential outcome is its).
     spin : array_like, optional
         Incoming spin ``omega`` [rad/s], positive adding to the slip (``u0 = v_t + r omega``).
     method : {"table", "direct"}
@@ -484,6 +495,11 @@ def oblique_impact(
             F = table(np.where(frictionless, 0.0, psi), np.minimum(x, 1.0))
             J = np.where(frictionless, 0.0, -np.sign(u0) * F * one_e)
             regime[...] = np.where(F >= 1.0, tg.REGIME_SLIDING, tg.REGIME_MICROSLIP)
+        elif law == "stronge":
+            u0s = np.where(frictionless, 0.0, u0_hat)
+            ur, rg = _integrate_stronge(u0s, kappa, e, steps)
+            J = (ur - u0s) / tg.SLIP_FACTOR
+            regime[...] = rg
         else:
             eps = 0.0
             if law == "liggghts_history":

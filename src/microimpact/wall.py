@@ -56,7 +56,7 @@ import numpy as np
 from ._validation import check_nonnegative, check_positive
 from .core import wall as _wall
 from .core.arrays import evaluate
-from .core.tangential_laws import LAWS
+from .core.tangential_laws import ALL_LAWS as LAWS
 from .materials import DEFAULT_K, Material, get_material
 from .materials import effective_modulus as _effective_modulus
 

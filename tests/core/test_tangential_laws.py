@@ -83,3 +83,104 @@ def test_paths_bitwise_equal():
     # library differ in the last bit now and then, and the integration carries that on (the
     # integrator of core.tangential shows the same, up to 5e-16).
     np.testing.assert_allclose(serial, scalar, rtol=0, atol=1e-13)
+
+
+# ---------------------------------------------------------------- Stronge's compliant impact
+
+
+def _stronge_closed_form(u0, kappa, e):
+    """Stronge's impact piece by piece in closed form (the cases of pooltool's stronge_compliant.py):
+    sliding ``u = u0 - 7/2 int P``, sticking the harmonic ``u = u1 cos(w s) - w x1 sin(w s)`` with
+    ``w^2 = 7/2 kappa``, switches where ``|x|/eta^2 = P`` (slip) or ``cos s = (u0 - 7/2)/(eta^2 - 7/2)``
+    (stick), the last slip to the end ``u_f = u - 7/2 e (1 + cos phase)``. Roots by brentq."""
+    from scipy.optimize import brentq
+
+    eta2 = 1.0 / kappa
+    w = np.sqrt(3.5 * kappa)
+    end = 0.5 * np.pi * (1 + e)
+
+    def P(s):
+        return np.sin(s) if s <= 0.5 * np.pi else np.sin(s / e + 0.5 * np.pi * (1 - 1 / e))
+
+    def impulse(s):  # int_0^s P: 1 - cos s, then 1 + e (0 - cos phase) from the top
+        if s <= 0.5 * np.pi:
+            return 1 - np.cos(s)
+        return 1 - e * np.cos(s / e + 0.5 * np.pi * (1 - 1 / e))
+
+    def first_root(f, a, b, n=4000):
+        grid = np.linspace(a, b, n)
+        vals = [f(x) for x in grid]
+        for i in range(n - 1):
+            if vals[i] < 0 <= vals[i + 1]:
+                return brentq(f, grid[i], grid[i + 1], xtol=1e-15)
+        return None
+
+    if u0 > eta2:  # slides from first touch (u0 > 0)
+        x = (u0 - 3.5) / (eta2 - 3.5)
+        u_slide = lambda s: u0 - 3.5 * impulse(s)  # noqa: E731
+
+        # sticks where the stuck force's rate falls below the limit's
+        def g(s):
+            dP = np.cos(s) if s <= 0.5 * np.pi else np.cos(s / e + 0.5 * np.pi * (1 - 1 / e)) / e
+            return dP - u_slide(s) / eta2
+
+        s1 = first_root(g, 1e-9, end - 1e-9)
+        if s1 is None:
+            return u0 - 3.5 * (1 + e), x
+        u1, x1 = u_slide(s1), eta2 * P(s1)
+    else:
+        s1, u1, x1 = 0.0, u0, 0.0
+
+    def xs(s):
+        return x1 * np.cos(w * (s - s1)) + u1 / w * np.sin(w * (s - s1))
+
+    def us(s):
+        return u1 * np.cos(w * (s - s1)) - w * x1 * np.sin(w * (s - s1))
+
+    s2 = first_root(lambda s: abs(xs(s)) / eta2 - P(s), s1 + 1e-9, end - 1e-12)
+    sign = np.sign(xs(s2))
+    return us(s2) - 3.5 * sign * (impulse(end) - impulse(s2)), None
+
+
+@pytest.mark.parametrize("e", [1.0, 0.7, 0.6])
+def test_stronge_gross_slip_threshold_is_the_sources(e):
+    """Gross slip beyond u0/(mu V) = (1 + e) beta_t/beta_n - eta^2/e (pooltool's is_gross_slip): the
+    Coulomb impulse; just below, not. (The source's criterion looks at the last instant only; for
+    ``e < omega_n/omega_t`` = 0.57 here the contact sticks again earlier, just above it: the closed
+    forms below, which test the stick condition all along, agree with the integration there.)"""
+    eta2 = 1.0 / KAPPA
+    thr = 3.5 * (1 + e) - eta2 / e
+    above = tl.integrate_stronge(thr * 1.001, KAPPA, e, 400)
+    below = tl.integrate_stronge(thr * 0.999, KAPPA, e, 400)
+    assert above[1] == tg.REGIME_SLIDING and above[0] == pytest.approx(thr * 1.001 - 3.5 * (1 + e), abs=1e-12)
+    assert below[1] == tg.REGIME_MICROSLIP
+
+
+@pytest.mark.parametrize("e", [1.0, 0.8, 0.5, 0.3])
+@pytest.mark.parametrize("frac", [0.05, 0.3, 0.7, 0.95, 1.2, 2.0, 3.0, 4.5])
+def test_stronge_equals_its_closed_forms(e, frac):
+    """Stick-slip (u0 < eta^2), slip-stick-slip, gross slip: the integration against the piecewise closed forms."""
+    eta2 = 1.0 / KAPPA
+    u0 = frac * eta2
+    ref, gross = _stronge_closed_form(u0, KAPPA, e)
+    got, regime = tl.integrate_stronge(u0, KAPPA, e, 400)
+    assert got == pytest.approx(ref, abs=1e-8)
+    assert regime == (tg.REGIME_SLIDING if gross is not None else tg.REGIME_MICROSLIP)
+
+
+def test_stronge_paths_bitwise_equal():
+    rng = np.random.default_rng(5)
+    n = 20
+    args = (rng.uniform(-8, 8, n), rng.uniform(0.6, 1.2, n), rng.uniform(0.2, 1.0, n), np.full(n, 50.0))
+    scalar = np.array([tl.integrate_stronge(*(float(a[i]) for a in args)) for i in range(n)]).T
+    py = arrays.evaluate(tl.integrate_stronge, *args, nout=2, backend="python")
+    serial = arrays.evaluate(tl.integrate_stronge, *args, nout=2, backend="numba")
+    old = arrays.PARALLEL_MIN
+    try:
+        arrays.PARALLEL_MIN = 1
+        parallel = arrays.evaluate(tl.integrate_stronge, *args, nout=2, backend="numba")
+    finally:
+        arrays.PARALLEL_MIN = old
+    assert np.array_equal(py, scalar)
+    assert np.array_equal(parallel, serial)
+    np.testing.assert_allclose(serial, scalar, rtol=0, atol=1e-13)

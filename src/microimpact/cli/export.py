@@ -7,7 +7,7 @@ from pathlib import Path
 
 from ..adhesion import work_of_adhesion
 from ..cexport import BAND_OWNED, DEFAULT_VS_OVER_VY, generate_c_source, write_band, write_c_source, write_tables
-from ..core.tangential_laws import LAWS
+from ..core.tangential_laws import ALL_LAWS as LAWS
 from ..core.wall import sphere_mass
 from ..fitting import INTERVALS, LOSSES
 from ._common import (

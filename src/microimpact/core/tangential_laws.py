@@ -42,6 +42,19 @@ What the codes compute (read in their sources; the equation each step follows is
   relative tangential velocity, the Coulomb criterion of their eq. (36) and the spring reset
   ``xi = -T/((2/3) k_t0)`` when it is met (eq. 37): (1, 1) with the stiffness times ``2/3``.
 
+* **Stronge's compliant frictional impact** (Stronge, *Impact Mechanics*; as ``ekiefl/pooltool``'s
+  ``pooltool/physics/resolve/stronge_compliant.py`` at ``0e907548`` writes it for a sphere on a
+  half-space): a linear normal spring, stiffer by ``1/e^2`` in restitution (normal force
+  ``(m/beta_n) omega_n V sin(omega_n t)`` while compressing, ``sin(omega_n t/e + pi/2 (1 - 1/e))``
+  after, so the normal impulse is ``(1 + e) m V/beta_n``), and a linear tangential spring ``k_t =
+  k_n/eta^2`` loaded by the slip of the contact point, with the Coulomb limit and the spring
+  following the limit while sliding; ``beta_t/beta_n = 7/2`` for a solid sphere. The source's
+  ``eta^2 = (2 - nu)/(2 (1 - nu))`` is ``1/kappa`` for one material on a rigid flat; here
+  ``eta^2 = 1/kappa`` in general, and ``e`` is the seed's. The source solves the three cases
+  (stick–slip, slip–stick–slip, gross slip) in closed form; :func:`integrate_stronge` integrates the
+  same equations (the tests compare with the closed forms). Its normal force is not Hertz's: the
+  outcome depends on ``u0/(mu V)``, ``kappa`` and ``e`` only.
+
 Normalised units (:mod:`microimpact.core.tangential`): lengths in ``alpha_m``, time in ``alpha_m/V``,
 normal force in ``m V^2/alpha_m``, tangential force in ``mu m V^2/alpha_m``, velocities of the
 contact plane in ``mu V``. A Mindlin stiffness is ``k^ = 15/8 kappa f (a/a_m)`` (``f`` the law's
@@ -60,6 +73,8 @@ again when the stuck force would fall inside the limit: ``sign k^ u + c (da/dtau
 
 from __future__ import annotations
 
+import math
+
 from ._jit import jitable
 from .tangential import (
     REGIME_MICROSLIP,
@@ -71,11 +86,14 @@ from .tangential import (
 
 __all__ = [
     "LAWS",
+    "ALL_LAWS",
     "law_code",
     "law_parameters",
     "law_rates",
     "law_switch",
     "integrate_law",
+    "stronge_normal",
+    "integrate_stronge",
 ]
 
 #: Laws by name, their integer code (the order of :func:`law_parameters`).
@@ -88,6 +106,11 @@ LAWS = (
     "liggghts_history",
     "di_renzo_di_maio",
 )
+
+
+#: Every law of this module by name: :data:`LAWS` (integrated by :func:`integrate_law`) and
+#: ``"stronge"`` (:func:`integrate_stronge`).
+ALL_LAWS = (*LAWS, "stronge")
 
 
 def law_code(name):
@@ -308,3 +331,120 @@ def integrate_law(code, v0_hat, w0_hat, kappa, x, eps, steps):
     else:
         regime = REGIME_STICKING
     return vt, wr, float(regime)
+
+
+@jitable
+def stronge_normal(stage, s, e):
+    """Normal force and its rate of Stronge's linear compliant impact at the phase ``s = omega_n t``.
+
+    In units of ``m omega_n V/beta_n``: ``sin(s)`` while compressing (``stage`` 1, ``s`` in
+    ``[0, pi/2]``), ``sin(s/e + pi/2 (1 - 1/e))`` in restitution (``stage`` 3, ``s`` in
+    ``[pi/2, pi/2 (1 + e)]``). Returns ``(P, dP/ds)``.
+    """
+    if stage == 1:
+        return (math.sin(s), math.cos(s))
+    ph = s / e + 0.5 * math.pi * (1.0 - 1.0 / e)
+    return (math.sin(ph), math.cos(ph) / e)
+
+
+@jitable
+def _stronge_rates(stage, s, xs, u, sliding, sign, e, eta2):
+    """``(dX/ds, du/ds, T)``: stuck, ``X = T`` with ``dT/ds = -u/eta^2``; sliding, ``T = -sign P``."""
+    p, _ = stronge_normal(stage, s, e)
+    if sliding:
+        t = -sign * p
+        return (0.0, 3.5 * t, t)
+    return (-u / eta2, 3.5 * xs, xs)
+
+
+@jitable
+def _stronge_switch(stage, s, xs, u, sliding, sign, e, eta2):
+    p, pdot = stronge_normal(stage, s, e)
+    if sliding:
+        return -(sign * u / eta2 - pdot)
+    return abs(xs) - p
+
+
+@jitable
+def _stronge_rk4(stage, s, h, xs, u, sliding, sign, e, eta2):
+    k1x, k1u, _ = _stronge_rates(stage, s, xs, u, sliding, sign, e, eta2)
+    h2 = 0.5 * h
+    k2x, k2u, _ = _stronge_rates(stage, s + h2, xs + h2 * k1x, u + h2 * k1u, sliding, sign, e, eta2)
+    k3x, k3u, _ = _stronge_rates(stage, s + h2, xs + h2 * k2x, u + h2 * k2u, sliding, sign, e, eta2)
+    k4x, k4u, _ = _stronge_rates(stage, s + h, xs + h * k3x, u + h * k3u, sliding, sign, e, eta2)
+    return (xs + h * (k1x + 2.0 * k2x + 2.0 * k3x + k4x) / 6.0, u + h * (k1u + 2.0 * k2u + 2.0 * k3u + k4u) / 6.0)
+
+
+@jitable
+def integrate_stronge(u0_hat, kappa, e, steps):
+    """Tangential outcome of Stronge's compliant frictional impact (fixed-step RK4, bisected switches).
+
+    Parameters
+    ----------
+    u0_hat : float
+        Slip of the contact point before the impact, ``u0 / (mu V)`` [-].
+    kappa : float
+        Tangential over normal spring stiffness, ``1/eta^2`` [-] (``4 G*/E*``).
+    e : float
+        Normal restitution coefficient [-], in (0, 1].
+    steps : int
+        RK4 steps per phase (compression, restitution).
+
+    Returns
+    -------
+    tuple
+        ``(u_r_hat, regime)``: the slip after the impact in ``mu V`` (it changes by ``7/2`` of the
+        tangential impulse per mass) and the regime code.
+    """
+    eta2 = 1.0 / kappa
+    u = u0_hat
+    xs = 0.0
+    sliding = abs(u0_hat) > eta2
+    sign = 1.0 if u0_hat >= 0.0 else -1.0
+    slid = sliding
+    stuck = not sliding
+    steps = int(steps)
+    for stage in (1, 3):
+        s_start = 0.0 if stage == 1 else 0.5 * math.pi
+        span = 0.5 * math.pi if stage == 1 else 0.5 * math.pi * e
+        h = span / steps
+        for i in range(steps):
+            s0 = s_start + i * h
+            rem = h
+            for _ in range(16):
+                xn, un = _stronge_rk4(stage, s0, rem, xs, u, sliding, sign, e, eta2)
+                if _stronge_switch(stage, s0 + rem, xn, un, sliding, sign, e, eta2) <= 0.0:
+                    xs, u = xn, un
+                    break
+                lo, hi = 0.0, 1.0
+                for _ in range(60):
+                    mid = 0.5 * (lo + hi)
+                    xm, um = _stronge_rk4(stage, s0, mid * rem, xs, u, sliding, sign, e, eta2)
+                    if _stronge_switch(stage, s0 + mid * rem, xm, um, sliding, sign, e, eta2) > 0.0:
+                        hi = mid
+                    else:
+                        lo = mid
+                xm, um = _stronge_rk4(stage, s0, hi * rem, xs, u, sliding, sign, e, eta2)
+                ss = s0 + hi * rem
+                if sliding:
+                    p, _ = stronge_normal(stage, ss, e)
+                    xs = -sign * p
+                    sliding = False
+                    stuck = True
+                else:
+                    sign = -1.0 if xm > 0.0 else 1.0
+                    sliding = True
+                    slid = True
+                    xs = 0.0
+                u = um
+                s0 = ss
+                rem = rem * (1.0 - hi)
+                if rem <= 0.0:
+                    break
+    if slid and stuck:
+        regime = REGIME_MICROSLIP
+    elif slid:
+        regime = REGIME_SLIDING
+    else:
+        regime = REGIME_STICKING
+    return u, float(regime)

@@ -41,6 +41,7 @@ LABELS = {
     "lammps_linear_history": "LAMMPS linear_history",
     "liggghts_history": "LIGGGHTS history",
     "di_renzo_di_maio": "Di Renzo & Di Maio 2005",
+    "stronge": "Stronge (linear springs)",
 }
 _LABELS = LABELS
 
@@ -164,6 +165,7 @@ LAW_MODELS = (
     "lammps_linear_history",
     "liggghts_history",
     "di_renzo_di_maio",
+    "stronge",
     "rigid",
 )
 
