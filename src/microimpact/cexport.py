@@ -591,7 +591,12 @@ def _mindlin_source(text, kappa, law="mindlin"):
             " *               along the seed's normal history; microimpact.oblique) of a solid sphere:\n", "", 1
         )
     table_law = "lammps_mindlin" if law == "liggghts_history" else law  # the same spring with the arm r
-    table = table_c_source(universal_table(kappa, law=table_law), "microimpact_oblique")
+    tab = (
+        universal_table(kappa)
+        if table_law in ("mindlin", "lammps_mindlin_rescale_force")
+        else universal_table(kappa, law=table_law)
+    )
+    table = table_c_source(tab, "microimpact_oblique")
     table = table.replace("#include <math.h>\n", "")  # already included
     table += (
         f"\n/* kappa = 4 G* / E* of psi, unrounded (the table is built for it rounded to 12 digits) */\n"
