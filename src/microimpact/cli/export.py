@@ -6,7 +6,7 @@ import math
 from pathlib import Path
 
 from ..adhesion import work_of_adhesion
-from ..cexport import BAND_OWNED, DEFAULT_VS_OVER_VY, generate_c_source, write_band, write_c_source, write_tables
+from ..cexport import DEFAULT_VS_OVER_VY, generate_c_source, write_band, write_c_source, write_tables
 from ..core.tangential_laws import ALL_LAWS as LAWS
 from ..core.wall import sphere_mass
 from ..fitting import INTERVALS, LOSSES
@@ -37,8 +37,8 @@ def register(sub) -> None:
         "--out",
         default="microimpact_export",
         metavar="DIR",
-        help="output directory (default: %(default)s), written whole: built beside it and swapped into place "
-        "when complete",
+        help="output folder (default: %(default)s); it owns only what it wrote: a later run replaces only the "
+        "files listed in its manifest (.microimpact-manifest.json) and refuses a folder holding anything else",
     )
     add_pair_arguments(p)
     g = p.add_mutually_exclusive_group()
@@ -104,7 +104,7 @@ def register(sub) -> None:
 
 def run(args) -> int:
     from .._validation import check_nonnegative, check_positive
-    from ..io import atomic_directory
+    from ..io import owned_directory
 
     check_pair_options(args)
     check_outputs(directories=[args.out])
@@ -176,12 +176,13 @@ def run(args) -> int:
             vs_over_vy_values=vs,
             c_source=not args.no_c,
             source=Path(args.fit).name,
+            inputs=[args.fit],
             **c_kw,
         )
     else:
         if c_kw and not args.no_c:
             generate_c_source(pair, work_of_adhesion=G, friction=mu, **c_kw)  # kappa checked before writing
-        with atomic_directory(out, owned=BAND_OWNED + DEM_OWNED) as tmp:
+        with owned_directory(out, "export") as tmp:
             written = write_tables(tmp, pair, diameters, velocities, work_of_adhesion=G, vs_over_vy_values=vs)
             if decks is not None:
                 written += _write_decks(tmp, pair, *decks)
@@ -202,10 +203,6 @@ def run(args) -> int:
 
         report_warnings(caught)
     return 0
-
-
-#: Files ``--dem`` writes (besides the tables and the C file).
-DEM_OWNED = ("in.*.*.lammps", "in.*.*.liggghts", "README_dem.txt")
 
 
 def _dem_codes(args):
