@@ -118,7 +118,6 @@ __all__ = [
     "adhesive_restitution",
     "work_of_adhesion",
     "contact",
-    "coupling",
     "deposition",
     "impact",
     "dynamics",
