@@ -94,6 +94,19 @@ def _comment_text(text) -> str:
     return out
 
 
+def _check_size_names(sizes):
+    """Refuse two diameters whose per-size file names (``d<micrometres:g>um``) would be the same."""
+    seen = {}
+    for d in sizes:
+        tag = f"{float(d) * 1e6:g}"
+        if tag in seen:
+            raise ValueError(
+                f"diameters {seen[tag]!r} and {float(d)!r} m would both be written to the table d{tag}um "
+                "(its name keeps 6 significant digits): give diameters that differ there"
+            )
+        seen[tag] = float(d)
+
+
 def _sized_pair(pair, diameter):
     if pair.density is None:
         raise ValueError("the pair needs a particle density to be rescaled to other diameters")
@@ -170,6 +183,7 @@ def write_tables(
     for i, pair in enumerate(pairs):
         sizes = [2.0 * pair.effective_radius] if diameters is None else list(np.atleast_1d(diameters))
         tag = f"{_slug(pair.label or f'pair{i}')}_" if multi else ""
+        _check_size_names(sizes)
         jobs += [(pair, tag, d, _sized_pair(pair, d)) for d in sizes]
     out_dir.mkdir(parents=True, exist_ok=True)
     written = [_write_universal_table(out_dir, v, s)]
@@ -794,6 +808,7 @@ def write_band(
     for end in ends:
         pair = end["pair"]
         sizes = [2.0 * pair.effective_radius] if diameters is None else list(np.atleast_1d(diameters))
+        _check_size_names(sizes)
         jobs += [(end, d, _sized_pair(pair, d)) for d in sizes]
         if c_source:
             sources[end["name"]] = generate_c_source(

@@ -138,6 +138,7 @@ import numpy as np
 from scipy import special
 
 from ._optional import require
+from ._validation import is_number_text
 from .impact import outcome_arrays, restitution_coefficient
 from .materials import DEFAULT_K, sphere_mass
 from .pair import ContactPair
@@ -368,10 +369,9 @@ def load_restitution_csv(path) -> RestitutionData:
             cell = row[i]
             if cell == "":
                 raise ValueError(f"{where} line {lineno}: empty {what} cell")
-            try:
-                x = float(cell)
-            except ValueError:
-                raise ValueError(f"{where} line {lineno}: {what} {cell!r} is not a number") from None
+            if not is_number_text(cell):  # float() would also take 1_0 (as 10) and 0x1p3
+                raise ValueError(f"{where} line {lineno}: {what} {cell!r} is not a number")
+            x = float(cell)
             if not math.isfinite(x):
                 raise ValueError(f"{where} line {lineno}: {what} {cell!r} is not a finite number")
             return x

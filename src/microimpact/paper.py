@@ -27,6 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from . import __version__
+from ._validation import is_number_text
 from .figures import paper as figs
 from .impact import restitution_coefficient
 from .materials import PAPER_CASES
@@ -649,9 +650,9 @@ def read_table(path) -> dict:
     for j, k in enumerate(header):
         key = re.sub(r"\s*\[[^\]]*\]$", "", k)
         cells = [r[j] for r in body]
-        try:
+        if all(is_number_text(c) for c in cells):  # float() would also take 1_0 (as 10)
             out[key] = np.array([float(c) for c in cells])
-        except ValueError:
+        else:
             out[key] = np.array(cells, dtype=object)
     return out
 
