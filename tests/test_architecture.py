@@ -22,6 +22,7 @@ LAYERS = {
     "_optional": 1,
     "materials": 1,
     "io": 1,
+    "_signals": 1,
     "contact": 2,
     "impact": 2,
     "dynamics": 2,
