@@ -37,7 +37,19 @@ from .._optional import MissingExtraError
 from .._signals import Interrupted  # noqa: F401  (re-exported: the exception a signal raises)
 
 #: Subcommand modules, in the order ``--help`` lists them.
-COMMANDS = ["impact", "history", "compare", "paper", "sweep", "fit", "export", "bench", "materials", "oblique"]
+COMMANDS = [
+    "impact",
+    "history",
+    "compare",
+    "paper",
+    "sweep",
+    "fit",
+    "export",
+    "bench",
+    "materials",
+    "oblique",
+    "cache",
+]
 
 
 class Parser(argparse.ArgumentParser):
