@@ -48,6 +48,7 @@ COMMANDS = [
     "bench",
     "materials",
     "oblique",
+    "dem_check",
     "cache",
 ]
 
