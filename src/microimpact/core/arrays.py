@@ -288,7 +288,9 @@ def _cache_files(dispatcher):
         names = os.listdir(folder)
     except OSError:
         return folder, []
-    return folder, [os.path.join(folder, n) for n in names if n == index or (n.startswith(base + ".") and n.endswith(".nbc"))]
+    return folder, [
+        os.path.join(folder, n) for n in names if n == index or (n.startswith(base + ".") and n.endswith(".nbc"))
+    ]
 
 
 def _call(dispatcher, *args):
