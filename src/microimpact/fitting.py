@@ -365,12 +365,13 @@ def load_restitution_csv(path) -> RestitutionData:
         raise ValueError(f"{where}: no header line (expected columns velocity, restitution)")
     if not lines:
         raise ValueError(f"{where}: no data rows after the header on line {header[0]}")
-    sigma = np.frombuffer(s, dtype=float).copy() if isg is not None else None
+    # numpy views of the arrays' buffers (no copy; each view keeps its array alive)
+    sigma = np.frombuffer(s, dtype=float) if isg is not None else None
     return RestitutionData(
-        np.frombuffer(V, dtype=float).copy(),
-        np.frombuffer(e, dtype=float).copy(),
+        np.frombuffer(V, dtype=float),
+        np.frombuffer(e, dtype=float),
         sigma,
-        np.frombuffer(lines, dtype=np.int64).astype(int),
+        np.frombuffer(lines, dtype=np.int64),
         source=where,
     )
 
