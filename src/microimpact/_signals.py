@@ -33,7 +33,7 @@ __all__ = ["GRACE", "Interrupted", "install_early", "install", "restore", "check
 GRACE = 3.0
 SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
-_state = {"pending": None, "timer": None, "old": {}, "prefix": "microimpact"}
+_state = {"pending": None, "timer": None, "old": {}, "prefix": "microimpact", "hook": None}
 _live: dict = {}  # temporary path -> "file" or "dir", while it is being written
 _lock = _thread.allocate_lock()
 
@@ -152,11 +152,22 @@ def running_as_command() -> bool:
     return argv0 == "-m" or os.path.basename(argv0) in ("microimpact", "microimpact.exe")
 
 
+def _unraisable(unraisable):
+    """Python prints an exception raised where it cannot propagate (a weakref callback, a ``__del__``):
+    for our interrupt, say nothing -- it is pending, and :func:`check` or the watchdog acts on it."""
+    if isinstance(unraisable.exc_value, Interrupted):
+        return
+    (_state["hook"] or sys.__unraisablehook__)(unraisable)
+
+
 def install() -> None:
     """During a command: the first signal raises :class:`Interrupted` and arms the watchdog."""
     if not _in_main_thread():
         return
     _state["pending"] = None
+    if sys.unraisablehook is not _unraisable:
+        _state["hook"] = sys.unraisablehook
+        sys.unraisablehook = _unraisable
     for sig in SIGNALS:
         try:
             _state["old"][sig] = signal.signal(sig, _raise)
@@ -178,3 +189,6 @@ def restore() -> None:
                 pass
     _state["old"] = {}
     _state["pending"] = None
+    if sys.unraisablehook is _unraisable:
+        sys.unraisablehook = _state["hook"] or sys.__unraisablehook__
+        _state["hook"] = None

@@ -135,7 +135,6 @@ import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import special
 
 from ._optional import require
 from ._validation import is_number_text
@@ -365,12 +364,13 @@ def load_restitution_csv(path) -> RestitutionData:
         raise ValueError(f"{where}: no header line (expected columns velocity, restitution)")
     if not lines:
         raise ValueError(f"{where}: no data rows after the header on line {header[0]}")
-    sigma = np.frombuffer(s, dtype=float).copy() if isg is not None else None
+    # numpy views of the arrays' buffers (no copy; each view keeps its array alive)
+    sigma = np.frombuffer(s, dtype=float) if isg is not None else None
     return RestitutionData(
-        np.frombuffer(V, dtype=float).copy(),
-        np.frombuffer(e, dtype=float).copy(),
+        np.frombuffer(V, dtype=float),
+        np.frombuffer(e, dtype=float),
         sigma,
-        np.frombuffer(lines, dtype=np.int64).astype(int),
+        np.frombuffer(lines, dtype=np.int64),
         source=where,
     )
 
@@ -1144,6 +1144,8 @@ def _check_confidence(confidence):
 
 def _quantile(confidence, dof, known_scale):
     p = 0.5 + confidence / 2.0
+    from scipy import special  # imported where used: the export command imports this module
+
     return float(special.ndtri(p) if known_scale else special.stdtrit(max(dof, 1), p))
 
 

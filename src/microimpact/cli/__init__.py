@@ -154,8 +154,14 @@ def main(argv=None) -> int:
     _signals.install()  # from the start: a signal while parsing is an interrupt too (microimpact._signals)
     try:
         return _main(argv)
-    except KeyboardInterrupt as exc:
-        signum = getattr(exc, "signum", signal.SIGINT)
+    except BaseException as exc:
+        # an interrupt, or what a library made of one (a C extension's import turns it into
+        # "ImportError: initialization failed"): one line and 128 + signal, never a traceback
+        signum = getattr(exc, "signum", None) or _signals.pending()
+        if signum is None and isinstance(exc, KeyboardInterrupt):
+            signum = signal.SIGINT
+        if signum is None:
+            raise
         _signals.cleanup()
         print(_signals.message(signum), file=sys.stderr)
         return 128 + int(signum)
@@ -198,6 +204,8 @@ def _main(argv):
         _silence_stdout()
         return 0
     except (ValueError, MissingExtraError, OSError, MemoryError) as exc:
+        if _signals.pending() is not None:  # what a library made of an interrupt
+            raise _signals.Interrupted(_signals.pending()) from None
         if isinstance(exc, MemoryError):
             msg = "out of memory (see MICROIMPACT_MAX_MEMORY and give smaller sizes)"
         else:

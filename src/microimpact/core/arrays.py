@@ -28,6 +28,7 @@ poliastro's split (compiled core on floats; wrappers only convert and call).
 from __future__ import annotations
 
 import functools
+import hashlib
 import itertools
 import os
 import sys
@@ -37,6 +38,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import cache as _cache
 from ._jit import JITABLE
 
 __all__ = [
@@ -67,8 +69,8 @@ PARALLEL_WORK = 2e-4
 _COST: dict = {}  # measured serial time per element [s] of each compiled loop
 _PY_COST: dict = {}  # measured time of one Python call [s] of each function
 
-_CORE = Path(__file__).resolve().parent
 _KERNELS: dict = {}
+_LOCK_NAMES: dict = {}  # compiled loop -> (folder, name) of its file lock
 _LOCK = threading.Lock()  # dask evaluates blocks in threads: one thread builds a loop, the others wait
 
 
@@ -93,23 +95,14 @@ def cache_dir() -> Path:
     ``MICROIMPACT_CACHE_DIR`` if set, else ``$XDG_CACHE_HOME/microimpact`` (``~/.cache/microimpact``),
     else a folder in the temporary directory when the home folder cannot be written.
     """
-    env = os.environ.get("MICROIMPACT_CACHE_DIR")
-    if env:
-        return Path(env)
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return Path(base) / "microimpact"
+    return _cache.cache_dir()
 
 
 @functools.lru_cache(maxsize=1)
 def _source_hash() -> str:
-    import hashlib
-
-    h = hashlib.sha256()
-    for path in sorted(_CORE.rglob("*.py")):
-        h.update(path.relative_to(_CORE).as_posix().encode())
-        h.update(path.read_bytes())
     import numba
 
+    h = hashlib.sha256(_cache.core_hash().encode())
     h.update(numba.__version__.encode())
     h.update(sys.version.encode())
     return h.hexdigest()[:16]
@@ -226,8 +219,6 @@ def _reason(exc) -> str:
 
 
 def _build(fn, kinds: str, nout: int, with_params: bool):
-    import hashlib
-
     import numba  # noqa: F401  (the first compiled call pays for this import, once per process)
 
     text = _generate(fn, kinds, nout, with_params)
@@ -248,6 +239,7 @@ def _build(fn, kinds: str, nout: int, with_params: bool):
         if not same:
             _write_atomic(path, text)
         module = _load_module(name, path, text, cache=True)
+        _LOCK_NAMES[module.serial] = _LOCK_NAMES[module.parallel] = (folder, stem)
     except Exception as exc:  # a read-only or full cache folder, numba unable to cache there: compile in memory
         _warn_cache(folder, f"cannot be used ({_reason(exc)}); compiling in memory")
         module = _load_module(name, None, text, cache=False)
@@ -293,7 +285,7 @@ def _cache_files(dispatcher):
     ]
 
 
-def _call(dispatcher, *args):
+def _heal_call(dispatcher, *args):
     """Call a compiled loop; on its first call, heal what its cache entry breaks.
 
     A corrupt entry (a truncated index: ``EOFError``, ``UnpicklingError``) is deleted and the
@@ -326,6 +318,23 @@ def _call(dispatcher, *args):
         if isinstance(first, OSError):
             _warn_cache(folder, f"cannot be written ({_reason(first)}); compiling in memory")
         return dispatcher(*args)
+
+
+def _call(kernel, n, inputs, params, out):
+    """Run a compiled loop; its first call in this process holds the loop's file lock.
+
+    That first call compiles the loop or loads it from numba's cache: processes started together
+    on an empty cache so compile it once, the others wait and then load it (:func:`~.cache.locked`).
+    """
+    if kernel.signatures:
+        kernel(n, *inputs, params, out)
+        return
+    folder, stem = _LOCK_NAMES.get(kernel, (None, None))
+    if folder is None:  # compiled in memory (the cache folder could not be used)
+        _heal_call(kernel, n, *inputs, params, out)
+        return
+    with _cache.locked(folder, stem):
+        _heal_call(kernel, n, *inputs, params, out)
 
 
 def _flat(arrays, shape):
@@ -418,11 +427,11 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
         threads = n >= PARALLEL_MIN or (cost is not None and n >= 2048 and n * cost >= PARALLEL_WORK)
         inputs = [float(f[0]) if s == 0 else f for f, s in zip(flats, steps)]
         if threads:
-            _call(parallel, n, *inputs, tuple(params) if with_params else (), out)
+            _call(parallel, n, inputs, tuple(params) if with_params else (), out)
         else:
             measure = cost is None and n >= 256 and bool(serial.signatures)  # compiled already: time it
             t0 = time.perf_counter()
-            _call(serial, n, *inputs, tuple(params) if with_params else (), out)
+            _call(serial, n, inputs, tuple(params) if with_params else (), out)
             if measure:
                 _COST[serial] = (time.perf_counter() - t0) / n
     elif engine == "python":
@@ -461,6 +470,10 @@ def _owned_cache_files(folder: Path):
             if first.startswith(_MARK):
                 stems.append(p.stem)
                 files.append(p)
+    for stem in stems:  # the loop's file lock (core.cache.locked)
+        lock = kernels / f"{stem}.lock"
+        if lock.is_file() and not lock.is_symlink():
+            files.append(lock)
     pycache = kernels / "__pycache__"
     try:
         cached = sorted(pycache.iterdir())
