@@ -123,7 +123,6 @@ __all__ = [
     "adhesive_restitution",
     "work_of_adhesion",
     "contact",
-    "coupling",
     "deposition",
     "impact",
     "dynamics",

@@ -136,6 +136,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import quantities
 from ._optional import require
 from ._validation import is_number_text
 from .impact import outcome_arrays, restitution_coefficient
@@ -169,34 +170,24 @@ SEED_MODEL = "thornton_ning_2016"
 
 #: Pair parameters that :func:`fit_restitution` can leave free, with the exponent ``c``
 #: of ``V_y ~ theta^c`` (eq. 28: ``V_y ~ p_y^(5/2) E*^(-2) rho^(-1/2)``), the SI unit,
-#: the unit shown to people and the scale from SI to that unit.
+#: the unit shown to people and the scale from SI to that unit, the symbol and its TeX: all but the
+#: exponent from :data:`microimpact.core.quantities.QUANTITIES`.
 FREE_PARAMETERS: dict[str, dict] = {
-    "limiting_pressure": {
-        "exponent": 2.5,
-        "si": "Pa",
-        "unit": "MPa",
-        "scale": 1e-6,
-        "symbol": "p_y",
-        "tex": "$p_y$",
-    },
-    "k": {"exponent": 2.5, "si": "", "unit": "", "scale": 1.0, "symbol": "k = p_y/Y", "tex": "$k = p_y/Y$"},
-    "effective_modulus": {
-        "exponent": -2.0,
-        "si": "Pa",
-        "unit": "GPa",
-        "scale": 1e-9,
-        "symbol": "E*",
-        "tex": "$E^*$",
-    },
-    "density": {
-        "exponent": -0.5,
-        "si": "kg/m^3",
-        "unit": "kg/m^3",
-        "scale": 1.0,
-        "symbol": "rho",
-        "tex": r"$\rho$",
-    },
-    "yield_velocity": {"exponent": 1.0, "si": "m/s", "unit": "m/s", "scale": 1.0, "symbol": "V_y", "tex": "$V_y$"},
+    name: {
+        "exponent": exponent,
+        "si": quantities.QUANTITIES[name].unit,
+        "unit": "" if quantities.QUANTITIES[name].shown_unit == "1" else quantities.QUANTITIES[name].shown_unit,
+        "scale": quantities.QUANTITIES[name].scale,
+        "symbol": quantities.QUANTITIES[name].symbol,
+        "tex": quantities.QUANTITIES[name].tex,
+    }
+    for name, exponent in (
+        ("limiting_pressure", 2.5),
+        ("k", 2.5),
+        ("effective_modulus", -2.0),
+        ("density", -0.5),
+        ("yield_velocity", 1.0),
+    )
 }
 
 #: Losses of :func:`scipy.optimize.least_squares` accepted by :func:`fit_restitution`.

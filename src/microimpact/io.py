@@ -34,7 +34,7 @@ booleans as ``0``/``1``, non-finite values as ``nan``/``inf``/``-inf``. The
 header comes first so that every common reader takes it:
 ``numpy.genfromtxt(f, delimiter=",", names=True)``,
 ``pandas.read_csv(f, comment="#")``, :func:`csv.DictReader` over the lines not
-starting with ``#``, :func:`microimpact.paper.read_table` and
+starting with ``#``, :func:`read_table` and
 :func:`microimpact.fitting.load_restitution_csv`.
 """
 
@@ -56,6 +56,7 @@ from pathlib import Path
 import numpy as np
 
 from . import _signals
+from ._validation import is_number_text
 
 __all__ = [
     "atomic_write",
@@ -66,6 +67,8 @@ __all__ = [
     "check_input_file",
     "csv_header",
     "write_csv",
+    "write_table",
+    "read_table",
     "write_json",
     "json_safe",
     "write_netcdf",
@@ -929,3 +932,97 @@ def progress_bar(total, desc: str = "", *, unit: str = "it", disable: bool = Fal
     except ImportError:  # pragma: no cover - tqdm is a dependency
         return _NoBar()
     return tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, leave=False, dynamic_ncols=True)
+
+
+def write_table(path, table: dict, title: str = "", columns: dict | None = None, source: str = "") -> Path:
+    """Write a dict of columns as CSV in the project's layout (see :func:`csv_header`).
+
+    The first line is the header, each column named with its unit
+    (``velocity_m_s [m/s]``; text columns bare); then ``#`` lines: the title,
+    the provenance (``microimpact <version>``, then ``source``) and one line per
+    column with its unit and description; then the rows. Floats are written with
+    Python's shortest exact representation, so reading the file back
+    (:func:`read_table`) gives the same numbers bit for bit. The file is written
+    atomically (:func:`write_csv`).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        File to write (overwritten).
+    table : dict of str to array_like
+        Columns of equal length, by name; bools are written as 0/1.
+    title : str, optional
+        First comment line of the file (one line).
+    columns : dict of str to (str, str), optional
+        Column name -> (unit, description) for the header and the ``#`` lines
+        (e.g. :data:`microimpact.figures.paper.COLUMNS`); a unit ``"-"`` or
+        ``"unit"`` marks a column without a unit of its own (text, or in the unit
+        of another column). Columns not named have no unit.
+    source : str, optional
+        Appended to the provenance line (``"; "`` between).
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     cols = {"velocity_m_s": ("m/s", "impact speed V"), "restitution": ("1", "e")}
+    ...     path = write_table(Path(tmp) / "e.csv", {"velocity_m_s": [5.0, 20.0], "restitution": [1.0, 0.8836]}, columns=cols)
+    ...     back = read_table(path)
+    >>> back["velocity_m_s"].tolist(), back["restitution"].tolist()
+    ([5.0, 20.0], [1.0, 0.8836])
+    """
+    from . import __version__
+
+    columns = {} if columns is None else columns
+    keys = list(table)
+    comments = []
+    if title:
+        comments.append(str(title))
+    comments.append(f"microimpact {__version__}" + (f"; {source}" if source else ""))
+    comments.append("columns (SI units; a suffix names the unit, no suffix: dimensionless or text):")
+    for k in keys:
+        unit, desc = columns.get(k, ("", ""))
+        comments.append(f"  {k} [{unit}]: {desc}")
+    cols = []
+    for k in keys:
+        unit = columns.get(k, ("", ""))[0]
+        cols.append((k, "" if unit in ("-", "unit") else unit, np.atleast_1d(np.asarray(table[k]))))
+    return write_csv(path, cols, comments)
+
+
+def read_table(path) -> dict:
+    """Read a CSV written by :func:`write_table` (or :func:`write_csv`) back into a dict of arrays.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file; ``#`` lines are skipped, and the ``[unit]`` of each header name
+        is dropped from the key (files of the older layout, header after the
+        ``#`` lines, read the same).
+
+    Returns
+    -------
+    dict of str to ndarray
+        One array per column, in file order: float where every cell is numeric,
+        otherwise ``object`` (strings). Units are those of the header.
+    """
+    import csv
+    import re
+
+    with open(path, encoding="utf-8") as fh:
+        rows = [r for r in csv.reader(line for line in fh if not line.startswith("#"))]
+    header, body = rows[0], rows[1:]
+    out = {}
+    for j, k in enumerate(header):
+        key = re.sub(r"\s*\[[^\]]*\]$", "", k)
+        cells = [r[j] for r in body]
+        if all(is_number_text(c) for c in cells):  # float() would also take 1_0 (as 10)
+            out[key] = np.array([float(c) for c in cells])
+        else:
+            out[key] = np.array(cells, dtype=object)
+    return out

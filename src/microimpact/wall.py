@@ -109,7 +109,7 @@ class WallInteraction:
         return int(np.size(self.stuck))
 
 
-def _vectors(name, value, n_expected=None):
+def _vectors(name, value):
     arr = np.asarray(value, dtype=float)
     if arr.ndim == 1:
         arr = arr[None, :]
@@ -339,7 +339,8 @@ def wall_interaction(
 
 def _compliant_impulse_ratio(ut_mag, V, Vy, mu, E, mats, wall_mat, poisson_ratio, effective_shear_modulus):
     """``|J_t| / (mu J_n)`` of the compliant model per particle, from the universal tables."""
-    from .core.tangential import effective_shear_modulus as _gstar
+    from .core import hertz as _hertz
+    from .core import tangential as _tg
     from .oblique import universal_table
 
     n = ut_mag.size
@@ -347,17 +348,16 @@ def _compliant_impulse_ratio(ut_mag, V, Vy, mu, E, mats, wall_mat, poisson_ratio
         G = _per_particle(
             "effective_shear_modulus", check_positive("effective_shear_modulus", effective_shear_modulus), n
         )
-        kappa = 4.0 * G / E
+        kappa = _tg.stiffness_ratio(G, E)
     elif poisson_ratio is not None:
         nu = float(poisson_ratio)
         if isinstance(poisson_ratio, bool) or not (-1.0 < nu <= 0.5):
             raise ValueError(f"poisson_ratio must be in (-1, 0.5], got {poisson_ratio!r}")
-        kappa = np.full(n, 2.0 * (1.0 - nu) / (2.0 - nu))
+        kappa = np.full(n, _tg.stiffness_ratio_same_poisson(nu))
     elif mats is not None and wall_mat is not None:
         Ew, nuw = wall_mat.youngs_modulus, wall_mat.poisson_ratio
-        G = np.array([_gstar(e1, n1, Ew, nuw) for e1, n1 in zip(mats[0], mats[1])])
-        E_mat = 1.0 / ((1.0 - mats[1] ** 2) / mats[0] + (1.0 - nuw**2) / Ew)
-        kappa = 4.0 * G / E_mat
+        G = np.array([_tg.effective_shear_modulus(e1, n1, Ew, nuw) for e1, n1 in zip(mats[0], mats[1])])
+        kappa = _tg.stiffness_ratio(G, _hertz.effective_modulus(mats[0], mats[1], Ew, nuw))
     else:
         raise ValueError(
             "tangential='mindlin' needs poisson_ratio=..., effective_shear_modulus=... or material=... and wall=..."

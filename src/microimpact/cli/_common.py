@@ -10,9 +10,8 @@ import sys
 import numpy as np
 
 from .._validation import check_positive, parse_number
-from ..core.wall import sphere_mass
 from ..io import check_figure_path, check_input_file, check_memory, check_output_path
-from ..materials import PAPER_CASES, list_materials
+from ..materials import DEFAULT_K, PAPER_CASES, list_materials, sphere_mass
 from ..pair import ContactPair
 
 __all__ = [
@@ -162,7 +161,7 @@ def add_pair_arguments(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--effective-modulus", type=number, metavar="PA", help="effective modulus E* [Pa]")
     g.add_argument("--limiting-pressure", type=number, metavar="PA", help="limiting contact pressure p_y [Pa]")
     g.add_argument("--yield-strength", type=number, metavar="PA", help="yield strength Y [Pa]; p_y = k Y")
-    g.add_argument("--k", type=number, help="p_y / Y (default 2.2, the middle of the seed's 2.1-2.3)")
+    g.add_argument("--k", type=number, help=f"p_y / Y (default {DEFAULT_K}, the middle of the seed's 2.1-2.3)")
 
 
 def check_pair_options(args) -> None:
@@ -201,10 +200,7 @@ def _size_option(args) -> str:
 
 
 def _check_mass(radius, density, option, value):
-    try:
-        m = sphere_mass(radius, density)
-    except OverflowError:
-        m = math.inf
+    m = float(sphere_mass(radius, density))
     if not (m > 0 and math.isfinite(m)):
         raise ValueError(
             f"{option} {value:g} m is outside what double precision can model: the particle mass "
@@ -267,7 +263,7 @@ def pair_from_args(args) -> ContactPair:
         changed.append(f"p_y = {args.limiting_pressure:.6g} Pa")
     elif args.yield_strength is not None or args.k is not None:
         Y = args.yield_strength if args.yield_strength is not None else PAPER_CASES[case]["yield_strength"]
-        k = args.k if args.k is not None else 2.2
+        k = args.k if args.k is not None else DEFAULT_K
         changes["limiting_pressure"] = ContactPair._limiting_pressure(None, k, Y)
         changed.append(f"p_y = {k:g} x {Y:.6g} Pa")
     if changed:

@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
+import argparse
 import math
 from pathlib import Path
 
 from ..adhesion import work_of_adhesion
 from ..cexport import DEFAULT_VS_OVER_VY, generate_c_source, write_band, write_c_source, write_tables
-from ..core.wall import sphere_mass
 from ..fitting import INTERVALS, LOSSES
+from ..materials import sphere_mass
 from ._common import (
     add_pair_arguments,
     check_input_file,
@@ -120,8 +121,9 @@ def run(args) -> int:
     diameters = parse_values(args.diameters, "--diameters") if args.diameters is not None else None
     if diameters is not None:
         check_positive("--diameters", diameters)
+    pair_args = args  # the options the pair is built from (args itself is never changed)
     if (args.particle or args.surface) and args.radius is None and args.diameter is None and diameters is not None:
-        args.diameter = float(diameters[0])
+        pair_args = argparse.Namespace(**{**vars(args), "diameter": float(diameters[0])})
     if args.surface_energy is not None:
         gammas = parse_values(args.surface_energy, "--surface-energy")
         if gammas.size > 2:
@@ -147,14 +149,12 @@ def run(args) -> int:
         fit, caught = _fit(args)
         pair = fit.pair
     else:
-        pair = pair_from_args(args)
+        pair = pair_from_args(pair_args)
     if diameters is not None:
-        rho = pair.density if pair.density is not None else float("nan")
+        if pair.density is None:
+            raise ValueError("--diameters needs the particle's density (--density, or a particle material)")
         for d in diameters:
-            try:
-                m = sphere_mass(0.5 * float(d), rho)
-            except OverflowError:
-                m = math.inf
+            m = float(sphere_mass(0.5 * float(d), pair.density))
             if not (m > 0 and math.isfinite(m)):
                 raise ValueError(
                     f"--diameters {float(d):g} m is outside what double precision can model: the particle mass "

@@ -3,6 +3,7 @@ or rank several models on the same data (``--models``)."""
 
 from __future__ import annotations
 
+import argparse
 import sys
 import warnings
 
@@ -106,8 +107,8 @@ def fit_pair(args, free):
         and free in ("limiting_pressure", "yield_velocity")
     ):
         known = [get_material(m).yield_strength for m in (args.particle, args.surface)]
-        if not any(known):
-            args.limiting_pressure = 1e8  # only a reference value: the fitted p_y does not depend on it
+        if not any(known):  # a reference value only: the fitted p_y does not depend on it (args is not changed)
+            return pair_from_args(argparse.Namespace(**{**vars(args), "limiting_pressure": 1e8}))
     return pair_from_args(args)
 
 
