@@ -37,7 +37,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from ._validation import check_nonnegative, check_poisson
+from ._validation import check_nonnegative, check_poisson, check_positive
 from .core import cache, hertz
 from .core import tangential as tg
 from .core import tangential_laws as tl
@@ -299,7 +299,8 @@ def universal_table(kappa, *, dpsi=0.025, psi_max=None, n_x=31, x_min=1e-3, step
     kappa = _check_kappa(kappa)
     if psi_max is None:
         psi_max = math.ceil(8.0 * kappa + 2.0)
-    if abs(1.0 / dpsi - round(1.0 / dpsi)) > 1e-9:
+    dpsi = check_positive("dpsi", dpsi, scalar=True)
+    if math.isinf(dpsi) or abs(1.0 / dpsi - round(1.0 / dpsi)) > 1e-9:
         raise ValueError(f"1/dpsi must be an integer, got dpsi = {dpsi!r}")
     return _table(round(kappa, 12), float(dpsi), float(psi_max), int(n_x), float(x_min), int(steps), law)
 

@@ -57,6 +57,7 @@ from ._validation import check_nonnegative, check_positive
 from .core import wall as _wall
 from .core.arrays import evaluate
 from .core.tangential_laws import ALL_LAWS as LAWS
+from .io import check_memory
 from .materials import DEFAULT_K, Material, get_material
 from .materials import effective_modulus as _effective_modulus
 
@@ -160,6 +161,10 @@ def _materials(material, n):
     return tuple(table[inv, j] for j in range(4))
 
 
+# Peak bytes per particle of wall_interaction (result table, regime, flags, temporaries).
+_BYTES_PER_PARTICLE = 8 * (11 + 1 + 6 + 3) + 3
+
+
 def wall_interaction(
     velocity,
     normal,
@@ -256,6 +261,9 @@ def wall_interaction(
     single = np.ndim(velocity) == 1
     v = _vectors("velocity", velocity)
     N = v.shape[0]
+    # Refused before anything of size N is made: the (N, 11) result table, the per-particle inputs
+    # made here (modulus, p_y, yield strength) and the compliant prepass (3 columns), 8 bytes each.
+    check_memory(N * _BYTES_PER_PARTICLE, f"wall_interaction of {N} particles", "pass the particles in blocks")
     nrm = _vectors("normal", normal)
     if nrm.shape[0] not in (1, N):
         raise ValueError(f"normal must be one vector or one per particle ({N}), got {nrm.shape[0]}")

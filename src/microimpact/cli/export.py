@@ -120,7 +120,7 @@ def run(args) -> int:
             c = parse_float(args.confidence, "--confidence")
             if not 0.0 < c < 1.0:
                 raise ValueError(f"--confidence must lie in (0, 1), got {c!r}")
-    diameters = parse_values(args.diameters, "--diameters") if args.diameters else None
+    diameters = parse_values(args.diameters, "--diameters") if args.diameters is not None else None
     if diameters is not None:
         check_positive("--diameters", diameters)
     pair_args = args  # the options the pair is built from (args itself is never changed)
@@ -140,10 +140,10 @@ def run(args) -> int:
         check_nonnegative(name, value)
         if math.isinf(value):
             raise ValueError(f"{name} must be finite, got {value!r}")
-    velocities = parse_values(args.velocities, "--velocities") if args.velocities else None
+    velocities = parse_values(args.velocities, "--velocities") if args.velocities is not None else None
     if velocities is not None:
         check_nonnegative("--velocities", velocities)
-    vs = parse_values(args.vs_over_vy, "--vs-over-vy") if args.vs_over_vy else DEFAULT_VS_OVER_VY
+    vs = parse_values(args.vs_over_vy, "--vs-over-vy") if args.vs_over_vy is not None else DEFAULT_VS_OVER_VY
     check_nonnegative("--vs-over-vy", vs)
     dem_codes = _dem_codes(args)
     fit = None
