@@ -35,6 +35,7 @@ PARAMS = {
     ],
     "jkr_elastic_adhesive": [{"surface_energy": 0.05}],
     "thornton_ning_1998_elastic_adhesive": [{"work_of_adhesion": 0.1}],
+    "thornton_ning_1998_adhesive_plastic": [{"work_of_adhesion": 0.1}],
     "luding_adhesive": [
         {"loading_stiffness": 1e3, "unloading_stiffness": 4e3, "adhesion_stiffness": 50.0, "plasticity_depth": 0.2}
     ],

@@ -60,9 +60,10 @@ Fields this model does not define (NaN): ``yield_velocity``, ``normalized_veloci
 
 Validity: elastic spheres with short-range adhesion (the JKR limit: large, soft, strongly
 adhesive particles); no plasticity (Thornton & Ning's plastic-adhesive unloading, on the
-flattened radius with a larger pull-off force, is not included: for impacts above the yield
-velocity :func:`microimpact.core.adhesion.restitution` combines the seed's plastic loss with
-``V_s``); no damping.
+flattened radius with a larger pull-off force, is
+:mod:`~microimpact.core.models.thornton_ning_1998_adhesive_plastic`; the additive rule of
+:func:`microimpact.core.adhesion.restitution` combines the seed's plastic loss with ``V_s``);
+no damping.
 """
 
 from __future__ import annotations
