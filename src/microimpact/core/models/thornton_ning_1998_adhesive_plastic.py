@@ -91,9 +91,9 @@ from . import _jkr
 from . import thornton_ning_2016 as _seed
 from ._common import LARGE_STRAIN_RATIO, as_floats, nan_outcome
 from ._jkr import GW, GX
+from ._jkr import b_of_alpha as _b_of_alpha
 from ._jkr import force_b as _force_b
 from ._jkr import work_difference as _wd
-from .thornton_ning_1998_elastic_adhesive import _b_of_alpha
 
 NAME = "thornton_ning_1998_adhesive_plastic"
 TITLE = "Adhesive elastic-plastic spheres: JKR loading, yield, JKR unloading on R_p (Thornton & Ning 1998)"
