@@ -86,9 +86,11 @@ GAMMA_LINEAR = math.sqrt(4.0 * MASS * K_LINEAR / (1.0 + (math.pi / math.log(E_LI
 K2MAX_OVER_K1 = 2.0
 PHI_F = 0.1
 # LAMMPS viscoelastic damping: F_d = -eta_n0 m* a v_n (gran_sub_mod_damping_kernel.h); eta_n0 here
-# is 2 E* A / m* with A = 1e-9 s, i.e. the force 2 E* A a dalpha/dt.
-DISSIPATIVE_A = 1e-9  # s
-ETA_VISCOELASTIC = 2.0 * E_STAR * DISSIPATIVE_A / MASS  # 1/(m s)
+# is 4 E* A / (3 m*), i.e. the force 4/3 E* A a dalpha/dt of microimpact's "hertz_viscoelastic"
+# (P = 4/3 E* R*^(1/2) (alpha^(3/2) + A alpha^(1/2) dalpha/dt)), with A = 1.5e-9 s (the runs stored
+# before this was stated gave the same eta_n0 and called it 2 E* A/m* with A = 1e-9 s).
+DISSIPATIVE_A = 1.5e-9  # s
+ETA_VISCOELASTIC = 4.0 * E_STAR * DISSIPATIVE_A / (3.0 * MASS)  # 1/(m s)
 
 FIELDS = [
     ("code", "DEM code"),
@@ -337,7 +339,7 @@ LAMMPS_MODELS = {
         youngs_modulus_Pa=E_PAIR,
         damping_coeff=ETA_VISCOELASTIC,
         damping_coeff_unit="1/(m s)",
-        damping_force="-eta_n0 m* a v_n (= -2 E* A a v_n with A = 1e-9 s)",
+        damping_force=f"-eta_n0 m* a v_n (= -4/3 E* A a v_n, hertz_viscoelastic's A = {DISSIPATIVE_A!r} s)",
     ),
     "hooke mass_velocity": dict(
         coeffs=(f"hooke {K_LINEAR!r} {GAMMA_LINEAR / MASS!r} damping mass_velocity tangential linear_nohistory 0 0"),

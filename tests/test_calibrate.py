@@ -274,3 +274,32 @@ def impact_scalar(V, E, R, m, p_y):
     from microimpact.core.quantities import OUTCOME_FIELDS
 
     return dict(zip(OUTCOME_FIELDS, thornton_ning_2016.outcome(V, E, R, m, p_y, ())))
+
+
+def test_non_monotonic_law_is_warned():
+    """Luding's law with plasticity calibrated at 15 m/s: e falls, then rises once the overlap passes
+    the plasticity depth, while the seed's keeps falling; the warning says where it turns. Checked here
+    against the law itself on a fine grid."""
+    from microimpact.calibrate import CalibrationWarning
+
+    pair = mi.ContactPair.paper_case("silicon")
+    with pytest.warns(CalibrationWarning, match="not monotonic: it falls from") as rec:
+        cal = calibrate(pair, "luding_hysteretic", 15.0, plasticity=True)
+    V = np.geomspace(1.5, 150.0, 400)
+    e = np.asarray(pair.impact(V, model="luding_hysteretic", warn=False, **cal.as_dict()).restitution)
+    turn = V[np.argmin(e)]
+    assert e[-1] > e.min() + 0.05 and 1.5 < turn < 150.0
+    said = float(re.search(r"to [0-9.]+ at ([0-9.]+) m/s", str(rec[0].message)).group(1))
+    assert said == pytest.approx(turn, rel=0.15)  # the 41-point grid's turning point
+
+
+@pytest.mark.parametrize("model, opts", [c for c in CASES if not c[1].get("plasticity")])
+def test_monotonic_laws_are_not_warned(model, opts):
+    import warnings
+
+    from microimpact.calibrate import CalibrationWarning
+
+    pair = mi.ContactPair.paper_case("silicon")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", CalibrationWarning)
+        calibrate(pair, model, [15.0, 60.0], **opts)

@@ -456,6 +456,7 @@ def test_cli_export(tmp_path, capsys):
         "restitution_d1um.csv",
         "restitution_d5um.csv",
         "microimpact_wall.c",
+        ".microimpact-manifest.json",  # what the export wrote, so that a later run may replace it
     }
     pair = mi.ContactPair.paper_case()
     V = np.linspace(0.1, 50, 11)

@@ -21,6 +21,7 @@ arrays of the calibration speeds' shape, to calibrate to measurements or another
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -29,7 +30,7 @@ from scipy.optimize import brentq, minimize_scalar
 from .core import models as _models
 from .core.quantities import OUTCOME_FIELDS
 
-__all__ = ["Calibration", "calibrate", "calibrate_all", "DEM_MODELS"]
+__all__ = ["Calibration", "CalibrationWarning", "calibrate", "calibrate_all", "DEM_MODELS"]
 
 #: The DEM laws :func:`calibrate` knows.
 DEM_MODELS = ("linear_spring_dashpot", "hertz_viscoelastic", "hertz_tsuji", "luding_hysteretic")
@@ -80,6 +81,34 @@ def _run(model, V, pv, params):
     return np.array([r[_E] for r in rows]), np.array([r[_TC] for r in rows])
 
 
+class CalibrationWarning(UserWarning):
+    """The calibrated law matches the target at the calibration speeds but behaves unlike it elsewhere
+    (its ``e(V)`` rises and falls between a tenth of the lowest and ten times the highest speed)."""
+
+
+def _check_monotonic(model, params, V, pv):
+    """Warn (:class:`CalibrationWarning`) when the law's ``e(V)`` is not monotonic from ``min(V)/10`` to ``10 max(V)``."""
+    grid = np.geomspace(float(np.min(V)) / 10.0, float(np.max(V)) * 10.0, 41)
+    e, _ = _run(model, grid, pv, params)
+    ok = np.isfinite(e)
+    g, e = grid[ok], e[ok]
+    d = np.diff(e)
+    tol = 1e-9
+    if (d > tol).any() and (d < -tol).any():
+        sign = np.sign(d[np.abs(d) > tol])
+        first = sign[0]
+        k = int(np.flatnonzero(np.sign(d) == -first)[0])  # the first step the other way: e turns at g[k]
+        way = ("falls", "rises") if first < 0 else ("rises", "falls")
+        warnings.warn(
+            f"the calibrated {model} law's e(V) is not monotonic: it {way[0]} from {e[0]:.4g} at {g[0]:.4g} m/s "
+            f"to {e[k]:.4g} at {g[k]:.4g} m/s, then {way[1]} ({e[-1]:.4g} at {g[-1]:.4g} m/s); it was calibrated "
+            f"at {', '.join(f'{v:.4g}' for v in np.atleast_1d(V)[:5])} m/s and does not follow the target "
+            "away from there",
+            CalibrationWarning,
+            stacklevel=3,
+        )
+
+
 @dataclass(frozen=True)
 class Calibration:
     """Inputs of one DEM contact law matched to a target ``e(V)`` (see :func:`calibrate`).
@@ -118,10 +147,49 @@ class Calibration:
         """``{parameter name: value}``."""
         return dict(zip(self.names, self.params))
 
+    @classmethod
+    def of(cls, pair, model: str, params: dict, velocity=50.0) -> Calibration:
+        """A :class:`Calibration` of given parameters (no fit): to print or run a law chosen by hand.
+
+        ``params`` maps the law's parameter names to values (missing ones take the model's
+        defaults; a missing one without a default is a ValueError naming it); ``velocity`` [m/s]
+        is where ``restitution`` and ``contact_time`` are evaluated (targets: the seed's there).
+        """
+        if model not in DEM_MODELS:
+            raise ValueError(f"model must be one of {', '.join(DEM_MODELS)}; got {model!r}")
+        mod = _models.get(model)
+        names = tuple(p[0] for p in mod.PARAMETERS)
+        values = _models.resolve_params(mod, dict(params))
+        pv = _pair_values(pair)
+        V = _speeds(velocity)
+        e_c, t_c = _run(model, V, pv, values)
+        seed_e, seed_t = _run(_models.DEFAULT, V, pv, ())
+        return cls(
+            model=model,
+            params=values,
+            names=names,
+            velocity=V,
+            target_restitution=seed_e,
+            restitution=e_c,
+            target_contact_time=seed_t,
+            contact_time=t_c,
+            effective_modulus=pv[0],
+            effective_radius=pv[1],
+            effective_mass=pv[2],
+        )
+
     # ------------------------------------------------------------------ LAMMPS
-    def lammps(self, wall: str = "zplane 0.0 NULL") -> str:
+    def lammps(
+        self, wall: str = "zplane 0.0 NULL", damping: str = "coeff_restitution", tsuji_sqrt2: bool = False
+    ) -> str:
         """LAMMPS input lines (``units si``) for this law: ``pair_style granular`` + ``pair_coeff`` and
         the matching ``fix wall/gran granular`` for a flat wall (``wall``: its wallstyle arguments).
+
+        ``hertz_tsuji`` may also be written with ``damping="tsuji"`` (Marshall's polynomial): the
+        ``e_n`` printed is then the one whose ``alpha_T`` is the law's for the LAMMPS version:
+        ``tsuji_sqrt2=False`` (default) for LAMMPS 22 Jul 2025 and earlier, ``True`` for the
+        development source that multiplies the polynomial by ``2^(1/2)``
+        (:func:`microimpact.core.models.hertz_tsuji.alpha_tsuji`).
 
         Syntax of ``doc/src/pair_granular.rst`` (normal models ``hooke``/``hertz``, damping
         ``coeff_restitution``/``viscoelastic``, ``tangential linear_nohistory`` with zero damping and
@@ -129,6 +197,12 @@ class Calibration:
         LAMMPS normal model: ValueError. For ``linear_spring_dashpot`` the legacy
         ``pair_style gran/hooke`` line (``gamma_n = eta/m*``) is given as a comment.
         """
+        if damping not in ("coeff_restitution", "tsuji"):
+            raise ValueError(f"damping must be 'coeff_restitution' or 'tsuji', got {damping!r}")
+        if damping == "tsuji" and self.model != "hertz_tsuji":
+            raise ValueError(f"damping='tsuji' is for model 'hertz_tsuji' only, not {self.model!r}")
+        if not isinstance(tsuji_sqrt2, bool):
+            raise ValueError(f"tsuji_sqrt2 must be True or False, got {tsuji_sqrt2!r}")
         tang = "tangential linear_nohistory 0.0 0.0"
         p = self.as_dict()
         if self.model == "linear_spring_dashpot":
@@ -151,10 +225,17 @@ class Calibration:
 
             k_n = 4.0 / 3.0 * self.effective_modulus
             lim = " limit_damping" if p["limit_force"] == 1.0 else ""
-            coeff = (
-                f"hertz {k_n:.12g} {code_restitution(p['damping_ratio']):.12g} {tang} damping coeff_restitution{lim}"
-            )
-            legacy = "# coeff_restitution with hertz: eta_n = alpha_T (m* k_nd)^(1/2), k_nd = 4/3 E* a"
+            if damping == "tsuji":
+                e_n = _tsuji_input(p["damping_ratio"], tsuji_sqrt2)
+                coeff = f"hertz {k_n:.12g} {e_n:.12g} {tang} damping tsuji{lim}"
+                legacy = "# damping tsuji: eta_n = alpha_T (m* k_nd)^(1/2), alpha_T = Marshall's polynomial of e_n" + (
+                    " times 2^(1/2) (LAMMPS development source after July 2026)"
+                    if tsuji_sqrt2
+                    else " (LAMMPS 22 Jul 2025 and earlier)"
+                )
+            else:
+                coeff = f"hertz {k_n:.12g} {code_restitution(p['damping_ratio']):.12g} {tang} damping coeff_restitution{lim}"
+                legacy = "# coeff_restitution with hertz: eta_n = alpha_T (m* k_nd)^(1/2), k_nd = 4/3 E* a"
         else:
             raise ValueError(f"LAMMPS has no normal contact model for {self.model!r}; use liggghts()")
         return "\n".join(
@@ -197,7 +278,8 @@ class Calibration:
                 f"fix m2 all property/global kt peratomtypepair 1 {2.0 / 7.0 * k:.12g}",
                 f"fix m3 all property/global gamman peratomtypepair 1 {gamma_n:.12g}",
                 "fix m4 all property/global gammat peratomtypepair 1 0.0",
-                f"fix wall all wall/gran model hooke/stiffness tangential no_history limitForce {lim} primitive type 1 {wall}",
+                "fix m5 all property/global coefficientFriction peratomtypepair 1 0.0",
+                f"fix wall all wall/gran model hooke/stiffness tangential no_history primitive type 1 {wall} limitForce {lim}",
             ]
         elif self.model == "hertz_tsuji":
             from .core.models.hertz_tsuji import code_restitution
@@ -214,7 +296,7 @@ class Calibration:
                 f"fix m2 all property/global poissonsRatio peratomtype {poisson:.12g}",
                 f"fix m3 all property/global coefficientRestitution peratomtypepair 1 {e_n:.12g}",
                 "fix m4 all property/global coefficientFriction peratomtypepair 1 0.0",
-                f"fix wall all wall/gran model hertz tangential no_history limitForce {lim} primitive type 1 {wall}",
+                f"fix wall all wall/gran model hertz tangential no_history primitive type 1 {wall} limitForce {lim}",
             ]
         elif self.model == "luding_hysteretic" and p["plasticity_depth"] > 0.0:
             k1, k2, phi = p["loading_stiffness"], p["unloading_stiffness"], p["plasticity_depth"]
@@ -287,6 +369,14 @@ def calibrate(
     ValueError
         Unknown model, bad speed or option (named), or a target the law cannot reach.
 
+    Warns
+    -----
+    CalibrationWarning
+        When the calibrated law's ``e(V)`` is not monotonic between a tenth of the lowest and ten
+        times the highest calibration speed: Luding's law with ``plasticity=True`` (LIGGGHTS'
+        ``hooke/hysteresis`` runs show the same, it is the law's), whose ``e`` rises again once the
+        largest overlap passes the plasticity depth, while the seed's keeps falling.
+
     Examples
     --------
     >>> import microimpact as mi
@@ -335,6 +425,7 @@ def calibrate(
     else:
         params = _viscoelastic(V, e_t, float(limit_force), pv)
     e_c, t_c = _run(model, V, pv, params)
+    _check_monotonic(model, params, V, pv)
     mod = _models.get(model)
     return Calibration(
         model=model,
@@ -364,6 +455,19 @@ def calibrate_all(pair, velocity, **options) -> dict:
 
 
 # ----------------------------------------------------------------------------- per law
+
+
+def _tsuji_input(alpha, sqrt2):
+    """The ``e_n`` LAMMPS' ``damping tsuji`` turns into ``alpha`` (Marshall's polynomial decreases on [0, 1])."""
+    from .core.models.hertz_tsuji import alpha_tsuji
+
+    lo, hi = alpha_tsuji(1.0, sqrt2), alpha_tsuji(0.0, sqrt2)
+    if not lo <= alpha <= hi:
+        raise ValueError(
+            f"damping tsuji cannot give damping_ratio {alpha!r}: its e_n in [0, 1] covers {lo:.6g} to {hi:.6g}; "
+            "use damping='coeff_restitution'"
+        )
+    return brentq(lambda x: alpha_tsuji(x, sqrt2) - alpha, 0.0, 1.0, xtol=1e-15, rtol=1e-15, maxiter=500)
 
 
 def _tsuji(e_t, limit, pv):

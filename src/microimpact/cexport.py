@@ -630,8 +630,6 @@ def write_c_source(path, pair=None, **kwargs):
 # ----------------------------------------------------------------------------- confidence band
 #: Names of the three parameter sets :func:`write_band` exports, in file names.
 BAND_ENDS = ("estimate", "lower", "upper")
-#: File names an export directory consists of (so that either export may replace the other's).
-BAND_OWNED = ("README.txt", "restitution_*.csv", "microimpact_wall*.c")
 
 
 def band_pairs(fit) -> list[dict]:
@@ -722,13 +720,14 @@ def write_band(
     poisson_ratio=None,
     effective_shear_modulus=None,
     source=None,
+    inputs=(),
 ):
     """Write the tables and C source of a fit at its estimate and at both ends of its band.
 
     So that a CFD user can run with the band's ends (:func:`band_pairs` says which
-    parameter value each end is). One output directory, written whole
-    (:func:`microimpact.io.atomic_directory`: built beside it and swapped into place when
-    complete; nothing is written unless every input is good):
+    parameter value each end is). One output folder (:func:`microimpact.io.owned_directory`:
+    it owns only what it wrote, listed in its manifest ``.microimpact-manifest.json``;
+    nothing is written unless every input is good):
 
     * ``README.txt``: the fit, the confidence, and which file is which;
     * ``restitution_vs_v_over_vy.csv``: the dimensionless table (the same for every end:
@@ -745,7 +744,7 @@ def write_band(
         A fit of the seed's model with one free parameter (:func:`band_pairs`); its pair
         needs a density (the tables are rescaled to each diameter).
     directory : path
-        The output directory (replaced whole if it holds only files of this export).
+        The output folder (written into only when it holds nothing but files an earlier export wrote).
     diameters, velocities, work_of_adhesion, v_over_vy, vs_over_vy_values
         As :func:`write_tables` (diameters [m], speeds [m/s], ``G`` [J/m^2]).
     friction, tangential, poisson_ratio, effective_shear_modulus
@@ -754,6 +753,8 @@ def write_band(
         Write the C files (default True).
     source : str, optional
         Where the data came from (a file name), quoted in the comments.
+    inputs : sequence of path, optional
+        Files the caller read (the fit's data): refused when inside ``directory``.
 
     Returns
     -------
@@ -774,7 +775,7 @@ def write_band(
     """
     from pathlib import Path
 
-    from .io import atomic_directory, atomic_write
+    from .io import atomic_write, owned_directory
 
     ends = band_pairs(fit)
     if not c_source and (tangential != "rigid" or poisson_ratio is not None or effective_shear_modulus is not None):
@@ -807,7 +808,7 @@ def write_band(
     readme = _band_readme(fit, ends, where, c_source)
     target = Path(directory)
     names = []
-    with atomic_directory(target, owned=BAND_OWNED) as tmp:
+    with owned_directory(target, "export", inputs=inputs) as tmp:
         with atomic_write(tmp / "README.txt") as fh:
             fh.write(readme)
         names.append("README.txt")

@@ -38,6 +38,7 @@ from .pair import ContactPair, LargeStrainWarning
 
 __all__ = [
     "compare_models",
+    "dem_input_lines",
     "default_models",
     "seed_large_strain_velocity",
     "COMPARED_FIELDS",
@@ -253,6 +254,55 @@ def compare_models(pair=None, velocity=None, models=None, params=None, *, refere
         "calibration": note,
     }
     return xr.Dataset(variables, coords=coords, attrs=attrs)
+
+
+def dem_input_lines(ds, pair=None, params=None) -> dict:
+    """The LAMMPS and LIGGGHTS input lines of the DEM laws of a comparison, as used in it.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result of :func:`compare_models`.
+    pair : ContactPair or str, optional
+        The pair the comparison was made for (default the seed's case, as there).
+    params : dict, optional
+        The ``params`` given to :func:`compare_models`.
+
+    Returns
+    -------
+    dict
+        ``{model: {"lammps": text, "liggghts": text}}`` for each DEM law of ``ds``
+        (:data:`microimpact.calibrate.DEM_MODELS`): the lines of
+        :meth:`Calibration.lammps <microimpact.calibrate.Calibration.lammps>` and
+        :meth:`~microimpact.calibrate.Calibration.liggghts`, or a ``#`` comment saying why the code
+        has no such law. Calibrated laws are calibrated again as :func:`compare_models` did (the
+        same parameters).
+    """
+    pair = _pair(pair)
+    params = params or {}
+    out = {}
+    for n, cal_flag in zip(ds["model"].values, ds["calibrated"].values):
+        n = str(n)
+        if n not in _calibrate.DEM_MODELS:
+            continue
+        given = dict(params.get(n, {}))
+        if bool(cal_flag):
+            options = {"limit_force": int(given["limit_force"])} if "limit_force" in given else {}
+            with warnings.catch_warnings():  # compare_models warned already
+                warnings.simplefilter("ignore", _calibrate.CalibrationWarning)
+                cal = _calibrate.calibrate(
+                    pair, n, float(ds.attrs["reference_velocity"]), plasticity=(n == "luding_hysteretic"), **options
+                )
+        else:
+            cal = _calibrate.Calibration.of(pair, n, given)
+        texts = {}
+        for code, method in (("lammps", cal.lammps), ("liggghts", cal.liggghts)):
+            try:
+                texts[code] = method()
+            except ValueError as exc:
+                texts[code] = f"# {exc}"
+        out[n] = texts
+    return out
 
 
 def seed_large_strain_velocity(pair) -> float:

@@ -8,9 +8,12 @@ in the command line, which raises it too) and :class:`SystemExit` -- removes the
 temporary file and leaves whatever was at the target before untouched.
 
 * :func:`atomic_write` -- one file (a context manager yielding the open file).
-* :func:`atomic_directory` -- an output made of several files (``microimpact
-  paper``, ``microimpact export``): built in a temporary directory beside the
-  target and swapped into place whole (see its notes for how).
+* :func:`owned_directory` -- an output folder (``microimpact paper``,
+  ``microimpact export``) that owns only what it wrote: a manifest
+  (``.microimpact-manifest.json``) lists every file written with its SHA-256, and
+  a later run replaces or deletes only the files listed there whose content is
+  unchanged; anything else in the folder (or an input of the run) makes it
+  refuse, naming the file.
 * :func:`write_csv`, :func:`write_json`, :func:`write_netcdf`,
   :func:`save_figure` -- the writers every command uses.
 * :func:`csv_header` -- the project's one CSV layout.
@@ -39,7 +42,6 @@ from __future__ import annotations
 
 import contextlib
 import errno
-import fnmatch
 import json
 import math
 import os
@@ -55,6 +57,8 @@ import numpy as np
 
 __all__ = [
     "atomic_write",
+    "owned_directory",
+    "MANIFEST",
     "atomic_directory",
     "check_output_path",
     "check_input_file",
@@ -132,16 +136,19 @@ _OSERRORS = {
 def check_output_path(path, *, directory: bool = False) -> Path:
     """Check, before anything is computed, that ``path`` can be written.
 
-    The parent must exist and be a directory; a file target must not be an
-    existing directory, a directory target (``directory=True``) must not be an
-    existing file. Nothing is created.
+    The parent must exist and be a directory. A file target must be absent or a
+    regular file (a symbolic link is followed: its target is what is checked and,
+    later, replaced); a directory, a device (``/dev/null``, ``/dev/full``), a FIFO
+    or a socket is refused -- microimpact writes over regular files only. A
+    directory target (``directory=True``) must be absent or a directory. Nothing
+    is created.
 
     Parameters
     ----------
     path : str or os.PathLike
         The output file (or directory).
     directory : bool, optional
-        ``path`` names a directory to be written whole (:func:`atomic_directory`).
+        ``path`` names an output folder (:func:`owned_directory`).
 
     Returns
     -------
@@ -151,25 +158,39 @@ def check_output_path(path, *, directory: bool = False) -> Path:
     Raises
     ------
     OSError
-        :class:`FileNotFoundError`, :class:`NotADirectoryError` or
-        :class:`IsADirectoryError` with the offending path as ``filename``.
+        :class:`FileNotFoundError`, :class:`NotADirectoryError`,
+        :class:`IsADirectoryError` or :class:`FileExistsError` (not a regular
+        file) with the offending path as ``filename``.
     """
-    target = Path(path)
     if str(path) == "":
         raise FileNotFoundError(errno.ENOENT, "empty file name", "")
-    parent = target.parent
+    target = Path(path)
+    real = _resolve(target)
+    parent = real.parent
     if not parent.exists():
-        raise _oserror(errno.ENOENT, "directory does not exist", parent)
+        raise _oserror(errno.ENOENT, "directory does not exist", target.parent if real == target else parent)
     if not parent.is_dir():
-        raise _oserror(errno.ENOTDIR, "not a directory", parent)
+        raise _oserror(errno.ENOTDIR, "not a directory", target.parent if real == target else parent)
     if directory:
-        if target.exists() and not target.is_dir():
+        if real.exists() and not real.is_dir():
             raise _oserror(errno.ENOTDIR, "exists and is not a directory", target)
-    elif target.is_dir():
+        return target
+    if real.is_dir():
         raise _oserror(errno.EISDIR, "is a directory", target)
-    if not os.access(parent, os.W_OK | os.X_OK) and not _special(target):
+    if _special(real):
+        raise _oserror(
+            errno.EEXIST,
+            "not a regular file (a device, FIFO or socket): microimpact writes over regular files only",
+            target,
+        )
+    if not os.access(parent, os.W_OK | os.X_OK):
         raise _oserror(errno.EACCES, "directory is not writable", parent)
     return target
+
+
+def _resolve(target: Path) -> Path:
+    """``target`` with a symbolic link followed (to its final target, which may not exist yet)."""
+    return Path(os.path.realpath(target)) if target.is_symlink() else target
 
 
 def check_input_file(path, what: str = "file") -> Path:
@@ -245,8 +266,10 @@ def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newli
     :func:`os.replace` (atomic on POSIX; SIGINT/SIGTERM are held for that call).
     On any exception, including :class:`KeyboardInterrupt` and
     :class:`SystemExit`, the temporary file is removed and the target is left as
-    it was. A target that is a device or a pipe (``/dev/null``, ``/dev/full``) is
-    written directly: it cannot be replaced.
+    it was. Only a regular file is written over (:func:`check_output_path`): a
+    device (``/dev/null``, ``/dev/full``), a FIFO, a socket or a directory is
+    refused before anything is written. A symbolic link is followed: the file it
+    points to is replaced and the link stays a link.
 
     Parameters
     ----------
@@ -264,19 +287,8 @@ def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newli
     if mode not in ("w", "wb"):
         raise ValueError(f"mode must be 'w' or 'wb', got {mode!r}")
     kw = {} if "b" in mode else {"encoding": encoding, "newline": newline}
-    target = Path(path)
-    if target.is_symlink():
-        target = Path(os.path.realpath(target))
-    if _special(target):
-        try:
-            with open(target, mode, **kw) as fh:
-                yield fh
-        except OSError as exc:
-            if exc.filename is None:  # a write or flush error: name the file
-                exc.filename = os.fspath(target)
-            raise
-        return
-    check_output_path(target)
+    check_output_path(path)
+    target = _resolve(Path(path))
     try:
         perm = stat.S_IMODE(os.stat(target).st_mode)
     except OSError:
@@ -298,28 +310,6 @@ def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newli
         raise
 
 
-def _renameat2_exchange(a, b) -> bool:
-    """Swap two paths atomically (Linux ``renameat2(RENAME_EXCHANGE)``); False when unsupported."""
-    if not sys.platform.startswith("linux"):
-        return False
-    try:
-        import ctypes
-
-        libc = ctypes.CDLL(None, use_errno=True)
-        fn = libc.renameat2
-    except (OSError, AttributeError):  # pragma: no cover - old libc
-        return False
-    AT_FDCWD, RENAME_EXCHANGE = -100, 2
-    fn.argtypes = [ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_uint]
-    rc = fn(AT_FDCWD, os.fsencode(a), AT_FDCWD, os.fsencode(b), RENAME_EXCHANGE)
-    if rc == 0:
-        return True
-    err = ctypes.get_errno()
-    if err in (errno.ENOSYS, errno.EINVAL, errno.EOPNOTSUPP):  # pragma: no cover - kernel / file system
-        return False
-    raise OSError(err, os.strerror(err), os.fspath(b))
-
-
 def _fsync_dir(path) -> None:
     with contextlib.suppress(OSError):
         fd = os.open(path, os.O_RDONLY)
@@ -329,79 +319,211 @@ def _fsync_dir(path) -> None:
             os.close(fd)
 
 
+#: Name of the manifest an output folder's writer leaves in it (:func:`owned_directory`).
+MANIFEST = ".microimpact-manifest.json"
+_STAGING = ".microimpact-staging."
+
+
+def _sha256(path) -> str:
+    import hashlib
+
+    h = hashlib.sha256()
+    with open(path, "rb") as fh:
+        for block in iter(lambda: fh.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def _read_manifest(folder: Path):
+    """The manifest in ``folder`` as ``(command, {name: {"size", "sha256"}})``, or None (absent or unreadable)."""
+    try:
+        doc = json.loads((folder / MANIFEST).read_text(encoding="utf-8"))
+        files = doc["files"]
+        command = str(doc["command"])
+        if doc.get("format") != "microimpact-manifest" or not isinstance(files, dict):
+            return None
+        return command, {str(k): dict(v) for k, v in files.items()}
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        return None
+
+
+def _foreign(folder: Path, command: str, inputs, shown) -> dict:
+    """The files of ``folder`` that an earlier run of ``command`` wrote (its manifest), checked.
+
+    Raises :class:`FileExistsError` naming the first entry that no manifest of this
+    command lists with its present size and SHA-256 (a file's name proves nothing), and
+    refuses any of ``inputs`` that lies inside ``folder``.
+    """
+    real = os.path.realpath(folder)
+    for p in inputs:
+        if p is None or str(p) == "-":
+            continue
+        rp = os.path.realpath(p)
+        if os.path.commonpath([real, rp]) == real:
+            raise FileExistsError(
+                errno.EEXIST,
+                f"holds {os.fspath(p)!r}, an input of this run: an input is never replaced; "
+                "write the output to another folder",
+                shown,
+            )
+    manifest = _read_manifest(folder)
+    entries = sorted(os.scandir(folder), key=lambda e: e.name)
+    if manifest is not None and manifest[0] != command:
+        raise FileExistsError(
+            errno.EEXIST,
+            f"holds the output of 'microimpact {manifest[0]}' ({MANIFEST}), not of 'microimpact {command}'; "
+            "give another folder",
+            shown,
+        )
+    listed = manifest[1] if manifest is not None else {}
+    owned = {}
+    for entry in entries:
+        if entry.name == MANIFEST and manifest is not None:
+            continue
+        info = listed.get(entry.name)
+        ok = info is not None and entry.is_file(follow_symlinks=False)
+        if ok:
+            try:
+                ok = entry.stat(follow_symlinks=False).st_size == info.get("size") and _sha256(entry.path) == info.get(
+                    "sha256"
+                )
+            except OSError:
+                ok = False
+        if not ok:
+            why = (
+                "which has changed since microimpact wrote it"
+                if info is not None
+                else f"which no manifest of an earlier 'microimpact {command}' lists ({MANIFEST})"
+            )
+            raise FileExistsError(
+                errno.EEXIST,
+                f"holds {entry.name!r}, {why}: microimpact replaces only files it can prove it wrote; "
+                "give a new or empty folder, or move the file",
+                shown,
+            )
+        owned[entry.name] = info
+    return owned
+
+
+def _write_manifest(folder: Path, command: str, names) -> None:
+    files = {}
+    for name in sorted(names):
+        p = folder / name
+        files[name] = {"size": p.stat().st_size, "sha256": _sha256(p)}
+    doc = {
+        "format": "microimpact-manifest",
+        "version": 1,
+        "command": command,
+        "note": "the files microimpact wrote here; a later run replaces or deletes only these "
+        "(and only while their content is unchanged)",
+        "files": files,
+    }
+    with atomic_write(folder / MANIFEST) as fh:
+        fh.write(json.dumps(doc, indent=1) + "\n")
+
+
 @contextlib.contextmanager
-def atomic_directory(path, owned=("*",)):
-    """Build a directory of outputs beside ``path`` and swap it into place whole.
+def owned_directory(path, command: str, *, inputs=()):
+    """An output folder that owns only what it wrote: the one way microimpact writes a folder.
 
-    The block receives a fresh temporary directory ``.<name>.<random>.tmp``
-    beside the target and writes every file into it. When the block succeeds:
+    The block receives a staging folder and writes every output file into it
+    (flat: files only). When the block succeeds the files are committed with a
+    manifest, :data:`MANIFEST` (``.microimpact-manifest.json``), listing each file
+    written with its size and SHA-256. On any exception (including
+    :class:`KeyboardInterrupt`) the staging folder is deleted and ``path`` is left
+    as it was.
 
-    * no target yet: the temporary directory is renamed to it (atomic);
-    * a target directory exists: on Linux the two are exchanged in one system
-      call (``renameat2(RENAME_EXCHANGE)``, atomic: at every instant the path
-      holds either the complete old output or the complete new one), and the old
-      one, now at the temporary name, is deleted. Where that call is not
-      available the old directory is first renamed aside
-      (``.<name>.<random>.old``) and the new one renamed in; between these two
-      renames -- the one non-atomic moment, microseconds long, with SIGINT and
-      SIGTERM held -- the path does not exist, and the old output is whole at the
-      aside name until it is deleted.
+    Ownership rule. Before the block runs, an existing ``path`` is checked: every
+    entry in it must be listed in a manifest that an earlier run of the same
+    ``command`` wrote there, with the same size and SHA-256 now (a file's name
+    proves nothing; a file edited since is the user's). Otherwise a
+    :class:`FileExistsError` names the first foreign entry and nothing is written.
+    A file of ``inputs`` inside ``path`` is refused the same way: an input is never
+    replaced. A folder holding another command's manifest is refused.
 
-    On any exception (including :class:`KeyboardInterrupt`) the temporary
-    directory is deleted and the target is left as it was.
+    How it is committed:
 
-    To protect the user's files, an existing non-empty target is replaced only
-    when every entry in it is a regular file whose name matches one of the
-    ``owned`` patterns (the names this output writes); otherwise a
-    :class:`FileExistsError` names the first foreign entry.
+    * ``path`` does not exist: the staging folder is made beside it and renamed to
+      it (one atomic rename; the output appears whole or not at all);
+    * ``path`` exists (an empty folder, or an earlier output): the staging folder
+      is made inside it, and each file is renamed into place one by one (each
+      rename atomic), the manifest is rewritten, and the files of the earlier run
+      this run did not write again are deleted; SIGINT/SIGTERM are held during
+      these renames. The folder itself is never replaced, so ``--out .`` or an
+      ancestor of the working directory keeps its inode (a shell inside it is not
+      left in a deleted folder).
 
     Parameters
     ----------
     path : str or os.PathLike
-        The output directory.
-    owned : sequence of str, optional
-        :mod:`fnmatch` patterns of the file names this output consists of.
+        The output folder.
+    command : str
+        Who writes it (e.g. ``"export"``), recorded in the manifest.
+    inputs : sequence of path, optional
+        Files this run reads; refused when inside ``path``.
 
     Yields
     ------
     pathlib.Path
-        The temporary directory to write into.
+        The staging folder to write the files into.
     """
     target = Path(os.path.abspath(path))  # "." and "dir/.." name their real parent
     check_output_path(target, directory=True)
     if target.is_dir():
-        for entry in target.iterdir():
-            if not (entry.is_file() and any(fnmatch.fnmatch(entry.name, p) for p in owned)):
-                raise FileExistsError(
-                    errno.EEXIST,
-                    f"the output directory holds {entry.name!r}, which microimpact would not write there; "
-                    "give a new or empty directory (the whole directory is replaced)",
-                    os.fspath(target),
-                )
-    tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent))
+        old = _foreign(target, command, inputs, os.fspath(path))
+        stage = Path(tempfile.mkdtemp(prefix=_STAGING, suffix=".tmp", dir=target))
+    else:
+        old = None
+        stage = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent))
     try:
+        yield stage
+        names = sorted(e.name for e in os.scandir(stage))
+        bad = [n for n in names if n == MANIFEST or not (stage / n).is_file() or (stage / n).is_symlink()]
+        if bad:
+            raise ValueError(f"an output folder holds files only, not {bad[0]!r}")
+        _write_manifest(stage, command, names)
+        if old is None:
+            stage.chmod(0o777 & ~_umask())
+            _fsync_dir(stage)
+            with _signals_deferred():
+                if target.exists():
+                    raise _oserror(errno.EEXIST, "appeared while the output was written", target)
+                os.rename(stage, target)
+            stage = None
+            _fsync_dir(target.parent)
+        else:
+            _fsync_dir(stage)
+            with _signals_deferred():
+                for name in names:
+                    os.replace(stage / name, target / name)
+                os.replace(stage / MANIFEST, target / MANIFEST)
+                for name in old:
+                    if name not in names:
+                        with contextlib.suppress(FileNotFoundError):
+                            os.unlink(target / name)
+            _fsync_dir(target)
+    finally:
+        if stage is not None:
+            shutil.rmtree(stage, ignore_errors=True)
+
+
+@contextlib.contextmanager
+def atomic_directory(path, owned=None):
+    """Deprecated: use :func:`owned_directory` (a manifest, not file-name patterns, proves ownership).
+
+    Kept for one release; ``owned`` is ignored and the folder is written by
+    :func:`owned_directory` with the command name ``"atomic_directory"``.
+    """
+    import warnings
+
+    warnings.warn(
+        "microimpact.io.atomic_directory is deprecated: use microimpact.io.owned_directory(path, command) "
+        "(a manifest, not file-name patterns, proves which files it may replace)",
+        DeprecationWarning,
+        stacklevel=3,
+    )
+    with owned_directory(path, "atomic_directory") as tmp:
         yield tmp
-        tmp.chmod(0o777 & ~_umask())
-        _fsync_dir(tmp)
-        with _signals_deferred():
-            if not target.exists():
-                os.rename(tmp, target)
-                tmp = None
-            elif _renameat2_exchange(tmp, target):
-                pass  # tmp now holds the old output
-            else:  # renameat2 missing: two renames (tested by forcing this branch)
-                aside = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".old", dir=target.parent))
-                os.rmdir(aside)
-                os.rename(target, aside)
-                os.rename(tmp, target)
-                tmp = aside
-        _fsync_dir(target.parent)
-    except BaseException:
-        if tmp is not None:
-            shutil.rmtree(tmp, ignore_errors=True)
-        raise
-    if tmp is not None:
-        shutil.rmtree(tmp, ignore_errors=True)
 
 
 @contextlib.contextmanager
@@ -608,8 +730,8 @@ def write_netcdf(ds, path, *, engine=None, progress=False):
     -------
     pathlib.Path
     """
-    target = Path(path)
-    check_output_path(target)
+    check_output_path(path)
+    target = _resolve(Path(path))
     fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
     os.close(fd)
     try:
@@ -638,7 +760,7 @@ def write_netcdf(ds, path, *, engine=None, progress=False):
         with contextlib.suppress(OSError):
             os.unlink(tmp)
         raise
-    return target
+    return Path(path)
 
 
 def save_figure(fig, path, **kwargs):

@@ -877,10 +877,10 @@ def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progre
 
     Notes
     -----
-    The output appears whole or not at all: it is built in a temporary directory
-    beside ``out_dir`` and swapped into place when complete
-    (:func:`microimpact.io.atomic_directory`); an existing ``out_dir`` is replaced
-    only when it holds nothing but files of an earlier run.
+    The output folder owns only what it wrote (:func:`microimpact.io.owned_directory`):
+    its files are staged and committed only when all are complete; an existing
+    ``out_dir`` is written into only when a manifest of an earlier run lists every
+    file in it unchanged, and a data file inside it is refused.
 
     Returns
     -------
@@ -893,9 +893,10 @@ def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progre
     bad = [f for f in formats if f not in _FORMATS]
     if bad or not formats:
         raise ValueError(f"formats must be among {', '.join(_FORMATS)}, got {', '.join(formats) or 'none'}")
+    inputs = [v for v in (data or {}).values() if isinstance(v, (str, os.PathLike))]
     data = _normalize_data(data)
     emit, inline = _progress_fn(progress)
-    from .io import atomic_directory, atomic_write, check_output_path, progress_bar
+    from .io import atomic_write, check_output_path, owned_directory, progress_bar
 
     out = Path(out_dir)
     check_output_path(out, directory=True)
@@ -905,10 +906,9 @@ def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progre
     plt = _style.pyplot()
     pngs = {}
     n = len(FIGURES)
-    owned = ["fig[0-9][0-9].*", "comparison.csv", "report.md", "report.html"]
     bar = progress_bar(n + 1, "paper", unit="step", disable=progress is not True)
-    # Built in a temporary directory beside out_dir and swapped into place whole (microimpact.io).
-    with bar, atomic_directory(out, owned=owned) as tmp:
+    # Staged, then committed with a manifest of what was written (microimpact.io.owned_directory).
+    with bar, owned_directory(out, "paper", inputs=inputs) as tmp:
         for i, (stem, title, _caption) in enumerate(FIGURES, start=1):
             t1 = time.perf_counter()
             head = f"[{i}/{n}] {stem} {title} ..."

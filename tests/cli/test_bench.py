@@ -8,6 +8,7 @@ turns its JSON into the table, and refuses bad options with status 2.
 import importlib.util
 import json
 import math
+import os
 import pathlib
 import sys
 
@@ -41,9 +42,16 @@ def numbers(obj):
 def tiny_report(tmp_path_factory):
     if importlib.util.find_spec("pytest_benchmark") is None:
         pytest.skip("pytest-benchmark is not installed (pip install 'microimpact[bench]')")
-    path = tmp_path_factory.mktemp("bench") / "bench.json"
-    rc = main(["bench", "--tiny", "--only", "1,2,4", "--suite", str(SUITE), "--json", str(path)])
+    cwd = tmp_path_factory.mktemp("bench")
+    path = cwd / "bench.json"
+    here = os.getcwd()
+    os.chdir(cwd)  # the run leaves nothing in the working directory but the JSON
+    try:
+        rc = main(["bench", "--tiny", "--only", "1,2,4", "--suite", str(SUITE), "--json", str(path)])
+    finally:
+        os.chdir(here)
     assert rc == 0
+    assert sorted(p.name for p in cwd.iterdir()) == ["bench.json"]  # no .benchmarks/ (pytest-benchmark's store)
     return json.loads(path.read_text())
 
 

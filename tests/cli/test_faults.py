@@ -444,7 +444,9 @@ def _interrupt(argv, cwd, watch, sig, timeout=60.0):
     t0 = time.monotonic()
     try:
         while time.monotonic() - t0 < timeout:
-            if any(p.name.startswith(f".{watch}.") for p in Path(cwd).iterdir()):
+            inside = Path(cwd) / watch  # an existing output folder is staged inside it
+            staged = inside.is_dir() and any(p.name.startswith(".microimpact-staging.") for p in inside.iterdir())
+            if staged or any(p.name.startswith(f".{watch}.") for p in Path(cwd).iterdir()):
                 time.sleep(0.2)  # let it write a little
                 break
             if proc.poll() is not None:
@@ -485,9 +487,9 @@ def test_signal_mid_write_keeps_old_output(tmp_path, what, sig):
     path = tmp_path / target
     if kind == "file":
         path.write_text(OLD)
-    else:  # an earlier run's output
-        path.mkdir()
-        (path / "fig02.png").write_text(OLD)
+    else:  # an earlier run's output (with the manifest that proves it)
+        with mio.owned_directory(path, "paper") as tmp:
+            (tmp / "fig02.png").write_text(OLD)
     rc, err = _interrupt(argv, tmp_path, target, sig)
     assert rc == 128 + sig, err
     lines = [ln for ln in err.strip().splitlines() if not ln.startswith("sweep:")]
@@ -495,7 +497,8 @@ def test_signal_mid_write_keeps_old_output(tmp_path, what, sig):
     if kind == "file":
         assert path.read_text() == OLD
     else:
-        assert [p.name for p in path.iterdir()] == ["fig02.png"] and (path / "fig02.png").read_text() == OLD
+        assert sorted(p.name for p in path.iterdir()) == [mio.MANIFEST, "fig02.png"]
+        assert (path / "fig02.png").read_text() == OLD
     assert no_temp_files(tmp_path) == []
 
 
@@ -523,19 +526,19 @@ def test_atomic_write_keeps_permissions(tmp_path):
     assert (target.stat().st_mode & 0o777) == 0o640
 
 
-def test_atomic_directory_swaps_whole(tmp_path):
+def test_owned_directory_commits_whole_or_not_at_all(tmp_path):
     out = tmp_path / "out"
-    with mio.atomic_directory(out, owned=("*.txt",)) as tmp:
+    with mio.owned_directory(out, "test") as tmp:
         (tmp / "a.txt").write_text("1")
-    assert [p.name for p in out.iterdir()] == ["a.txt"]
+    assert sorted(p.name for p in out.iterdir()) == [mio.MANIFEST, "a.txt"]
     with pytest.raises(KeyboardInterrupt):
-        with mio.atomic_directory(out, owned=("*.txt",)) as tmp:
+        with mio.owned_directory(out, "test") as tmp:
             (tmp / "b.txt").write_text("2")
             raise KeyboardInterrupt
-    assert [p.name for p in out.iterdir()] == ["a.txt"] and no_temp_files(tmp_path) == []
-    with mio.atomic_directory(out, owned=("*.txt",)) as tmp:
+    assert sorted(p.name for p in out.iterdir()) == [mio.MANIFEST, "a.txt"] and no_temp_files(tmp_path) == []
+    with mio.owned_directory(out, "test") as tmp:
         (tmp / "b.txt").write_text("2")
-    assert [p.name for p in out.iterdir()] == ["b.txt"] and no_temp_files(tmp_path) == []
+    assert sorted(p.name for p in out.iterdir()) == [mio.MANIFEST, "b.txt"] and no_temp_files(tmp_path) == []
 
 
 def test_json_is_always_valid(capsys):
@@ -726,12 +729,12 @@ def test_project_readers_read_the_one_layout(tmp_path):
     assert data[data.dtype.names[0]].tolist() == [5.0, 20.0, 50.0]  # numpy names it velocity_ms
 
 
-def test_atomic_directory_fallback_without_renameat2(tmp_path, monkeypatch):
-    # where the atomic exchange is unavailable: the old output is renamed aside, the new one renamed in
-    monkeypatch.setattr(mio, "_renameat2_exchange", lambda a, b: False)
+def test_atomic_directory_is_deprecated_and_owns_by_manifest(tmp_path):
     out = tmp_path / "out"
     out.mkdir()
-    (out / "a.txt").write_text("old")
-    with mio.atomic_directory(out, owned=("*.txt",)) as tmp:
-        (tmp / "a.txt").write_text("new")
-    assert (out / "a.txt").read_text() == "new" and no_temp_files(tmp_path) == []
+    (out / "a.txt").write_text("a file the old name pattern '*.txt' would have claimed")
+    with pytest.warns(DeprecationWarning, match="owned_directory"):
+        with pytest.raises(FileExistsError, match="a.txt"):
+            with mio.atomic_directory(out, owned=("*.txt",)):
+                pass
+    assert (out / "a.txt").read_text().startswith("a file")

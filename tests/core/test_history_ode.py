@@ -34,6 +34,11 @@ PARAMS = {
         {"loading_stiffness": 1e3, "unloading_stiffness": 4e3, "plasticity_depth": 0.2},
     ],
     "jkr_elastic_adhesive": [{"surface_energy": 0.05}],
+    "jackson_green_brake": [
+        {"yield_strength": 40e6, "poisson_ratio": 0.3},
+        {"yield_strength": 40e6, "poisson_ratio": 0.25, "identical_spheres": 1},
+    ],
+    "kogut_etsion_ekk": [{"yield_strength": 40e6, "poisson_ratio": 0.3}],
     "thornton_ning_1998_elastic_adhesive": [{"work_of_adhesion": 0.1}],
     "thornton_ning_1998_adhesive_plastic": [{"work_of_adhesion": 0.1}],
     "luding_adhesive": [

