@@ -46,6 +46,7 @@ COMMANDS = [
     "bench",
     "materials",
     "oblique",
+    "stick",
     "dem_check",
 ]
 

@@ -317,6 +317,27 @@ def outcome(V, E, R, m, p_y, params):
 
 
 @jitable
+def restitution(V, E, R, m, p_y, params):
+    """The restitution coefficient [-] of :func:`outcome` alone (the same operations, the same bits),
+    without the contact times: for maps over many speeds and sizes."""
+    G = params[0]
+    if not (G >= 0.0 and G < math.inf and V >= 0.0 and V < math.inf and p_y > 0.0):
+        return math.nan
+    if G == 0.0:
+        return _seed.restitution_at(V, _seed.yield_point(E, R, m, p_y)[2])
+    s, b0, by, bY, K, PY = yield_constants(E, R, p_y, G)
+    Kin = 0.5 * m * V * V
+    KY = math.inf if bY == math.inf else (bY - b0) * _wd(bY, b0, E, R, s)
+    if Kin <= KY:  # as _jkr.impact: e = (1 - W/K)^(1/2), W the work of the tensile branch
+        bF = (0.5 * R * s) ** (1.0 / 3.0)
+        W = _jkr.work_integral(bF, E, R, s) - _jkr.work_integral(b0, E, R, s)
+        return 0.0 if Kin <= W else math.sqrt(1.0 - W / Kin)
+    bs = _plastic_turning_point(Kin - KY, E, R, p_y, s, bY, PY, K)
+    Wr = _rebound_work(bs, E, R, p_y, s, bY, PY, K)[0]
+    return 0.0 if Wr <= 0.0 else math.sqrt(Wr / Kin)
+
+
+@jitable
 def sticking_velocity(E, R, m, p_y, params):
     """Sticking (capture) velocity [m/s]: ``e = 0`` at and below it, ``e > 0`` above.
 
