@@ -139,3 +139,51 @@ def test_map_figure():
     import matplotlib.pyplot as plt
 
     plt.close(axes[0].figure)
+
+
+def test_fit_work_of_adhesion_and_py_from_data_with_stuck_points():
+    """e(V) of the whole law with 1 % noise, some of 24 points stuck: G and p_y recovered together,
+    each inside its 95 % interval; the whole law ranks above the elastic adhesive law (no plasticity)."""
+    from microimpact.fitting import fit_restitution, rank_models
+
+    pair = SILICON.resized(radius=0.5e-6)
+    V = np.geomspace(2.0, 150.0, 24)
+    e = np.asarray(pair.impact(V, model=stick.FULL_LAW, work_of_adhesion=0.5, warn=False).restitution)
+    rng = np.random.default_rng(1)
+    e_noisy = np.where(e > 0.0, np.clip(e + rng.normal(0.0, 0.01, e.size), 0.0, None), 0.0)
+    assert int((e_noisy == 0.0).sum()) >= 4
+    fit = fit_restitution(
+        V,
+        e_noisy,
+        pair.replace(limiting_pressure=100e6),
+        params=("limiting_pressure", "work_of_adhesion"),
+        model=stick.FULL_LAW,
+        model_params={"work_of_adhesion": 0.2},
+        sigma=0.01,
+    )
+    for name, truth in (("limiting_pressure", PY), ("work_of_adhesion", 0.5)):
+        lo, hi = fit.conf_int[name]
+        assert lo < truth < hi, (name, lo, truth, hi)
+        assert abs(fit.params[name] / truth - 1.0) < 0.01
+    ranking = rank_models(
+        V,
+        e_noisy,
+        pair,
+        [
+            {
+                "model": stick.FULL_LAW,
+                "params": ("limiting_pressure", "work_of_adhesion"),
+                "model_params": {"work_of_adhesion": 0.2},
+                "label": "whole law",
+            },
+            {
+                "model": "thornton_ning_1998_elastic_adhesive",
+                "params": ("work_of_adhesion",),
+                "model_params": {"work_of_adhesion": 0.2},
+                "label": "elastic adhesive",
+            },
+        ],
+        sigma=0.01,
+        k_folds=2,
+    )
+    assert ranking.best == "whole law"

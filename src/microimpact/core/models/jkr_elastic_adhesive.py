@@ -57,6 +57,8 @@ NAME = "jkr_elastic_adhesive"
 TITLE = "JKR elastic adhesion, contact at zero approach, pull-off at -3 pi gamma R (LAMMPS granular jkr)"
 PARAMETERS = (("surface_energy", "J/m^2", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)"),)
 DEFAULTS = (math.nan,)
+#: The particle can stick (``e = 0`` at and below the sticking velocity).
+STICKS = True
 
 #: ``g(c_F) - g(c_0)``: the pull-off work in units of ``E* R*^(4/3) (pi gamma/E*)^(5/3)``.
 WORK_CONSTANT = (

@@ -81,6 +81,8 @@ NAME = "thornton_ning_1998_elastic_adhesive"
 TITLE = "Elastic adhesive spheres, JKR from first touch to snap-off (Thornton & Ning 1998)"
 PARAMETERS = (("work_of_adhesion", "J/m^2", "G >= 0, interface energy (LIGGGHTS' surfaceEnergy)"),)
 DEFAULTS = (math.nan,)
+#: The particle can stick (``e = 0`` at and below the sticking velocity).
+STICKS = True
 
 #: ``W / (G^5 R*^4 / E*^2)^(1/3)`` = 7.0922: the work of the tensile branch from ``b_0`` to ``b_f``,
 #: evaluated with the antiderivative of ``P d alpha`` in ``b`` at ``G = R* = E* = 1``.
