@@ -214,3 +214,19 @@ def test_calibration_of_given_parameters():
         Calibration.of(PAIR, "linear_spring_dashpot", {"stiffness": 1500.0})
     with pytest.raises(ValueError, match="model must be one of"):
         Calibration.of(PAIR, "thornton_ning_2016", {})
+
+
+def test_run_reports_the_codes_own_error():
+    """The LIGGGHTS wall line printed before November 2026 (limitForce before primitive) stops
+    LIGGGHTS 3.8.0; run() says so with the code's message, not a traceback of ours."""
+    _need("liggghts")
+    cal = calibrate(PAIR, "hertz_tsuji", 50.0)
+    d = dem.deck(cal, "liggghts", 20.0)
+    old = d.text.replace(
+        "tangential no_history primitive type 1 zplane 0.0 limitForce on",
+        "tangential no_history limitForce on primitive type 1 zplane 0.0",
+    )
+    assert old != d.text
+    with pytest.raises(RuntimeError, match="wrong keyword order: 'primitive'"):
+        dem.run(dataclasses.replace(d, text=old))
+    assert dem.code_version("liggghts").startswith("LIGGGHTS-PUBLIC 3.8")

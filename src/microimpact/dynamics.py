@@ -470,17 +470,20 @@ def _stage_of(t, t1, t_L, t_c):
 
 
 def _hertz_fraction(x, xc):
-    """``u = I^-1_x(2/5, 1/2)`` and ``1 - u``, given ``x`` and its complement ``xc = 1 - x`` (both exact)."""
-    from scipy import special  # imported here: ``import microimpact`` and one impact need no scipy
+    """``u = I^-1_x(2/5, 1/2)`` and ``1 - u``, given ``x`` and its complement ``xc = 1 - x`` (both exact).
 
+    The core's :func:`~microimpact.core.special.incomplete_beta_inverse` (no scipy: importing
+    ``scipy.special`` cost more than the rest of ``microimpact history``).
+    """
     x = np.clip(x, 0.0, 1.0)
     xc = np.clip(xc, 0.0, 1.0)
     low = x <= 0.5
     u = np.empty_like(x)
     w = np.empty_like(x)
-    u[low] = special.betaincinv(0.4, 0.5, x[low])
+    B = np.asarray(BETA_25_12)
+    u[low] = evaluate(_special.incomplete_beta_inverse, x[low], np.asarray(0.4), np.asarray(0.5), B)[0]
     w[low] = 1.0 - u[low]
-    w[~low] = special.betaincinv(0.5, 0.4, xc[~low])
+    w[~low] = evaluate(_special.incomplete_beta_inverse, xc[~low], np.asarray(0.5), np.asarray(0.4), B)[0]
     u[~low] = 1.0 - w[~low]
     return u, w
 

@@ -135,7 +135,6 @@ import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import special
 
 from ._optional import require
 from .impact import outcome_arrays, restitution_coefficient
@@ -1138,6 +1137,8 @@ def _check_confidence(confidence):
 
 def _quantile(confidence, dof, known_scale):
     p = 0.5 + confidence / 2.0
+    from scipy import special  # imported where used: the export command imports this module
+
     return float(special.ndtri(p) if known_scale else special.stdtrit(max(dof, 1), p))
 
 

@@ -38,6 +38,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from ._validation import check_nonnegative, check_poisson
+from .core import cache
 from .core import tangential as tg
 from .core.arrays import evaluate
 from .impact import restitution_coefficient, yield_velocity
@@ -189,21 +190,51 @@ class UniversalTable:
 def _table(kappa, dpsi, psi_max, n_x, x_min, steps):
     psi = np.linspace(0.0, psi_max, int(round(psi_max / dpsi)) + 1)
     log_x = np.linspace(math.log10(x_min), 0.0, n_x)
-    values = np.empty((n_x, psi.size))
-    for j, lx in enumerate(log_x):
-        F, _, regime = universal_curve(psi, kappa, 10.0**lx, steps=steps)
-        values[j] = np.where(regime == tg.REGIME_SLIDING, 1.0, F)  # exactly the Coulomb limit
-    if not np.all(values[:, -1] == 1.0):  # pragma: no cover - grid too short for this kappa
-        raise RuntimeError(f"psi_max = {psi_max} does not reach sliding throughout for kappa = {kappa}")
+    kind, key = "universal_table", _table_key(kappa, dpsi, psi_max, n_x, x_min, steps)
+    values = _cached_values(kind, key, (n_x, psi.size))
+    if values is None:
+        # processes started together on an empty cache: one builds the table, the others wait and read it
+        with cache.locked(cache.cache_dir() / "tables", f"{kind}_{key}"):
+            values = _cached_values(kind, key, (n_x, psi.size))
+            if values is None:
+                values = np.empty((n_x, psi.size))
+                for j, lx in enumerate(log_x):
+                    F, _, regime = universal_curve(psi, kappa, 10.0**lx, steps=steps)
+                    values[j] = np.where(regime == tg.REGIME_SLIDING, 1.0, F)  # exactly the Coulomb limit
+                if not np.all(values[:, -1] == 1.0):  # pragma: no cover - grid too short for this kappa
+                    raise RuntimeError(f"psi_max = {psi_max} does not reach sliding throughout for kappa = {kappa}")
+                cache.store_array(kind, key, values)
     values.setflags(write=False)
     return UniversalTable(kappa, psi, log_x, values)
+
+
+def _table_key(*args) -> str:
+    """Name of a table on disk: its arguments, the core's sources and this module's (what computes it)."""
+    import hashlib
+
+    h = hashlib.sha256(cache.core_hash().encode())
+    with open(__file__, "rb") as fh:
+        h.update(fh.read())
+    h.update(repr(tuple(float(a) for a in args)).encode())
+    return h.hexdigest()[:16]
+
+
+def _cached_values(kind, key, shape):
+    """The stored table ``F`` of that key, or None (absent, corrupt or of another shape)."""
+    values = cache.load_array(kind, key)
+    if values is None or values.shape != shape or not np.all(values[:, -1] == 1.0):
+        return None
+    return values
 
 
 def universal_table(kappa, *, dpsi=0.025, psi_max=None, n_x=31, x_min=1e-3, steps=200):
     """The :class:`UniversalTable` of ``kappa`` (built on first use, then cached).
 
     Building integrates ``n_psi x n_x`` impacts (about 10^4, compiled: 3-4 s in a new process with
-    the compiled loop cached on disk), once per process. Its error against direct integration is
+    the compiled loop cached on disk), once: the table is kept in the cache folder beside the compiled
+    loops (:mod:`microimpact.core.cache`; named by its arguments and a hash of the sources that compute
+    it), so later processes read it (a few ms). Where the cache cannot be read or written it is built
+    again, as before. Its error against direct integration is
     below ``3e-3`` of ``mu J_n`` (largest 2.96e-3, mean 6e-5, over random ``psi``, ``x`` and
     ``kappa`` in 0.65–1.2 in ``tests/test_oblique.py``).
 

@@ -8,6 +8,7 @@ delegates to the vectorized functions of :mod:`microimpact.contact`,
 
 from __future__ import annotations
 
+import functools
 import html
 import math
 import warnings
@@ -758,20 +759,26 @@ class ContactPair:
         return replace(self, limiting_pressure=math.inf, label=(self.label + " (elastic)").strip())
 
     # ----------------------------------------------------------------- yield point
+    @functools.cached_property
+    def _yield_point(self):
+        # the core's scalar function, once per pair (the pair is frozen): pair.restitution(50.0) paid
+        # for it at every call
+        return _seed.yield_point(*self._args)
+
     @property
     def yield_velocity(self) -> float:
         """``V_y`` [m/s], the speed below which impacts are elastic (eq. 28, general energy form)."""
-        return _seed.yield_point(*self._args)[2]  # the core's scalar function: no array round trip
+        return self._yield_point[2]
 
     @property
     def yield_approach(self) -> float:
         """``alpha_y`` [m] (eq. 5)."""
-        return _seed.yield_point(*self._args)[0]
+        return self._yield_point[0]
 
     @property
     def yield_force(self) -> float:
         """``P_y`` [N] (eq. 7)."""
-        return _seed.yield_point(*self._args)[1]
+        return self._yield_point[1]
 
     @property
     def yield_contact_radius(self) -> float:
@@ -843,13 +850,16 @@ class ContactPair:
             values = mod.outcome(V, *self._args, p)
             res = ImpactResult._of_one(values)
             flagged = values[_LARGE] == 1.0
+            vmin = V
         else:
             V = check_velocity("velocity", velocity)
             out = impact.outcome_arrays(mod, V, *(np.float64(a) for a in self._args), p)
             res = ImpactResult._trusted({k: _scalar_or_array(v) for k, v in out.items()})
             flagged = res.any_large_strain
+            vmin = None
         if warn and flagged:
-            vmin = np.min(np.asarray(res.velocity)[np.asarray(res.large_strain)])
+            if vmin is None:
+                vmin = np.min(np.asarray(res.velocity)[np.asarray(res.large_strain)])
             warnings.warn(
                 f"contact radius exceeds {LARGE_STRAIN_RATIO} R* from V = {vmin:.4g} m/s: "
                 "outside the small-strain range of the model (results flagged in .large_strain)",

@@ -38,6 +38,7 @@ BENCHMARKS = [
     "threads_1e3",
     "startup",
     "c_wall",
+    "warm_start",
 ]
 #: The file of the suite that holds each.
 FILES = {
@@ -51,6 +52,7 @@ FILES = {
     "threads_1e3": "test_outcome_array.py",
     "startup": "test_startup.py",
     "c_wall": "test_c_wall.py",
+    "warm_start": "test_warm_start.py",
 }
 
 
@@ -193,7 +195,7 @@ def register(sub) -> None:
     size = p.add_mutually_exclusive_group()
     size.add_argument("--quick", action="store_true", help="sizes 100x smaller (about a minute)")
     size.add_argument("--tiny", action="store_true", help="smallest sizes, no paper run (a smoke test)")
-    p.add_argument("--only", default=None, metavar="N,N", help="comma-separated benchmark numbers (1-10); default all")
+    p.add_argument("--only", default=None, metavar="N,N", help="comma-separated benchmark numbers (1-11); default all")
     p.add_argument(
         "--json",
         default="microimpact-bench.json",

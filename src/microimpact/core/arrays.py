@@ -28,6 +28,7 @@ poliastro's split (compiled core on floats; wrappers only convert and call).
 from __future__ import annotations
 
 import functools
+import hashlib
 import itertools
 import os
 import sys
@@ -37,6 +38,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import cache as _cache
 from ._jit import JITABLE
 
 __all__ = [
@@ -64,8 +66,8 @@ PARALLEL_WORK = 2e-4
 _COST: dict = {}  # measured serial time per element [s] of each compiled loop
 _PY_COST: dict = {}  # measured time of one Python call [s] of each function
 
-_CORE = Path(__file__).resolve().parent
 _KERNELS: dict = {}
+_LOCK_NAMES: dict = {}  # compiled loop -> (folder, name) of its file lock
 _LOCK = threading.Lock()  # dask evaluates blocks in threads: one thread builds a loop, the others wait
 
 
@@ -90,23 +92,14 @@ def cache_dir() -> Path:
     ``MICROIMPACT_CACHE_DIR`` if set, else ``$XDG_CACHE_HOME/microimpact`` (``~/.cache/microimpact``),
     else a folder in the temporary directory when the home folder cannot be written.
     """
-    env = os.environ.get("MICROIMPACT_CACHE_DIR")
-    if env:
-        return Path(env)
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return Path(base) / "microimpact"
+    return _cache.cache_dir()
 
 
 @functools.lru_cache(maxsize=1)
 def _source_hash() -> str:
-    import hashlib
-
-    h = hashlib.sha256()
-    for path in sorted(_CORE.rglob("*.py")):
-        h.update(path.relative_to(_CORE).as_posix().encode())
-        h.update(path.read_bytes())
     import numba
 
+    h = hashlib.sha256(_cache.core_hash().encode())
     h.update(numba.__version__.encode())
     h.update(sys.version.encode())
     return h.hexdigest()[:16]
@@ -190,7 +183,6 @@ def _kernels(fn, kinds: str, nout: int, with_params: bool):
 
 
 def _build(fn, kinds: str, nout: int, with_params: bool):
-    import hashlib
     import importlib.util
     import tempfile
 
@@ -220,7 +212,25 @@ def _build(fn, kinds: str, nout: int, with_params: bool):
         module = importlib.util.module_from_spec(spec)
         sys.modules[name] = module
         spec.loader.exec_module(module)
+    _LOCK_NAMES[module.serial] = _LOCK_NAMES[module.parallel] = (path.parent, stem)
     return module.serial, module.parallel
+
+
+def _call(kernel, n, inputs, params, out):
+    """Run a compiled loop; its first call in this process holds the loop's file lock.
+
+    That first call compiles the loop or loads it from numba's cache: processes started together
+    on an empty cache so compile it once, the others wait and then load it (:func:`~.cache.locked`).
+    """
+    if kernel.signatures:
+        kernel(n, *inputs, params, out)
+        return
+    folder, stem = _LOCK_NAMES.get(kernel, (None, None))
+    if folder is None:  # pragma: no cover - every loop comes from _build
+        kernel(n, *inputs, params, out)
+        return
+    with _cache.locked(folder, stem):
+        kernel(n, *inputs, params, out)
 
 
 def _flat(arrays, shape):
@@ -313,11 +323,11 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
         threads = n >= PARALLEL_MIN or (cost is not None and n >= 2048 and n * cost >= PARALLEL_WORK)
         inputs = [float(f[0]) if s == 0 else f for f, s in zip(flats, steps)]
         if threads:
-            parallel(n, *inputs, tuple(params) if with_params else (), out)
+            _call(parallel, n, inputs, tuple(params) if with_params else (), out)
         else:
             measure = cost is None and n >= 256 and bool(serial.signatures)  # compiled already: time it
             t0 = time.perf_counter()
-            serial(n, *inputs, tuple(params) if with_params else (), out)
+            _call(serial, n, inputs, tuple(params) if with_params else (), out)
             if measure:
                 _COST[serial] = (time.perf_counter() - t0) / n
     elif engine == "python":

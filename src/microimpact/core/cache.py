@@ -1,0 +1,155 @@
+"""The on-disk cache shared by the compiled loops and the tabulated results: folder, key, lock, arrays.
+
+Everything here is an optimisation: a folder that cannot be created or written, a lock that cannot
+be had, a file that is missing, truncated, corrupt or from another version all fall back to
+computing (and to trying to write the result for the next process), never to an error.
+
+* :func:`cache_dir` is the folder (``MICROIMPACT_CACHE_DIR``, else ``$XDG_CACHE_HOME/microimpact``,
+  else ``~/.cache/microimpact``): the compiled loops live in ``kernels/``, tables in ``tables/``.
+* :func:`core_hash` hashes the core's sources: a cached result's name carries it, so editing a
+  formula can never leave a stale entry (the compiled loops add numba's and Python's versions).
+* :func:`locked` is an advisory file lock (``fcntl.flock``) around a first computation, so that
+  processes started together on an empty cache compute an entry once while the others wait and
+  then read it; without a lock (no ``fcntl``, a read-only folder, a wait longer than ``timeout``)
+  each computes on its own, as without a cache.
+* :func:`load_array` / :func:`store_array` keep one float64 array per key, written atomically
+  (temporary file beside it, then renamed) with a SHA-256 of its bytes that is checked on reading.
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+import io
+import os
+import time
+from contextlib import contextmanager
+from pathlib import Path
+
+__all__ = ["cache_dir", "core_hash", "locked", "load_array", "store_array", "write_atomic"]
+
+_CORE = Path(__file__).resolve().parent
+#: Bumped when the file layout of :func:`store_array` changes.
+_FORMAT = b"microimpact-array-1\n"
+
+
+def cache_dir() -> Path:
+    """Where the compiled loops and tables are kept (module docstring)."""
+    env = os.environ.get("MICROIMPACT_CACHE_DIR")
+    if env:
+        return Path(env)
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "microimpact"
+
+
+@functools.lru_cache(maxsize=1)
+def core_hash() -> str:
+    """SHA-256 (hex) of every source file of the core, with its relative path, in a fixed order."""
+    h = hashlib.sha256()
+    for path in sorted(_CORE.rglob("*.py")):
+        h.update(path.relative_to(_CORE).as_posix().encode())
+        h.update(path.read_bytes())
+    return h.hexdigest()
+
+
+def write_atomic(path: Path, data: bytes) -> None:
+    """Write ``data`` to ``path`` through a temporary file in the same folder, then rename it."""
+    import tempfile
+
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name + ".", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+@contextmanager
+def locked(folder: Path, name: str, timeout: float = 600.0):
+    """Hold an exclusive advisory lock ``folder/name.lock`` while the block runs, if one can be had.
+
+    Yields True when the lock is held, False when the block runs without it (see the module
+    docstring); it never raises for want of a lock. Not re-entrant within one thread.
+    """
+    try:
+        import fcntl
+    except ImportError:  # pragma: no cover - not POSIX
+        yield False
+        return
+    fd = None
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        fd = os.open(folder / f"{name}.lock", os.O_RDWR | os.O_CREAT, 0o644)
+    except OSError:
+        fd = None
+    held = False
+    if fd is not None:
+        deadline = time.monotonic() + timeout
+        pause = 0.005
+        while True:
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                held = True
+                break
+            except BlockingIOError:
+                if time.monotonic() >= deadline:
+                    break
+                time.sleep(pause)
+                pause = min(2 * pause, 0.1)
+            except OSError:  # a file system without locks
+                break
+    try:
+        yield held
+    finally:
+        if fd is not None:
+            if held:
+                try:
+                    fcntl.flock(fd, fcntl.LOCK_UN)
+                except OSError:  # pragma: no cover
+                    pass
+            os.close(fd)
+
+
+def _path(kind: str, key: str) -> Path:
+    return cache_dir() / "tables" / f"{kind}_{key}.npy"
+
+
+def load_array(kind: str, key: str):
+    """The float64 array stored under ``kind``/``key``, or None (absent, unreadable or corrupt)."""
+    import numpy as np
+
+    try:
+        data = _path(kind, key).read_bytes()
+    except OSError:
+        return None
+    head = len(_FORMAT) + 32
+    if len(data) <= head or data[: len(_FORMAT)] != _FORMAT:
+        return None
+    body = data[head:]
+    if hashlib.sha256(body).digest() != data[len(_FORMAT) : head]:
+        return None
+    try:
+        arr = np.load(io.BytesIO(body), allow_pickle=False)
+    except (ValueError, OSError, EOFError, SyntaxError):  # a malformed header
+        return None
+    if not isinstance(arr, np.ndarray) or arr.dtype != np.float64:
+        return None
+    return arr
+
+
+def store_array(kind: str, key: str, arr) -> bool:
+    """Store ``arr`` under ``kind``/``key`` atomically; False (and nothing raised) where it cannot."""
+    import numpy as np
+
+    buf = io.BytesIO()
+    np.save(buf, np.ascontiguousarray(arr, dtype=np.float64), allow_pickle=False)
+    body = buf.getvalue()
+    try:
+        write_atomic(_path(kind, key), _FORMAT + hashlib.sha256(body).digest() + body)
+    except OSError:
+        return False
+    return True
