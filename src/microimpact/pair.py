@@ -978,7 +978,7 @@ class ContactPair:
         >>> round(pair.sticking_velocity(work_of_adhesion=0.1), 4)  # V_s < V_y: Thornton & Ning's eq. 54
         0.3184
         >>> pair.sticking_velocity([0.1e-6, 0.2e-6], work_of_adhesion=1.0).round(1)
-        array([253.5,  94.4])
+        array([253.5,  94.5])
         """
         if model == "additive":
             from .core import adhesion as _adh
