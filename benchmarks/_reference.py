@@ -42,30 +42,19 @@ def restitution_reference(velocity: float, yield_velocity: float) -> float:
 
 
 def core_outcome():
-    """The physics core's scalar ``outcome`` of the default model, or None where it has not landed.
+    """The physics core's scalar ``outcome`` of the default model, in plain Python.
 
     Returns
     -------
-    callable or None
-        ``outcome(V, E, R, m, p_y, params)`` -> tuple of floats (plain Python with ``math``), with
-        the model's default parameters bound as ``params``.
+    callable
+        ``outcome(V, E, R, m, p_y)`` -> tuple of floats (plain Python with ``math``, never a
+        compiled function), with the model's default parameters bound.
     """
-    try:
-        from microimpact.core import models
-    except ImportError:
-        return None
-    get = getattr(models, "get", None)
-    if get is None:
-        return None
-    try:
-        model = get()
-    except ValueError:  # the registry is there, the model file not yet
-        return None
-    outcome = getattr(model, "outcome", None)
-    if outcome is None:
-        return None
-    params = tuple(getattr(model, "DEFAULTS", ()))
-    py = getattr(outcome, "py_func", outcome)  # the plain-Python function, never a compiled one
+    from microimpact.core import models
+
+    model = models.get()
+    params = tuple(model.DEFAULTS)
+    py = getattr(model.outcome, "py_func", model.outcome)
     return lambda V, E, R, m, p_y: py(V, E, R, m, p_y, params)
 
 

@@ -30,11 +30,8 @@ def test_pair_impact_every_field_read(timed, pair):
     timed(KEY, "pair.impact(50.0, warn=False), every field read", run, rounds=25, iterations=40)
 
 
-def test_core_outcome(timed, record, pair):
+def test_core_outcome(timed, pair):
     outcome = core_outcome()
-    if outcome is None:
-        record.note(KEY, "the physics core's scalar outcome is not there: not timed")
-        pytest.skip("microimpact.core.models has no default model yet")
     args = (50.0, pair.effective_modulus, pair.effective_radius, pair.effective_mass, pair.limiting_pressure)
     out = timed(KEY, "core outcome (plain Python)", lambda: outcome(*args), rounds=25, iterations=200)
     from microimpact.core.quantities import OUTCOME_FIELDS

@@ -22,6 +22,8 @@ LAYERS = {
     "_optional": 1,
     "materials": 1,
     "io": 1,
+    "_signals": 1,
+    "_face": 2,
     "contact": 2,
     "impact": 2,
     "dynamics": 2,
@@ -124,3 +126,60 @@ def test_import_microimpact_loads_no_application():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.strip()
     assert out == "", f"import microimpact loaded {out}"
+
+
+def _core_constants() -> dict:
+    """``{name: value}`` of the core's public float constants (the physics numbers named once)."""
+    import importlib
+    import math
+    import pkgutil
+
+    import microimpact.core as core
+
+    found = {}
+    for info in pkgutil.walk_packages(core.__path__, "microimpact.core."):
+        if info.name.rsplit(".", 1)[-1] in ("arrays", "_jit"):  # engine settings, not physics
+            continue
+        module = importlib.import_module(info.name)
+        for name, value in vars(module).items():
+            if name.isupper() and isinstance(value, float) and math.isfinite(value) and value != int(value):
+                found[name] = value
+    return found
+
+
+def _significant_digits(text: str) -> int:
+    mantissa = text.lower().split("e")[0].lstrip("+-").replace(".", "").replace("_", "")
+    return len(mantissa.lstrip("0"))
+
+
+def test_physics_constants_live_only_in_the_core():
+    """Outside ``core/`` no module assigns a core constant's name anew, nor writes a core constant's
+    value (or its rounding to the digits written, such as 14.18 for 14.1844) as a literal of three
+    or more significant digits: such a number is imported from the core, where it is derived once."""
+    constants = _core_constants()
+    assert {"STICKING_CONSTANT", "HERTZ_TIME_CONSTANT", "BETA_25_12"} <= set(constants)
+    violations = []
+    for path in sorted(SRC.rglob("*.py")):
+        rel = path.relative_to(SRC)
+        if rel.parts[0] == "core":
+            continue
+        text = path.read_text()
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, (ast.Assign, ast.AnnAssign)):
+                targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+                for t in targets:
+                    if (
+                        isinstance(t, ast.Name)
+                        and t.id in constants
+                        and not isinstance(node.value, (ast.Name, ast.Attribute))
+                    ):
+                        violations.append(f"{rel}:{node.lineno} redefines {t.id}")
+            elif isinstance(node, ast.Constant) and type(node.value) is float:
+                literal = ast.get_source_segment(text, node) or repr(node.value)
+                if _significant_digits(literal) < 3:
+                    continue
+                decimals = len(literal.split(".")[1]) if "." in literal and "e" not in literal.lower() else None
+                for name, value in constants.items():
+                    if node.value == value or (decimals is not None and round(value, decimals) == node.value):
+                        violations.append(f"{rel}:{node.lineno} writes {literal}, the core's {name}")
+    assert not violations, "physics constants outside the core:\n" + "\n".join(violations)

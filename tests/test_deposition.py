@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from microimpact.coupling import sticking_velocity
+from microimpact.adhesion import sticking_velocity
 from microimpact.deposition import (
     CRITICAL_STOKES_NUMBER,
     cunningham_correction,

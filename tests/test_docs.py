@@ -193,9 +193,11 @@ def _attribute_docstring(module, name) -> str:
 
 
 def _defining_module(module, name):
-    """The public module whose source assigns ``name`` (for re-exported constants)."""
+    """The module whose source assigns ``name`` (for re-exported constants; a package's private
+    submodule, such as ``microimpact.paper._setup``, counts)."""
     obj = getattr(module, name)
-    for modname in _public_modules():
+    every = [m.name for m in pkgutil.walk_packages(microimpact.__path__, prefix="microimpact.")]
+    for modname in _public_modules() + [m for m in every if ".cli" not in m and "__main__" not in m]:
         try:
             mod = importlib.import_module(modname)
         except ImportError:

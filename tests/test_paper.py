@@ -11,6 +11,7 @@ from microimpact import materials
 from microimpact import paper as P
 from microimpact.cli import main
 from microimpact.figures import paper as fp
+from microimpact.io import read_table, write_table
 
 pytest.importorskip("matplotlib")
 
@@ -48,7 +49,7 @@ def test_bad_format_fails_before_writing_anything(tmp_path, capsys):
 
 # ----------------------------------------------------------------------------- CSV == public API
 def _csv(out, stem):
-    return P.read_table(out / f"{stem}.csv")
+    return read_table(out / f"{stem}.csv")
 
 
 def test_csv_header_names_units(run):
@@ -154,10 +155,24 @@ def test_fig08_fig09_csvs_equal_pair_impact(run):
 def test_table_round_trip_is_exact(tmp_path):
     x = np.random.default_rng(1).random(50) * 10.0 ** np.arange(-25, 25)
     t = {"velocity_m_s": x, "series": np.array(["a, b"] * 50, dtype=object), "stage": np.arange(50)}
-    back = P.read_table(P.write_table(tmp_path / "t.csv", t))
+    back = read_table(write_table(tmp_path / "t.csv", t, columns=fp.COLUMNS))
     np.testing.assert_array_equal(back["velocity_m_s"], x)
     assert list(back["series"]) == ["a, b"] * 50
     np.testing.assert_array_equal(back["stage"], np.arange(50))
+
+
+def test_old_table_paths_warn_and_write_the_same_file(tmp_path):
+    """microimpact.paper.write_table/read_table moved to microimpact.io: one release of warnings."""
+    t = {"velocity_m_s": np.array([5.0, 20.0]), "restitution": np.array([1.0, 0.8836])}
+    with pytest.warns(DeprecationWarning, match="microimpact.io.write_table"):
+        old_write = P.write_table
+    with pytest.warns(DeprecationWarning, match="microimpact.io.read_table"):
+        old_read = P.read_table
+    assert old_read is read_table
+    old = old_write(tmp_path / "old.csv", t, title="T")
+    new = write_table(tmp_path / "new.csv", t, title="T", columns=fp.COLUMNS, source=f"seed: {P._setup.SEED}")
+    assert old.read_text() == new.read_text()
+    assert "seed: Dynamic impact model" in new.read_text()
 
 
 # ----------------------------------------------------------------------------- the comparison
@@ -217,7 +232,7 @@ def test_report_lists_every_quote_with_the_values_computed_now(run):
         line = next(ln for ln in md.splitlines() if ln.startswith(f"| {r['quantity']} |"))
         assert f"| {r['quoted']:g} | {r['computed']:.6g} | {r['unit']} |" in line
         assert f"{100 * r['relative_difference']:+.2f} %" in line
-    comp = P.read_table(out / "comparison.csv")
+    comp = read_table(out / "comparison.csv")
     np.testing.assert_array_equal(comp["computed"], [r["computed"] for r in rows])
     assert report.all_agree_or_explained
 
@@ -255,7 +270,7 @@ def test_cli_end_to_end_with_measurements(tmp_path, capsys):
     assert not [ln for ln in cap.err.splitlines() if ln.startswith("[") or "%|" in ln]
     assert "paper numbers:" in cap.err
     assert (out / "fig02.svg").exists() and not (out / "fig02.pdf").exists()
-    t = P.read_table(out / "fig02.csv")
+    t = read_table(out / "fig02.csv")
     m = t["kind"] == "measured"
     np.testing.assert_array_equal(t["velocity_m_s"][m], [20.0, 60.0])
     np.testing.assert_array_equal(t["restitution"][m], [0.85, 0.65])

@@ -21,6 +21,14 @@ Two exceptions, each explained where it is used:
 
 If a change of the physics is intended, rerun ``make_reference.py`` in the same
 commit and say why.
+
+Changes so far: issue 20 replaced the sticking constant 14.18 (Thornton & Ning's
+printed rounding) by the derived 14.18439 (twice the JKR separation work, the
+value the elastic-adhesive model already used): the stored
+``constants/STICKING_CONSTANT``, ``adhesion/sticking_velocity`` and the wall
+interaction's adhesive outputs (``wall/*_velocity``, ``*_spin``,
+``*_restitution``, ``*_sticking_velocity``; V_s 1.5485e-4 larger) were recomputed
+with the stored inputs; nothing else was rewritten.
 """
 
 from __future__ import annotations

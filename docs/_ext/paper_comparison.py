@@ -115,10 +115,10 @@ def cli_helps() -> dict[str, str]:
 
 def c_source() -> str:
     """The exported C99 wall function for the paper's silicon case, G = 0.1 J/m^2, mu = 0.3."""
-    from microimpact import coupling
+    from microimpact import cexport
     from microimpact.pair import ContactPair
 
-    return coupling.generate_c_source(ContactPair.paper_case("silicon"), work_of_adhesion=0.1, friction=0.3)
+    return cexport.generate_c_source(ContactPair.paper_case("silicon"), work_of_adhesion=0.1, friction=0.3)
 
 
 def _write(path: Path, text: str) -> None:

@@ -62,7 +62,7 @@ def work_of_adhesion(surface_energy_1, surface_energy_2=None):
 def sticking_velocity(work_of_adhesion, effective_modulus, effective_radius, effective_mass):
     """Elastic-adhesive sticking velocity of Thornton & Ning (1998) [m/s].
 
-    ``V_s = (14.18 / m*)^(1/2) (G^5 R*^4 / E*^2)^(1/6)``
+    ``V_s = (14.1844 / m*)^(1/2) (G^5 R*^4 / E*^2)^(1/6)``
 
     the normal impact speed below which an elastic JKR contact cannot separate
     again: ``1/2 m* V_s^2`` is the work needed to break the adhesive contact.
@@ -88,10 +88,10 @@ def sticking_velocity(work_of_adhesion, effective_modulus, effective_radius, eff
 
     Notes
     -----
-    Thornton & Ning (1998), Powder Technol. 99:154-162, eq. for ``V_s``; the
-    constant 14.18 is twice the JKR separation work 7.09 (see
-    :data:`STICKING_CONSTANT`), checked in the tests by integrating the JKR
-    force-approach curve.
+    Thornton & Ning (1998), Powder Technol. 99:154-162, eq. 54; the constant
+    is twice the JKR separation work 7.0922 (see :data:`STICKING_CONSTANT`:
+    derived, where the paper prints the rounded 14.18), checked in the tests by
+    integrating the JKR force-approach curve.
 
     Examples
     --------

@@ -27,7 +27,9 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
+from .core import hertz as _hertz
 from .core import models as _models
+from .core.models import luding_hysteretic as _luding
 from .core.quantities import OUTCOME_FIELDS
 
 __all__ = ["Calibration", "CalibrationWarning", "calibrate", "calibrate_all", "DEM_MODELS"]
@@ -288,7 +290,7 @@ class Calibration:
             if not e_n > 0.05:
                 raise ValueError(f"LIGGGHTS requires coefficientRestitution > 0.05; this law needs {e_n!r}")
             lim = "on" if p["limit_force"] == 1.0 else "off"
-            Y = 2.0 * (1.0 - poisson**2) * self.effective_modulus
+            Y = _hertz.equal_bodies_modulus(self.effective_modulus, poisson)
             lines = [
                 f"pair_style gran model hertz tangential no_history limitForce {lim}",
                 "pair_coeff * *",
@@ -301,9 +303,8 @@ class Calibration:
         elif self.model == "luding_hysteretic" and p["plasticity_depth"] > 0.0:
             k1, k2, phi = p["loading_stiffness"], p["unloading_stiffness"], p["plasticity_depth"]
             E, R, m = self.effective_modulus, self.effective_radius, self.effective_mass
-            sq = math.sqrt(R)
-            vc = math.sqrt((15.0 * k1 / (16.0 * sq * E)) ** 5 * 16.0 * sq * E / (15.0 * m))
-            Y = 2.0 * (1.0 - poisson**2) * E
+            vc = _luding.characteristic_velocity(k1, E, R, m)
+            Y = _hertz.equal_bodies_modulus(E, poisson)
             lines = [
                 "pair_style gran model hooke/hysteresis tangential no_history",
                 "pair_coeff * *",
@@ -418,7 +419,7 @@ def calibrate(
         else:
             if unloading_ratio is not None:
                 raise ValueError(f"unloading_ratio applies to plasticity=True only, got {unloading_ratio!r}")
-            k1 = m * (math.pi * (1.0 + e_mean) / (2.0 * t_mean)) ** 2
+            k1 = _luding.loading_stiffness_for(e_mean, t_mean, m)
             params = (k1, k1 / (e_mean * e_mean), 0.0)
     elif model == "hertz_tsuji":
         params = _tsuji(e_mean, float(limit_force), pv)
@@ -519,12 +520,10 @@ def _luding_plastic(V, e_t, t_t, ratio, pv):
         ratio = 2.0 / (e0 * e0)
     if isinstance(ratio, bool) or not (ratio > 1.0 / (e0 * e0) and math.isfinite(ratio)):
         raise ValueError(f"unloading_ratio must be finite and > 1/e^2 = {1.0 / (e0 * e0):.6g}, got {ratio!r}")
-    k1 = m * (math.pi * (1.0 + e0) / (2.0 * t0)) ** 2
+    k1 = _luding.loading_stiffness_for(e0, t0, m)
     k2 = ratio * k1
     if V.size == 1:
-        a1 = float(V[0]) * math.sqrt(m / k1)
-        dp = (k2 - k1) * a1 / (k1 / (e0 * e0) - k1)
-        return (k1, k2, dp * (k2 - k1) / (k2 * 2.0 * R))
+        return (k1, k2, _luding.plasticity_depth_for(float(V[0]), e0, k1, k2, m, R))
 
     def cost(logphi):
         e, _ = _run("luding_hysteretic", V, pv, (k1, k2, math.exp(logphi)))
@@ -540,10 +539,6 @@ def _viscoelastic(V, e_t, limit, pv):
     from .core.models import hertz_viscoelastic as hv
 
     E, R, m, p_y = pv
-    rho = 4.0 / 3.0 * E * math.sqrt(R)
-
-    def T(v):
-        return (m / (rho * math.sqrt(v))) ** 0.4
 
     if V.size == 1:
         e0 = float(e_t[0])
@@ -559,7 +554,7 @@ def _viscoelastic(V, e_t, limit, pv):
             if hi > 1e6:
                 raise ValueError(f"target_restitution {e0!r} cannot be reached by the viscoelastic law")
         kappa = brentq(f, 0.0, hi, xtol=1e-16, rtol=1e-15, maxiter=500)
-        return (kappa * T(float(V[0])), limit)
+        return (kappa * _hertz.dem_time_scale(float(V[0]), E, R, m), limit)
 
     def cost(logA):
         e, _ = _run("hertz_viscoelastic", V, pv, (math.exp(logA), limit))

@@ -308,25 +308,16 @@ def dem_input_lines(ds, pair=None, params=None) -> dict:
 def seed_large_strain_velocity(pair) -> float:
     """Impact speed [m/s] above which the seed's model leaves its small-strain range (``a*/R* > 0.3``).
 
-    The root of ``(R* alpha*(V))^(1/2) / R* = 0.3`` (:data:`~microimpact.core.constants.LARGE_STRAIN_RATIO`)
-    with the seed's ``alpha*`` (eq. 22), which grows with ``V``; ``inf`` if not reached below 1e6 m/s.
+    Where ``(R* alpha*(V))^(1/2) / R* = 0.3`` (:data:`~microimpact.core.constants.LARGE_STRAIN_RATIO`)
+    with the seed's ``alpha*`` (eq. 22), in closed form
+    (:func:`~microimpact.core.models.thornton_ning_2016.large_strain_velocity`); ``inf`` if above
+    1e6 m/s.
     """
-    from scipy.optimize import brentq
+    from .core.models.thornton_ning_2016 import large_strain_velocity
 
-    from .core.constants import LARGE_STRAIN_RATIO
-
-    R = pair.effective_radius
-
-    def excess(V):
-        return float(pair.impact(float(V), warn=False).max_contact_radius) / R - LARGE_STRAIN_RATIO
-
-    hi = 1e6
-    if excess(hi) < 0.0:
-        return math.inf
-    lo = 1e-9
-    if excess(lo) > 0.0:
-        return 0.0
-    return float(brentq(excess, lo, hi, xtol=1e-12, rtol=1e-13))
+    E, R, m = float(pair.effective_modulus), float(pair.effective_radius), float(pair.effective_mass)
+    V = large_strain_velocity(E, R, m, float(pair.limiting_pressure))
+    return V if V <= 1e6 else math.inf
 
 
 def _pair(pair):

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._face import array_function
 from ._validation import check_nonnegative, check_positive
 from .core import hertz as _hertz
 from .core.arrays import evaluate
@@ -55,149 +56,82 @@ __all__ = [
 ]
 
 
-def hertz_force(alpha, effective_modulus, effective_radius):
-    """Hertz normal force ``P = 4/3 E* R*^(1/2) alpha^(3/2)`` [N] (seed eq. 2).
-
-    Parameters
-    ----------
-    alpha : array_like
-        Approach [m], >= 0.
-    effective_modulus : array_like
-        ``E*`` [Pa].
-    effective_radius : array_like
-        ``R*`` [m].
-
-    Returns
-    -------
-    ndarray
-        Contact force ``P`` [N].
-
-    Examples
-    --------
-    >>> float(hertz_force(1e-8, 1.31e9, 2.45e-6))  # doctest: +ELLIPSIS
-    2.73...e-06
-    """
-    return evaluate(_hertz.force, check_nonnegative("alpha", alpha), _E(effective_modulus), _R(effective_radius))[0]
+hertz_force = array_function(
+    globals(),
+    "hertz_force",
+    _hertz.force,
+    [("alpha", "nonnegative"), ("effective_modulus", "positive"), ("effective_radius", "positive")],
+    ("force", "Contact force ``P``"),
+    "Hertz normal force ``P = 4/3 E* R*^(1/2) alpha^(3/2)`` [N] (seed eq. 2).",
+    examples="""
+        >>> float(hertz_force(1e-8, 1.31e9, 2.45e-6))  # doctest: +ELLIPSIS
+        2.73...e-06
+    """,
+)
 
 
-def hertz_contact_radius(alpha, effective_radius):
-    """Hertz contact radius ``a = (R* alpha)^(1/2)`` [m] (seed eq. 3).
-
-    Parameters
-    ----------
-    alpha : array_like
-        Approach ``alpha`` [m], >= 0.
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-
-    Returns
-    -------
-    ndarray
-        Contact radius ``a`` [m].
-
-    Raises
-    ------
-    ValueError
-        If ``alpha`` is negative.
-
-    Examples
-    --------
-    >>> round(float(hertz_contact_radius(1e-8, 2.45e-6)) * 1e9, 1)  # nm
-    156.5
-    """
-    return evaluate(_hertz.contact_radius, check_nonnegative("alpha", alpha), _R(effective_radius))[0]
+hertz_contact_radius = array_function(
+    globals(),
+    "hertz_contact_radius",
+    _hertz.contact_radius,
+    [("alpha", "nonnegative"), ("effective_radius", "positive")],
+    ("max_contact_radius", "Contact radius ``a``"),
+    "Hertz contact radius ``a = (R* alpha)^(1/2)`` [m] (seed eq. 3).",
+    examples="""
+        >>> round(float(hertz_contact_radius(1e-8, 2.45e-6)) * 1e9, 1)  # nm
+        156.5
+    """,
+)
 
 
-def hertz_central_pressure(alpha, effective_modulus, effective_radius):
-    """Hertz pressure at the contact centre [Pa] (seed eqs. 1, 4).
+hertz_central_pressure = array_function(
+    globals(),
+    "hertz_central_pressure",
+    _hertz.central_pressure,
+    [("alpha", "nonnegative"), ("effective_modulus", "positive"), ("effective_radius", "positive")],
+    ("limiting_pressure", "Central (maximum) contact pressure ``p0``"),
+    "Hertz pressure at the contact centre [Pa] (seed eqs. 1, 4).",
+    notes="``p0 = 3P/(2 pi a^2) = 2 E* a/(pi R*)`` with ``a = (R* alpha)^(1/2)`` (eq. 3).",
+    examples="""
+        At the yield approach the central pressure is the limiting pressure ``p_y``:
 
-    ``p0 = 3P/(2 pi a^2) = 2 E* a/(pi R*)`` with ``a = (R* alpha)^(1/2)`` (eq. 3).
-
-    Parameters
-    ----------
-    alpha : array_like
-        Approach ``alpha`` [m], >= 0.
-    effective_modulus : array_like
-        Effective modulus ``E*`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-
-    Returns
-    -------
-    ndarray
-        Central (maximum) contact pressure ``p0`` [Pa].
-
-    Raises
-    ------
-    ValueError
-        If ``alpha`` is negative.
-
-    Examples
-    --------
-    At the yield approach the central pressure is the limiting pressure ``p_y``:
-
-    >>> a_y = yield_approach(156e6, 1.31e9, 2.45e-6)
-    >>> round(float(hertz_central_pressure(a_y, 1.31e9, 2.45e-6)) / 1e6, 6)  # MPa
-    156.0
-    """
-    return evaluate(
-        _hertz.central_pressure, check_nonnegative("alpha", alpha), _E(effective_modulus), _R(effective_radius)
-    )[0]
+        >>> a_y = yield_approach(156e6, 1.31e9, 2.45e-6)
+        >>> round(float(hertz_central_pressure(a_y, 1.31e9, 2.45e-6)) / 1e6, 6)  # MPa
+        156.0
+    """,
+)
 
 
-def yield_contact_radius(limiting_pressure, effective_modulus, effective_radius):
-    """Contact radius at first yield, ``a_y = pi p_y R* / (2 E*)`` [m] (seed eq. 4 with ``p0 = p_y``).
-
-    Parameters
-    ----------
-    limiting_pressure : array_like
-        Limiting contact pressure ``p_y`` [Pa], positive (``inf``: never yields).
-    effective_modulus : array_like
-        Effective modulus ``E*`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-
-    Returns
-    -------
-    ndarray
-        Contact radius at yield ``a_y`` [m].
-
-    Raises
-    ------
-    ValueError
-        If an argument is not positive (``p_y`` may be ``inf``).
-    """
-    return evaluate(_seed.yield_contact_radius, _py(limiting_pressure), _E(effective_modulus), _R(effective_radius))[0]
+yield_contact_radius = array_function(
+    globals(),
+    "yield_contact_radius",
+    _seed.yield_contact_radius,
+    [
+        ("limiting_pressure", "positive_or_inf", "``inf``: never yields"),
+        ("effective_modulus", "positive"),
+        ("effective_radius", "positive"),
+    ],
+    ("max_contact_radius", "Contact radius at yield ``a_y``"),
+    "Contact radius at first yield, ``a_y = pi p_y R* / (2 E*)`` [m] (seed eq. 4 with ``p0 = p_y``).",
+)
 
 
-def yield_approach(limiting_pressure, effective_modulus, effective_radius):
-    """Approach at first yield, ``alpha_y = (pi p_y / (2 E*))^2 R*`` [m] (seed eq. 5).
-
-    Parameters
-    ----------
-    limiting_pressure : array_like
-        Limiting contact pressure ``p_y`` [Pa], positive (``inf``: never yields).
-    effective_modulus : array_like
-        Effective modulus ``E*`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-
-    Returns
-    -------
-    ndarray
-        Yield approach ``alpha_y`` [m].
-
-    Raises
-    ------
-    ValueError
-        If an argument is not positive (``p_y`` may be ``inf``).
-
-    Examples
-    --------
-    >>> round(float(yield_approach(156e6, 1.31e9, 2.45e-6)) * 1e9, 2)  # nm, silicon case
-    85.73
-    """
-    return evaluate(_seed.yield_approach, _py(limiting_pressure), _E(effective_modulus), _R(effective_radius))[0]
+yield_approach = array_function(
+    globals(),
+    "yield_approach",
+    _seed.yield_approach,
+    [
+        ("limiting_pressure", "positive_or_inf", "``inf``: never yields"),
+        ("effective_modulus", "positive"),
+        ("effective_radius", "positive"),
+    ],
+    ("approach", "Yield approach ``alpha_y``"),
+    "Approach at first yield, ``alpha_y = (pi p_y / (2 E*))^2 R*`` [m] (seed eq. 5).",
+    examples="""
+        >>> round(float(yield_approach(156e6, 1.31e9, 2.45e-6)) * 1e9, 2)  # nm, silicon case
+        85.73
+    """,
+)
 
 
 def yield_force(limiting_pressure, effective_modulus, effective_radius):
@@ -231,83 +165,46 @@ def yield_force(limiting_pressure, effective_modulus, effective_radius):
     return evaluate(_hertz.force, evaluate(_seed.yield_approach, _py(limiting_pressure), E, R)[0], E, R)[0]
 
 
-def plastic_loading_force(alpha, effective_modulus, effective_radius, limiting_pressure):
-    """Plastic loading force ``P = P_y + pi p_y R* (alpha - alpha_y)`` [N] (seed eqs. 6, 8).
-
-    Thornton & Ning (1998): once the central pressure reaches ``p_y`` the force
-    grows linearly with the approach. Valid for ``alpha >= alpha_y``.
-
-    Parameters
-    ----------
-    alpha : array_like
-        Approach ``alpha`` [m], >= 0 (meaningful for ``alpha >= alpha_y``).
-    effective_modulus : array_like
-        Effective modulus ``E*`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-    limiting_pressure : array_like
-        Limiting contact pressure ``p_y`` [Pa].
-
-    Returns
-    -------
-    ndarray
-        Contact force ``P`` [N] on the plastic branch.
-
-    Raises
-    ------
-    ValueError
-        If ``alpha`` is negative or a pair property is not positive.
-    """
-    return evaluate(
-        _seed.plastic_loading_force,
-        check_nonnegative("alpha", alpha),
-        _E(effective_modulus),
-        _R(effective_radius),
-        _py(limiting_pressure),
-    )[0]
+plastic_loading_force = array_function(
+    globals(),
+    "plastic_loading_force",
+    _seed.plastic_loading_force,
+    [
+        ("alpha", "nonnegative", "meaningful for ``alpha >= alpha_y``"),
+        ("effective_modulus", "positive"),
+        ("effective_radius", "positive"),
+        ("limiting_pressure", "positive_or_inf"),
+    ],
+    ("force", "Contact force ``P`` on the plastic branch"),
+    "Plastic loading force ``P = P_y + pi p_y R* (alpha - alpha_y)`` [N] (seed eqs. 6, 8).",
+    notes="""
+        Thornton & Ning (1998): once the central pressure reaches ``p_y`` the force
+        grows linearly with the approach. Valid for ``alpha >= alpha_y``.
+    """,
+)
 
 
-def loading_force(alpha, effective_modulus, effective_radius, limiting_pressure):
-    """Force on the loading path: Hertz up to ``alpha_y``, then plastic [N] (seed eqs. 2, 8).
+loading_force = array_function(
+    globals(),
+    "loading_force",
+    _seed.loading_force,
+    [
+        ("alpha", "nonnegative"),
+        ("effective_modulus", "positive"),
+        ("effective_radius", "positive"),
+        ("limiting_pressure", "positive_or_inf", "``inf``: Hertz throughout"),
+    ],
+    ("force", "Loading force ``P``: :func:`hertz_force` for ``alpha <= alpha_y``, :func:`plastic_loading_force` above"),
+    "Force on the loading path: Hertz up to ``alpha_y``, then plastic [N] (seed eqs. 2, 8).",
+    examples="""
+        At twice the yield approach the force is ``(3*2 - 1)/2 = 2.5`` yield forces (eq. 14):
 
-    Parameters
-    ----------
-    alpha : array_like
-        Approach ``alpha`` [m], >= 0.
-    effective_modulus : array_like
-        Effective modulus ``E*`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-    limiting_pressure : array_like
-        Limiting contact pressure ``p_y`` [Pa] (``inf``: Hertz throughout).
-
-    Returns
-    -------
-    ndarray
-        Loading force ``P`` [N]: :func:`hertz_force` for ``alpha <= alpha_y``,
-        :func:`plastic_loading_force` above.
-
-    Raises
-    ------
-    ValueError
-        If ``alpha`` is negative or a pair property is not positive.
-
-    Examples
-    --------
-    At twice the yield approach the force is ``(3*2 - 1)/2 = 2.5`` yield forces (eq. 14):
-
-    >>> a_y = yield_approach(156e6, 1.31e9, 2.45e-6)
-    >>> P_y = yield_force(156e6, 1.31e9, 2.45e-6)
-    >>> round(float(loading_force(2 * a_y, 1.31e9, 2.45e-6, 156e6) / P_y), 12)
-    2.5
-    """
-    return evaluate(
-        _seed.loading_force,
-        check_nonnegative("alpha", alpha),
-        _E(effective_modulus),
-        _R(effective_radius),
-        _py(limiting_pressure),
-    )[0]
+        >>> a_y = yield_approach(156e6, 1.31e9, 2.45e-6)
+        >>> P_y = yield_force(156e6, 1.31e9, 2.45e-6)
+        >>> round(float(loading_force(2 * a_y, 1.31e9, 2.45e-6, 156e6) / P_y), 12)
+        2.5
+    """,
+)
 
 
 def equivalent_elastic_force(max_approach, effective_modulus, effective_radius):
@@ -333,63 +230,38 @@ def equivalent_elastic_force(max_approach, effective_modulus, effective_radius):
     return hertz_force(max_approach, effective_modulus, effective_radius)
 
 
-def unloading_radius(max_approach, max_force, effective_modulus, effective_radius):
-    """Radius of curvature of the flattened contact, ``R_p = R* F_e / P*`` [m] (seed eq. 9).
-
-    ``R_p >= R*``: plastic loading flattens the contact. For an elastic impact
-    (``P* = F_e``) ``R_p = R*``. Where both forces are zero (no contact), ``R*``.
-
-    Parameters
-    ----------
-    max_approach : array_like
-        Maximum approach ``alpha*`` [m], >= 0.
-    max_force : array_like
-        Maximum force ``P*`` [N] reached at ``alpha*``.
-    effective_modulus : array_like
-        Effective modulus ``E*`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-
-    Returns
-    -------
-    ndarray
-        Unloading radius ``R_p`` [m].
-    """
-    return evaluate(
-        _seed.unloading_radius,
-        check_nonnegative("max_approach", max_approach),
-        check_nonnegative("max_force", max_force),
-        _E(effective_modulus),
-        _R(effective_radius),
-    )[0]
+unloading_radius = array_function(
+    globals(),
+    "unloading_radius",
+    _seed.unloading_radius,
+    [
+        ("max_approach", "nonnegative"),
+        ("max_force", "nonnegative"),
+        ("effective_modulus", "positive"),
+        ("effective_radius", "positive"),
+    ],
+    ("unloading_radius", "Unloading radius ``R_p``"),
+    "Radius of curvature of the flattened contact, ``R_p = R* F_e / P*`` [m] (seed eq. 9).",
+    notes="""
+        ``R_p >= R*``: plastic loading flattens the contact. For an elastic impact
+        (``P* = F_e``) ``R_p = R*``. Where both forces are zero (no contact), ``R*``.
+    """,
+)
 
 
-def plastic_approach(max_approach, max_force, effective_modulus, effective_radius):
-    """Plastic (unrecoverable) approach ``alpha_p = alpha* (1 - P*/F_e)`` [m] (seed eq. 11).
-
-    Parameters
-    ----------
-    max_approach : array_like
-        Maximum approach ``alpha*`` [m], >= 0.
-    max_force : array_like
-        Maximum force ``P*`` [N] reached at ``alpha*``.
-    effective_modulus : array_like
-        Effective modulus ``E*`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-
-    Returns
-    -------
-    ndarray
-        Plastic approach ``alpha_p`` [m], >= 0 (0 for an elastic contact, ``P* = F_e``).
-    """
-    return evaluate(
-        _seed.plastic_approach,
-        check_nonnegative("max_approach", max_approach),
-        check_nonnegative("max_force", max_force),
-        _E(effective_modulus),
-        _R(effective_radius),
-    )[0]
+plastic_approach = array_function(
+    globals(),
+    "plastic_approach",
+    _seed.plastic_approach,
+    [
+        ("max_approach", "nonnegative"),
+        ("max_force", "nonnegative"),
+        ("effective_modulus", "positive"),
+        ("effective_radius", "positive"),
+    ],
+    ("plastic_approach", "Plastic approach ``alpha_p``, >= 0 (0 for an elastic contact, ``P* = F_e``)"),
+    "Plastic (unrecoverable) approach ``alpha_p = alpha* (1 - P*/F_e)`` [m] (seed eq. 11).",
+)
 
 
 def unloading_force(alpha, plastic_approach, unloading_radius, effective_modulus):
@@ -474,32 +346,19 @@ def contact_force(alpha, effective_modulus, effective_radius, limiting_pressure,
     )[0]
 
 
-def normalized_loading_force(alpha_hat):
-    """Normalised loading force ``P/P_y`` against ``alpha/alpha_y`` [-] (seed eqs. 13, 14).
-
-    ``alpha_hat^(3/2)`` up to 1 (eq. 13), then ``(3 alpha_hat - 1)/2`` (eq. 14).
-
-    Parameters
-    ----------
-    alpha_hat : array_like
-        Normalised approach ``alpha/alpha_y`` [-], >= 0.
-
-    Returns
-    -------
-    ndarray
-        Normalised force ``P/P_y`` [-].
-
-    Raises
-    ------
-    ValueError
-        If ``alpha_hat`` is negative.
-
-    Examples
-    --------
-    >>> normalized_loading_force([0.25, 1.0, 3.0]).tolist()
-    [0.125, 1.0, 4.0]
-    """
-    return evaluate(_seed.normalized_loading_force, check_nonnegative("alpha_hat", alpha_hat))[0]
+normalized_loading_force = array_function(
+    globals(),
+    "normalized_loading_force",
+    _seed.normalized_loading_force,
+    [("alpha_hat", "nonnegative")],
+    ("normalized_velocity", "Normalised force ``P/P_y``"),
+    "Normalised loading force ``P/P_y`` against ``alpha/alpha_y`` [-] (seed eqs. 13, 14).",
+    notes="``alpha_hat^(3/2)`` up to 1 (eq. 13), then ``(3 alpha_hat - 1)/2`` (eq. 14).",
+    examples="""
+        >>> normalized_loading_force([0.25, 1.0, 3.0]).tolist()
+        [0.125, 1.0, 4.0]
+    """,
+)
 
 
 def normalized_unloading_force(alpha_hat, max_alpha_hat):

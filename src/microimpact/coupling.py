@@ -1,34 +1,45 @@
-"""Coupling to gas-particle flow codes: the names of :mod:`microimpact.adhesion`,
-:mod:`microimpact.wall` and :mod:`microimpact.cexport` in one place, as before the split.
+"""Deprecated: the names of :mod:`microimpact.adhesion`, :mod:`microimpact.wall` and
+:mod:`microimpact.cexport`, in one place as before their split (issue 20: kept one release).
 
-The seed's last conclusion is that its model "can be easily coupled to numerical
-simulations of gas-particle flows to calculate whether the particles stick or
-bounce off the impacting surface"; these three modules do that.
+Each name still works here and warns (:class:`DeprecationWarning`) naming its home; import it from
+there instead.
 """
 
 from __future__ import annotations
 
-from .adhesion import STICKING_CONSTANT, adhesive_restitution, sticking_velocity, work_of_adhesion  # noqa: F401
-from .cexport import (  # noqa: F401
-    DEFAULT_SPEEDS,
-    DEFAULT_V_OVER_VY,
-    DEFAULT_VS_OVER_VY,
-    generate_c_source,
-    restitution_table,
-    write_c_source,
-    write_tables,
-)
-from .wall import REGIMES, WallInteraction, wall_interaction
+import importlib
+import warnings
 
-__all__ = [
-    "work_of_adhesion",
-    "sticking_velocity",
-    "adhesive_restitution",
-    "wall_interaction",
-    "WallInteraction",
-    "REGIMES",
-    "restitution_table",
-    "write_tables",
-    "generate_c_source",
-    "write_c_source",
-]
+#: Where each name of this module lives now.
+MOVED = {
+    "STICKING_CONSTANT": "adhesion",
+    "adhesive_restitution": "adhesion",
+    "sticking_velocity": "adhesion",
+    "work_of_adhesion": "adhesion",
+    "DEFAULT_SPEEDS": "cexport",
+    "DEFAULT_V_OVER_VY": "cexport",
+    "DEFAULT_VS_OVER_VY": "cexport",
+    "generate_c_source": "cexport",
+    "restitution_table": "cexport",
+    "write_c_source": "cexport",
+    "write_tables": "cexport",
+    "REGIMES": "wall",
+    "WallInteraction": "wall",
+    "wall_interaction": "wall",
+}
+
+__all__: list = []
+
+
+def __getattr__(name):
+    home = MOVED.get(name)
+    if home is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    warnings.warn(
+        f"microimpact.coupling.{name} is deprecated; use microimpact.{home}.{name}", DeprecationWarning, stacklevel=2
+    )
+    return getattr(importlib.import_module(f"microimpact.{home}"), name)
+
+
+def __dir__():
+    return sorted(MOVED)

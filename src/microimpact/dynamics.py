@@ -28,6 +28,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from . import contact
+from ._face import array_function
 from ._validation import check_nonnegative, check_pair, check_positive, check_velocity
 from .core import hertz, quantities
 from .core import special as _special
@@ -97,46 +98,34 @@ def incomplete_beta(u, a=0.4, b=0.5):
     return evaluate(_special.incomplete_beta, u, a, b)[0]
 
 
-def hertz_contact_time(velocity, effective_modulus, effective_radius, effective_mass):
-    """Duration of a perfectly elastic Hertz impact, ``(4/5) B(2/5,1/2) alpha_m / V`` [s].
-
-    Equals ``2.868 (m*^2/(R* E*^2 V))^(1/5)``: the seed's eq. 30 with its exact
-    constant :data:`HERTZ_TIME_CONSTANT`. ``inf`` at ``V = 0`` (the limit), 0 at
-    ``V = inf``.
-
-    Parameters
-    ----------
-    velocity : array_like
-        Impact speed ``V`` [m/s], >= 0.
-    effective_modulus : array_like
-        Effective modulus ``E*`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-    effective_mass : array_like
-        Effective mass ``m*`` [kg].
-
-    Returns
-    -------
-    ndarray
-        Contact time ``t_c`` [s] of the elastic impact.
-
-    Raises
-    ------
-    ValueError
-        If ``velocity`` is negative or a pair property is not positive.
-
-    Examples
-    --------
-    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
-    >>> round(float(hertz_contact_time(7.6, 1.31e9, 2.45e-6, m)) * 1e6, 5)  # us
-    0.03347
-    """
-    V = check_velocity("velocity", velocity)
-    E, R, m, _ = check_pair(effective_modulus, effective_radius, effective_mass, np.inf)
-    return evaluate(hertz.contact_time, V, E, R, m)[0]
+hertz_contact_time = array_function(
+    globals(),
+    "hertz_contact_time",
+    hertz.contact_time,
+    [
+        ("velocity", "velocity"),
+        ("effective_modulus", "positive"),
+        ("effective_radius", "positive"),
+        ("effective_mass", "positive"),
+    ],
+    ("contact_time", "Contact time ``t_c`` of the elastic impact"),
+    "Duration of a perfectly elastic Hertz impact, ``(4/5) B(2/5,1/2) alpha_m / V`` [s].",
+    notes="""
+        Equals ``2.868 (m*^2/(R* E*^2 V))^(1/5)``: the seed's eq. 30 with its exact
+        constant :data:`HERTZ_TIME_CONSTANT`. ``inf`` at ``V = 0`` (the limit), 0 at
+        ``V = inf``.
+    """,
+    examples="""
+        >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
+        >>> round(float(hertz_contact_time(7.6, 1.31e9, 2.45e-6, m)) * 1e6, 5)  # us
+        0.03347
+    """,
+)
 
 
-def deresiewicz_contact_time(velocity, effective_modulus, effective_radius, effective_mass, constant=2.87):
+def deresiewicz_contact_time(
+    velocity, effective_modulus, effective_radius, effective_mass, constant=_special.HERTZ_TIME_CONSTANT_PRINTED
+):
     """Deresiewicz's (1968) elastic contact time, ``t_c = 2.87 (m*^2/(R* E*^2 V))^(1/5)`` [s] (seed eq. 30).
 
     ``constant`` is the seed's printed 2.87 by default; the exact value is
@@ -177,68 +166,36 @@ def deresiewicz_contact_time(velocity, effective_modulus, effective_radius, effe
         return constant * (m**2 / (R * E**2 * V)) ** 0.2
 
 
-def plastic_frequency(limiting_pressure, effective_radius, effective_mass):
-    """Angular frequency of the plastic stage, ``omega = (pi p_y R*/m*)^(1/2)`` [rad/s].
-
-    The plastic loading force (seed eq. 8) is linear in the approach with
-    stiffness ``pi p_y R*``, so stage 2 is a harmonic oscillation (eqs. 18-23).
-
-    Parameters
-    ----------
-    limiting_pressure : array_like
-        Limiting contact pressure ``p_y`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-    effective_mass : array_like
-        Effective mass ``m*`` [kg].
-
-    Returns
-    -------
-    ndarray
-        Angular frequency ``omega`` [rad/s].
-
-    Raises
-    ------
-    ValueError
-        If an argument is not positive (``p_y`` may be ``inf``).
-    """
-    p_y = check_positive("limiting_pressure", limiting_pressure, allow_inf=True)
-    R = check_positive("effective_radius", effective_radius)
-    m = check_positive("effective_mass", effective_mass)
-    return evaluate(_seed.plastic_frequency, p_y, R, m)[0]
+plastic_frequency = array_function(
+    globals(),
+    "plastic_frequency",
+    _seed.plastic_frequency,
+    [("limiting_pressure", "positive_or_inf"), ("effective_radius", "positive"), ("effective_mass", "positive")],
+    ("plastic_frequency", "Angular frequency ``omega``"),
+    "Angular frequency of the plastic stage, ``omega = (pi p_y R*/m*)^(1/2)`` [rad/s].",
+    notes="""
+        The plastic loading force (seed eq. 8) is linear in the approach with
+        stiffness ``pi p_y R*``, so stage 2 is a harmonic oscillation (eqs. 18-23).
+    """,
+)
 
 
-def ning_loading_time(limiting_pressure, effective_radius, effective_mass):
-    """Ning's (1995) loading time at high impact speed, ``t_L = (pi/2)(m*/(pi p_y R*))^(1/2)`` [s] (seed eq. 31).
-
-    The quarter period of the plastic-stage oscillation: the limit of ``t1 + t2`` as ``V -> inf``.
-
-    Parameters
-    ----------
-    limiting_pressure : array_like
-        Limiting contact pressure ``p_y`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-    effective_mass : array_like
-        Effective mass ``m*`` [kg].
-
-    Returns
-    -------
-    ndarray
-        Loading time ``t_L`` [s] in the limit ``V -> inf``.
-
-    Raises
-    ------
-    ValueError
-        If an argument is not positive.
-
-    Examples
-    --------
-    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
-    >>> round(float(ning_loading_time(156e6, 2.45e-6, m)) * 1e6, 5)  # us; seed: 0.01307
-    0.01307
-    """
-    return 0.5 * np.pi / plastic_frequency(limiting_pressure, effective_radius, effective_mass)
+ning_loading_time = array_function(
+    globals(),
+    "ning_loading_time",
+    _seed.ning_loading_time,
+    [("limiting_pressure", "positive_or_inf"), ("effective_radius", "positive"), ("effective_mass", "positive")],
+    ("loading_time", "Loading time ``t_L`` in the limit ``V -> inf``"),
+    "Ning's (1995) loading time at high impact speed, ``t_L = (pi/2)(m*/(pi p_y R*))^(1/2)`` [s] (seed eq. 31).",
+    notes="""
+        The quarter period of the plastic-stage oscillation: the limit of ``t1 + t2`` as ``V -> inf``.
+    """,
+    examples="""
+        >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
+        >>> round(float(ning_loading_time(156e6, 2.45e-6, m)) * 1e6, 5)  # us; seed: 0.01307
+        0.01307
+    """,
+)
 
 
 def elastic_stage_time(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure):
@@ -552,7 +509,7 @@ def impact_history(
     elastic = bool(out["elastic"])
     a_star, a_p, P_star, V_r = out["max_approach"], out["plastic_approach"], out["max_force"], out["rebound_velocity"]
     alpha_m = float(elastic_max_approach(V, E, R, m))
-    T_m = 0.4 * BETA_25_12 * alpha_m / V  # time of a purely elastic impact to reach alpha_m
+    T_m = hertz.rise_time(alpha_m, V)  # time of a purely elastic impact to reach alpha_m
 
     t = _time_grid(n, times, (t1, t_L), t_c)
     stage = _stage_of(t, t1, t_L, t_c)
@@ -786,6 +743,32 @@ def _integrate_phase(rhs, t0, y0, span, events, method, rtol, atol, tries=60):
     raise RuntimeError("integration did not reach the end of the stage")  # pragma: no cover
 
 
+def _sample_pieces(pieces, stages, tau, stage, X, V, out, force_of):
+    """Fill ``out = (approach, approach_velocity, force)`` at the scaled times ``tau`` from the dense
+    solutions ``pieces`` (``(tau_start, tau_end, sol, stage)``, the phases of :func:`_integrate_phase`).
+
+    ``X`` and ``V`` turn the scaled state back into metres and m/s; ``force_of(k, a, b, tau_sel,
+    approach_sel)`` gives the force at the selected times of stage ``k`` in the piece ``[a, b]``.
+    The last piece of a stage also takes the times just past its end (rounding at the boundary).
+    The one stitching loop of :func:`integrate_impact` and :func:`integrate_model`.
+    """
+    approach, vel, force = out
+    for k in stages:
+        idx = np.flatnonzero(stage == k)
+        ends = [p[1] for p in pieces if p[3] == k]
+        last_b = max(ends) if ends else None
+        for a, b, sol, st in pieces:
+            if st != k or idx.size == 0:
+                continue
+            sel = idx[(tau[idx] >= a) & ((tau[idx] <= b) | (b == last_b))]
+            if sel.size:
+                y = sol(np.clip(tau[sel], a, b))
+                approach[sel] = X * y[0]
+                vel[sel] = V * y[1]
+                force[sel] = force_of(k, a, b, tau[sel], approach[sel])
+            idx = np.setdiff1d(idx, sel)
+
+
 def integrate_impact(
     velocity,
     effective_modulus,
@@ -844,7 +827,7 @@ def integrate_impact(
     T = L / V  # time scale
     F = m * V**2 / L  # force scale
 
-    def hertz(a):
+    def hertz_force(a):
         return float(contact.hertz_force(max(a, 0.0), E, R))
 
     def plastic_force(a):
@@ -853,7 +836,7 @@ def integrate_impact(
     def make_rhs(force):
         return lambda t, y: [y[1], -force(L * y[0]) / F]
 
-    tm_elastic = 0.4 * BETA_25_12  # scaled time of the elastic loading
+    tm_elastic = hertz.rise_time(1.0, 1.0)  # scaled time of the elastic loading
     nfev = 0
     pieces = []
 
@@ -863,12 +846,12 @@ def integrate_impact(
         x_y = float(contact.yield_approach(p_y, E, R)) / L
         events.append(_event(lambda t, y: y[0] - x_y, 1))
     pc, which, t_ev, y_ev, nf = _integrate_phase(
-        make_rhs(hertz), 0.0, [0.0, 1.0], 1.2 * tm_elastic, events, method, rtol, atol
+        make_rhs(hertz_force), 0.0, [0.0, 1.0], 1.2 * tm_elastic, events, method, rtol, atol
     )
     pieces += [(a, b, s, 1) for a, b, s in pc]
     nfev += nf
     t1 = t_ev
-    loading_force = hertz
+    loading_force = hertz_force
     if which == 1:
         # Stage 2: plastic loading until rest.
         y_ev[0] = x_y  # the event's own state, exactly on the boundary
@@ -931,21 +914,10 @@ def integrate_impact(
     stage = _stage_of(t, T * t1, T * t_L, T * t_c)
     approach, vel = _free_flight(t, V, T * t_c, a_p, V_r)
     force = np.zeros_like(t)
-    tau = t / T
-    force_of = {1: hertz, 2: plastic_force, 3: unloading}
-    for k in (1, 2, 3):
-        idx = np.flatnonzero(stage == k)
-        for a, b, sol, st in pieces:
-            if st != k or idx.size == 0:
-                continue
-            last = b == max(p[1] for p in pieces if p[3] == k)
-            sel = idx[(tau[idx] >= a) & ((tau[idx] <= b) | last)]
-            if sel.size:
-                y = sol(np.clip(tau[sel], a, b))
-                approach[sel] = L * y[0]
-                vel[sel] = V * y[1]
-                force[sel] = [force_of[k](x) for x in approach[sel]]
-            idx = np.setdiff1d(idx, sel)
+    laws = {1: hertz_force, 2: plastic_force, 3: unloading}
+    _sample_pieces(
+        pieces, (1, 2, 3), t / T, stage, L, V, (approach, vel, force), lambda k, a, b, ts, xs: [laws[k](x) for x in xs]
+    )
     out.update(time=t, approach=approach, approach_velocity=vel, force=force, stage=stage)
     return out
 
@@ -1166,19 +1138,15 @@ def integrate_model(
     stage = np.where((t < 0.0) | (t > T * tc), 0, stage).astype(np.int8)
     approach, vel = _free_flight(t, V, T * tc, a_end, V_r)
     force = np.zeros_like(t)
-    tau = t / T
-    for k in (1, 3):
-        idx = np.flatnonzero(stage == k)
-        last_b = max(p_[1] for p_ in pieces if p_[3] == k)
-        for a, b, sol, st in pieces:
-            if st != k or idx.size == 0:
-                continue
-            sel = idx[(tau[idx] >= a) & ((tau[idx] <= b) | (b == last_b))]
-            if sel.size:
-                y = sol(np.clip(tau[sel], a, b))
-                approach[sel] = X * y[0]
-                vel[sel] = V * y[1]
-                force[sel] = [force_at(min(max(x, a), b)) for x in tau[sel]]
-            idx = np.setdiff1d(idx, sel)
+    _sample_pieces(
+        pieces,
+        (1, 3),
+        t / T,
+        stage,
+        X,
+        V,
+        (approach, vel, force),
+        lambda k, a, b, ts, xs: [force_at(min(max(x, a), b)) for x in ts],
+    )
     out.update(time=t, approach=approach, approach_velocity=vel, force=force, stage=stage)
     return out

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._face import array_function
 from ._validation import check_pair, check_positive, check_velocity
 from .core import hertz
 from .core.arrays import evaluate
@@ -46,249 +47,162 @@ __all__ = [
 ]
 
 
-def yield_velocity(limiting_pressure, effective_modulus, effective_radius, effective_mass):
-    """Yield velocity [m/s], general energy form: ``1/2 m* V_y^2 = 2/5 P_y alpha_y``.
-
-    The impact speed at which the Hertz pressure at the contact centre just
-    reaches ``p_y`` (Davies 1949; Thornton & Ning 1998). Valid for two spheres
-    with the effective radius and mass. For a sphere on a flat it is the seed's
-    eq. 28 (:func:`yield_velocity_sphere_on_flat`); ``alpha_y`` and ``P_y`` are
-    eqs. 5 and 7.
-
-    Parameters
-    ----------
-    limiting_pressure : array_like
-        Limiting contact pressure ``p_y`` [Pa], positive (``inf`` gives ``V_y = inf``).
-    effective_modulus : array_like
-        Effective modulus ``E*`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-    effective_mass : array_like
-        Effective mass ``m*`` [kg].
-
-    Returns
-    -------
-    ndarray
-        Yield velocity ``V_y`` [m/s].
-
-    Raises
-    ------
-    ValueError
-        If an argument is not positive (``p_y`` may be ``inf``).
-
-    Examples
-    --------
-    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350
-    >>> round(float(yield_velocity(156e6, 1.31e9, 2.45e-6, m)), 3)
-    7.523
-    """
-    E, R, m, p_y = check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
-    return evaluate(_seed.yield_point, E, R, m, p_y, nout=3)[2]
+yield_velocity = array_function(
+    globals(),
+    "yield_velocity",
+    _seed.yield_point,
+    [
+        ("limiting_pressure", "positive_or_inf", "``inf`` gives ``V_y = inf``"),
+        ("effective_modulus", "positive"),
+        ("effective_radius", "positive"),
+        ("effective_mass", "positive"),
+    ],
+    ("yield_velocity", "Yield velocity ``V_y``"),
+    "Yield velocity [m/s], general energy form: ``1/2 m* V_y^2 = 2/5 P_y alpha_y``.",
+    notes="""
+        The impact speed at which the Hertz pressure at the contact centre just
+        reaches ``p_y`` (Davies 1949; Thornton & Ning 1998). Valid for two spheres
+        with the effective radius and mass. For a sphere on a flat it is the seed's
+        eq. 28 (:func:`yield_velocity_sphere_on_flat`); ``alpha_y`` and ``P_y`` are
+        eqs. 5 and 7.
+    """,
+    examples="""
+        >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350
+        >>> round(float(yield_velocity(156e6, 1.31e9, 2.45e-6, m)), 3)
+        7.523
+    """,
+    output=(2, 3),
+    order=("effective_modulus", "effective_radius", "effective_mass", "limiting_pressure"),
+)
 
 
-def yield_velocity_sphere_on_flat(limiting_pressure, effective_modulus, density):
-    """Yield velocity of a sphere on a flat, ``V_y = (pi^4/40)^(1/2) (p_y^5/(E*^4 rho))^(1/2)`` [m/s] (seed eq. 28).
-
-    ``(pi^4/40)^(1/2) = 1.5605``: the seed prints 1.56. Independent of the radius.
-
-    Parameters
-    ----------
-    limiting_pressure : array_like
-        Limiting contact pressure ``p_y`` [Pa].
-    effective_modulus : array_like
-        Effective modulus ``E*`` [Pa].
-    density : array_like
-        Particle density ``rho`` [kg/m^3].
-
-    Returns
-    -------
-    ndarray
-        Yield velocity ``V_y`` [m/s].
-
-    Examples
-    --------
-    >>> round(float(yield_velocity_sphere_on_flat(156e6, 1.31e9, 1350.0)), 2)  # seed prints 7.59
-    7.52
-    """
-    p_y = check_positive("limiting_pressure", limiting_pressure, allow_inf=True)
-    E = check_positive("effective_modulus", effective_modulus)
-    rho = check_positive("density", density)
-    return evaluate(_seed.yield_velocity_sphere_on_flat, p_y, E, rho)[0]
+yield_velocity_sphere_on_flat = array_function(
+    globals(),
+    "yield_velocity_sphere_on_flat",
+    _seed.yield_velocity_sphere_on_flat,
+    [("limiting_pressure", "positive_or_inf"), ("effective_modulus", "positive"), ("density", "positive")],
+    ("yield_velocity", "Yield velocity ``V_y``"),
+    "Yield velocity of a sphere on a flat, ``V_y = (pi^4/40)^(1/2) (p_y^5/(E*^4 rho))^(1/2)`` [m/s] (seed eq. 28).",
+    notes="""
+        ``(pi^4/40)^(1/2) = 1.5605``: the seed prints 1.56. Independent of the radius.
+    """,
+    examples="""
+        >>> round(float(yield_velocity_sphere_on_flat(156e6, 1.31e9, 1350.0)), 2)  # seed prints 7.59
+        7.52
+    """,
+)
 
 
-def elastic_max_approach(velocity, effective_modulus, effective_radius, effective_mass):
-    """Maximum approach of a purely elastic (Hertz) impact [m].
+elastic_max_approach = array_function(
+    globals(),
+    "elastic_max_approach",
+    hertz.max_approach,
+    [
+        ("velocity", "velocity"),
+        ("effective_modulus", "positive"),
+        ("effective_radius", "positive"),
+        ("effective_mass", "positive"),
+    ],
+    ("max_approach", "Maximum approach ``alpha_m``"),
+    "Maximum approach of a purely elastic (Hertz) impact [m].",
+    notes="""
+        ``alpha_m = (15 m* V^2 / (16 E* R*^(1/2)))^(2/5)``: the energy balance
+        ``1/2 m* V^2 = 8/15 E* R*^(1/2) alpha_m^(5/2)`` of Hertz's force (seed eq. 2):
+        the seed's stage-1 velocity (eq. 17) vanishes there.
+    """,
+    examples="""
+        At the yield velocity the elastic maximum approach is the yield approach (eq. 5):
 
-    ``alpha_m = (15 m* V^2 / (16 E* R*^(1/2)))^(2/5)``: the energy balance
-    ``1/2 m* V^2 = 8/15 E* R*^(1/2) alpha_m^(5/2)`` of Hertz's force (seed eq. 2):
-    the seed's stage-1 velocity (eq. 17) vanishes there.
-
-    Parameters
-    ----------
-    velocity : array_like
-        Impact speed ``V`` [m/s], >= 0.
-    effective_modulus : array_like
-        Effective modulus ``E*`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-    effective_mass : array_like
-        Effective mass ``m*`` [kg].
-
-    Returns
-    -------
-    ndarray
-        Maximum approach ``alpha_m`` [m].
-
-    Raises
-    ------
-    ValueError
-        If ``velocity`` is negative or NaN.
-
-    Examples
-    --------
-    At the yield velocity the elastic maximum approach is the yield approach (eq. 5):
-
-    >>> from microimpact.contact import yield_approach
-    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350
-    >>> V_y = yield_velocity(156e6, 1.31e9, 2.45e-6, m)
-    >>> a_m = elastic_max_approach(V_y, 1.31e9, 2.45e-6, m)
-    >>> round(float(a_m / yield_approach(156e6, 1.31e9, 2.45e-6)), 12)
-    1.0
-    """
-    V = check_velocity("velocity", velocity)
-    E = check_positive("effective_modulus", effective_modulus)
-    R = check_positive("effective_radius", effective_radius)
-    m = check_positive("effective_mass", effective_mass)
-    return evaluate(hertz.max_approach, V, E, R, m)[0]
+        >>> from microimpact.contact import yield_approach
+        >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350
+        >>> V_y = yield_velocity(156e6, 1.31e9, 2.45e-6, m)
+        >>> a_m = elastic_max_approach(V_y, 1.31e9, 2.45e-6, m)
+        >>> round(float(a_m / yield_approach(156e6, 1.31e9, 2.45e-6)), 12)
+        1.0
+    """,
+)
 
 
-def normalized_max_approach(v):
-    """Normalised maximum approach ``alpha*/alpha_y`` against ``v = V/V_y`` [-] (seed eq. 22).
-
-    ``(1 + s)/3`` with ``s = ((24 v^2 - 4)/5)^(1/2)`` for ``v > 1``; the Hertz
-    value ``v^(4/5)`` for ``v <= 1``.
-
-    Parameters
-    ----------
-    v : array_like
-        Normalised impact speed ``v = V/V_y`` [-], >= 0 (``inf`` gives the limit).
-
-    Returns
-    -------
-    ndarray
-        ``alpha*/alpha_y`` [-].
-
-    Raises
-    ------
-    ValueError
-        If ``v`` is negative or NaN.
-
-    Examples
-    --------
-    >>> normalized_max_approach([1.0, 2.0]).round(6).tolist()
-    [1.0, 1.763174]
-    """
-    return evaluate(_seed.normalized_outcome, check_velocity("v", v), nout=5)[0]
+normalized_max_approach = array_function(
+    globals(),
+    "normalized_max_approach",
+    _seed.normalized_outcome,
+    [("v", "velocity")],
+    ("normalized_approach", "``alpha*/alpha_y``"),
+    "Normalised maximum approach ``alpha*/alpha_y`` against ``v = V/V_y`` [-] (seed eq. 22).",
+    notes="""
+        ``(1 + s)/3`` with ``s = ((24 v^2 - 4)/5)^(1/2)`` for ``v > 1``; the Hertz
+        value ``v^(4/5)`` for ``v <= 1``.
+    """,
+    examples="""
+        >>> normalized_max_approach([1.0, 2.0]).round(6).tolist()
+        [1.0, 1.763174]
+    """,
+    output=(0, 5),
+)
 
 
-def normalized_max_force(v):
-    """Normalised maximum force ``P*/P_y`` against ``v = V/V_y`` [-] (seed eq. 14 at the maximum approach).
-
-    ``(3 alpha^* - 1)/2 = s/2`` for ``v > 1`` (``alpha^*`` from eq. 22);
-    ``v^(6/5)`` for ``v <= 1``.
-
-    Parameters
-    ----------
-    v : array_like
-        Normalised impact speed ``v = V/V_y`` [-], >= 0 (``inf`` gives the limit).
-
-    Returns
-    -------
-    ndarray
-        ``P*/P_y`` [-].
-
-    Raises
-    ------
-    ValueError
-        If ``v`` is negative or NaN.
-    """
-    return evaluate(_seed.normalized_outcome, check_velocity("v", v), nout=5)[1]
+normalized_max_force = array_function(
+    globals(),
+    "normalized_max_force",
+    _seed.normalized_outcome,
+    [("v", "velocity")],
+    ("normalized_force", "``P*/P_y``"),
+    "Normalised maximum force ``P*/P_y`` against ``v = V/V_y`` [-] (seed eq. 14 at the maximum approach).",
+    notes="""
+        ``(3 alpha^* - 1)/2 = s/2`` for ``v > 1`` (``alpha^*`` from eq. 22);
+        ``v^(6/5)`` for ``v <= 1``.
+    """,
+    output=(1, 5),
+)
 
 
-def normalized_plastic_approach(v):
-    """Normalised plastic approach ``alpha_p/alpha_y = alpha^* - P^*/alpha^*^(1/2)`` [-] (seed eq. 11, normalised).
-
-    0 for ``v <= 1`` (elastic impact), ``inf`` at ``v = inf``.
-
-    Parameters
-    ----------
-    v : array_like
-        Normalised impact speed ``v = V/V_y`` [-], >= 0 (``inf`` gives the limit).
-
-    Returns
-    -------
-    ndarray
-        ``alpha_p/alpha_y`` [-], >= 0.
-
-    Raises
-    ------
-    ValueError
-        If ``v`` is negative or NaN.
-    """
-    return evaluate(_seed.normalized_outcome, check_velocity("v", v), nout=5)[2]
+normalized_plastic_approach = array_function(
+    globals(),
+    "normalized_plastic_approach",
+    _seed.normalized_outcome,
+    [("v", "velocity")],
+    ("normalized_approach", "``alpha_p/alpha_y``, >= 0"),
+    "Normalised plastic approach ``alpha_p/alpha_y = alpha^* - P^*/alpha^*^(1/2)`` [-] (seed eq. 11, normalised).",
+    notes="""
+        0 for ``v <= 1`` (elastic impact), ``inf`` at ``v = inf``.
+    """,
+    output=(2, 5),
+)
 
 
-def normalized_unloading_radius(v):
-    """Normalised unloading radius ``R_p/R* = alpha^*^(3/2)/P^*`` [-] (seed eq. 9, normalised).
-
-    1 for ``v <= 1`` (elastic impact), ``inf`` at ``v = inf``.
-
-    Parameters
-    ----------
-    v : array_like
-        Normalised impact speed ``v = V/V_y`` [-], >= 0 (``inf`` gives the limit).
-
-    Returns
-    -------
-    ndarray
-        ``R_p/R*`` [-], >= 1.
-
-    Raises
-    ------
-    ValueError
-        If ``v`` is negative or NaN.
-    """
-    return evaluate(_seed.normalized_outcome, check_velocity("v", v), nout=5)[3]
+normalized_unloading_radius = array_function(
+    globals(),
+    "normalized_unloading_radius",
+    _seed.normalized_outcome,
+    [("v", "velocity")],
+    ("normalized_approach", "``R_p/R*``, >= 1"),
+    "Normalised unloading radius ``R_p/R* = alpha^*^(3/2)/P^*`` [-] (seed eq. 9, normalised).",
+    notes="""
+        1 for ``v <= 1`` (elastic impact), ``inf`` at ``v = inf``.
+    """,
+    output=(3, 5),
+)
 
 
-def normalized_restitution(v):
-    """Restitution coefficient against ``v = V/V_y`` [-] (seed eq. 27).
-
-    ``e = P^* / (alpha^*^(1/4) v)`` for ``v > 1``, 1 for ``v <= 1``, 0 at ``v = inf``.
-
-    Parameters
-    ----------
-    v : array_like
-        Normalised impact speed ``v = V/V_y`` [-], >= 0 (``inf`` gives the limit).
-
-    Returns
-    -------
-    ndarray
-        Coefficient of restitution ``e = V_r/V`` [-], in [0, 1].
-
-    Raises
-    ------
-    ValueError
-        If ``v`` is negative or NaN.
-
-    Examples
-    --------
-    >>> float(normalized_restitution(1.0))
-    1.0
-    >>> round(float(normalized_restitution(1e8) * 1e8**0.25), 3)  # high-speed limit 1.185 v^(-1/4)
-    1.185
-    """
-    return evaluate(_seed.normalized_outcome, check_velocity("v", v), nout=5)[4]
+normalized_restitution = array_function(
+    globals(),
+    "normalized_restitution",
+    _seed.normalized_outcome,
+    [("v", "velocity")],
+    ("restitution", "Coefficient of restitution ``e = V_r/V``, in [0, 1]"),
+    "Restitution coefficient against ``v = V/V_y`` [-] (seed eq. 27).",
+    notes="""
+        ``e = P^* / (alpha^*^(1/4) v)`` for ``v > 1``, 1 for ``v <= 1``, 0 at ``v = inf``.
+    """,
+    examples="""
+        >>> float(normalized_restitution(1.0))
+        1.0
+        >>> round(float(normalized_restitution(1e8) * 1e8**0.25), 3)  # high-speed limit 1.185 v^(-1/4)
+        1.185
+    """,
+    output=(4, 5),
+)
 
 
 def restitution_coefficient(velocity, yield_velocity, *, out=None):

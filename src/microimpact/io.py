@@ -34,7 +34,7 @@ booleans as ``0``/``1``, non-finite values as ``nan``/``inf``/``-inf``. The
 header comes first so that every common reader takes it:
 ``numpy.genfromtxt(f, delimiter=",", names=True)``,
 ``pandas.read_csv(f, comment="#")``, :func:`csv.DictReader` over the lines not
-starting with ``#``, :func:`microimpact.paper.read_table` and
+starting with ``#``, :func:`read_table` and
 :func:`microimpact.fitting.load_restitution_csv`.
 """
 
@@ -55,6 +55,9 @@ from pathlib import Path
 
 import numpy as np
 
+from . import _signals
+from ._validation import is_number_text
+
 __all__ = [
     "atomic_write",
     "owned_directory",
@@ -64,6 +67,8 @@ __all__ = [
     "check_input_file",
     "csv_header",
     "write_csv",
+    "write_table",
+    "read_table",
     "write_json",
     "json_safe",
     "write_netcdf",
@@ -88,8 +93,13 @@ def _signals_deferred():
     """Hold SIGINT/SIGTERM during a few system calls that must not be split (a rename pair).
 
     A signal arriving inside is remembered and delivered (its old handler called)
-    when the block ends. Only in the main thread; elsewhere a no-op.
+    when the block ends. Only in the main thread; elsewhere a no-op. An interrupt
+    that arrived earlier and whose exception was swallowed on the way (Python drops
+    an exception raised in a ``__del__`` or a callback) is raised before the block
+    (:func:`microimpact._signals.check`): nothing is renamed into place after a
+    signal.
     """
+    _signals.check()
     if threading.current_thread() is not threading.main_thread():
         yield
         return
@@ -294,6 +304,7 @@ def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newli
     except OSError:
         perm = _umask_mode()
     fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+    _signals.track(tmp)
     try:
         with os.fdopen(fd, mode, **kw) as fh:
             yield fh
@@ -302,9 +313,11 @@ def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newli
         os.chmod(tmp, perm)
         with _signals_deferred():
             os.replace(tmp, target)
+            _signals.untrack(tmp)
     except BaseException as exc:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
+        _signals.untrack(tmp)
         if isinstance(exc, OSError) and exc.filename is None:  # e.g. ENOSPC from write(): name the target
             exc.filename = os.fspath(target)
         raise
@@ -475,6 +488,7 @@ def owned_directory(path, command: str, *, inputs=()):
     else:
         old = None
         stage = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent))
+    _signals.track(stage, "dir")
     try:
         yield stage
         names = sorted(e.name for e in os.scandir(stage))
@@ -489,6 +503,7 @@ def owned_directory(path, command: str, *, inputs=()):
                 if target.exists():
                     raise _oserror(errno.EEXIST, "appeared while the output was written", target)
                 os.rename(stage, target)
+                _signals.untrack(stage)
             stage = None
             _fsync_dir(target.parent)
         else:
@@ -505,6 +520,7 @@ def owned_directory(path, command: str, *, inputs=()):
     finally:
         if stage is not None:
             shutil.rmtree(stage, ignore_errors=True)
+            _signals.untrack(stage)
 
 
 @contextlib.contextmanager
@@ -734,6 +750,7 @@ def write_netcdf(ds, path, *, engine=None, progress=False):
     target = _resolve(Path(path))
     fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
     os.close(fd)
+    _signals.track(tmp)
     try:
         try:
             perm = stat.S_IMODE(os.stat(target).st_mode)
@@ -756,9 +773,11 @@ def write_netcdf(ds, path, *, engine=None, progress=False):
         os.chmod(tmp, perm)
         with _signals_deferred():
             os.replace(tmp, target)
+            _signals.untrack(tmp)
     except BaseException:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
+        _signals.untrack(tmp)
         raise
     return Path(path)
 
@@ -913,3 +932,97 @@ def progress_bar(total, desc: str = "", *, unit: str = "it", disable: bool = Fal
     except ImportError:  # pragma: no cover - tqdm is a dependency
         return _NoBar()
     return tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, leave=False, dynamic_ncols=True)
+
+
+def write_table(path, table: dict, title: str = "", columns: dict | None = None, source: str = "") -> Path:
+    """Write a dict of columns as CSV in the project's layout (see :func:`csv_header`).
+
+    The first line is the header, each column named with its unit
+    (``velocity_m_s [m/s]``; text columns bare); then ``#`` lines: the title,
+    the provenance (``microimpact <version>``, then ``source``) and one line per
+    column with its unit and description; then the rows. Floats are written with
+    Python's shortest exact representation, so reading the file back
+    (:func:`read_table`) gives the same numbers bit for bit. The file is written
+    atomically (:func:`write_csv`).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        File to write (overwritten).
+    table : dict of str to array_like
+        Columns of equal length, by name; bools are written as 0/1.
+    title : str, optional
+        First comment line of the file (one line).
+    columns : dict of str to (str, str), optional
+        Column name -> (unit, description) for the header and the ``#`` lines
+        (e.g. :data:`microimpact.figures.paper.COLUMNS`); a unit ``"-"`` or
+        ``"unit"`` marks a column without a unit of its own (text, or in the unit
+        of another column). Columns not named have no unit.
+    source : str, optional
+        Appended to the provenance line (``"; "`` between).
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     cols = {"velocity_m_s": ("m/s", "impact speed V"), "restitution": ("1", "e")}
+    ...     path = write_table(Path(tmp) / "e.csv", {"velocity_m_s": [5.0, 20.0], "restitution": [1.0, 0.8836]}, columns=cols)
+    ...     back = read_table(path)
+    >>> back["velocity_m_s"].tolist(), back["restitution"].tolist()
+    ([5.0, 20.0], [1.0, 0.8836])
+    """
+    from . import __version__
+
+    columns = {} if columns is None else columns
+    keys = list(table)
+    comments = []
+    if title:
+        comments.append(str(title))
+    comments.append(f"microimpact {__version__}" + (f"; {source}" if source else ""))
+    comments.append("columns (SI units; a suffix names the unit, no suffix: dimensionless or text):")
+    for k in keys:
+        unit, desc = columns.get(k, ("", ""))
+        comments.append(f"  {k} [{unit}]: {desc}")
+    cols = []
+    for k in keys:
+        unit = columns.get(k, ("", ""))[0]
+        cols.append((k, "" if unit in ("-", "unit") else unit, np.atleast_1d(np.asarray(table[k]))))
+    return write_csv(path, cols, comments)
+
+
+def read_table(path) -> dict:
+    """Read a CSV written by :func:`write_table` (or :func:`write_csv`) back into a dict of arrays.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file; ``#`` lines are skipped, and the ``[unit]`` of each header name
+        is dropped from the key (files of the older layout, header after the
+        ``#`` lines, read the same).
+
+    Returns
+    -------
+    dict of str to ndarray
+        One array per column, in file order: float where every cell is numeric,
+        otherwise ``object`` (strings). Units are those of the header.
+    """
+    import csv
+    import re
+
+    with open(path, encoding="utf-8") as fh:
+        rows = [r for r in csv.reader(line for line in fh if not line.startswith("#"))]
+    header, body = rows[0], rows[1:]
+    out = {}
+    for j, k in enumerate(header):
+        key = re.sub(r"\s*\[[^\]]*\]$", "", k)
+        cells = [r[j] for r in body]
+        if all(is_number_text(c) for c in cells):  # float() would also take 1_0 (as 10)
+            out[key] = np.array([float(c) for c in cells])
+        else:
+            out[key] = np.array(cells, dtype=object)
+    return out

@@ -19,6 +19,8 @@ import math
 from dataclasses import dataclass, field
 
 from ._validation import check_poisson, check_positive
+from .core import hertz as _hertz
+from .core.constants import DEFAULT_K
 
 __all__ = [
     "Material",
@@ -32,12 +34,6 @@ __all__ = [
     "effective_mass",
     "sphere_mass",
 ]
-
-#: Default ratio ``k = p_y / Y`` of limiting contact pressure to yield strength.
-#: The seed takes ``k`` "in the range of 2.1-2.3" (after Hardy et al. 1971); its
-#: two cases give 156/74 = 2.11 (silicon) and 158/68 = 2.32 (mica). We take the
-#: middle of the stated range, 2.2.
-DEFAULT_K = 2.2
 
 
 @dataclass(frozen=True)
@@ -294,7 +290,7 @@ def effective_modulus(E1, nu1, E2, nu2):
     E2 = check_positive("E2", E2, allow_inf=True)
     nu1 = check_poisson("nu1", nu1)
     nu2 = check_poisson("nu2", nu2)
-    return 1.0 / ((1.0 - nu1**2) / E1 + (1.0 - nu2**2) / E2)
+    return _hertz.effective_modulus(E1, nu1, E2, nu2)
 
 
 def effective_radius(R1, R2=math.inf):

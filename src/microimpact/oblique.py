@@ -37,8 +37,8 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from ._validation import check_nonnegative, check_poisson
-from .core import cache
+from ._validation import check_nonnegative, check_poisson, check_positive
+from .core import cache, hertz
 from .core import tangential as tg
 from .core.arrays import evaluate
 from .impact import restitution_coefficient, yield_velocity
@@ -254,7 +254,8 @@ def universal_table(kappa, *, dpsi=0.025, psi_max=None, n_x=31, x_min=1e-3, step
     kappa = _check_kappa(kappa)
     if psi_max is None:
         psi_max = math.ceil(8.0 * kappa + 2.0)
-    if abs(1.0 / dpsi - round(1.0 / dpsi)) > 1e-9:
+    dpsi = check_positive("dpsi", dpsi, scalar=True)
+    if math.isinf(dpsi) or abs(1.0 / dpsi - round(1.0 / dpsi)) > 1e-9:
         raise ValueError(f"1/dpsi must be an integer, got dpsi = {dpsi!r}")
     return _table(round(kappa, 12), float(dpsi), float(psi_max), int(n_x), float(x_min), int(steps))
 
@@ -340,7 +341,7 @@ def stiffness_ratio_of(pair, poisson_ratio=None, effective_shear_modulus=None):
         return float(tg.stiffness_ratio(G, E))
     if poisson_ratio is not None:
         nu = float(check_poisson("poisson_ratio", poisson_ratio))
-        return 2.0 * (1.0 - nu) / (2.0 - nu)
+        return tg.stiffness_ratio_same_poisson(nu)
     p, s = getattr(pair, "particle", None), getattr(pair, "surface", None)
     if p is None or s is None:
         raise ValueError(
@@ -348,7 +349,7 @@ def stiffness_ratio_of(pair, poisson_ratio=None, effective_shear_modulus=None):
             "or a pair built from materials"
         )
     G = tg.effective_shear_modulus(p.youngs_modulus, p.poisson_ratio, s.youngs_modulus, s.poisson_ratio)
-    E_mat = 1.0 / ((1 - p.poisson_ratio**2) / p.youngs_modulus + (1 - s.poisson_ratio**2) / s.youngs_modulus)
+    E_mat = hertz.effective_modulus(p.youngs_modulus, p.poisson_ratio, s.youngs_modulus, s.poisson_ratio)
     return float(tg.stiffness_ratio(G, E_mat))
 
 

@@ -18,7 +18,14 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from . import contact, impact
-from ._validation import check_nonnegative, check_poisson, check_positive, check_velocity
+from ._validation import (
+    TINY_LIMITING_PRESSURE,
+    check_nonnegative,
+    check_poisson,
+    check_positive,
+    check_velocity,
+    check_yield_velocity,
+)
 from .core import models, quantities
 from .core.constants import LARGE_STRAIN_RATIO
 from .core.models import thornton_ning_2016 as _seed
@@ -284,6 +291,10 @@ class ContactPair:
             "limiting_pressure",
             check_positive("limiting_pressure", self.limiting_pressure, allow_inf=True, scalar=True),
         )
+        if self.limiting_pressure < TINY_LIMITING_PRESSURE:  # V_y ~ p_y^(5/2) may underflow (eq. 28)
+            check_yield_velocity(
+                self.effective_modulus, self.effective_radius, self.effective_mass, self.limiting_pressure
+            )
         if self.density is not None:
             object.__setattr__(self, "density", check_positive("density", self.density, scalar=True))
 

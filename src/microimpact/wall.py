@@ -45,6 +45,7 @@ import numpy as np
 from ._validation import check_nonnegative, check_positive
 from .core import wall as _wall
 from .core.arrays import evaluate
+from .io import check_memory
 from .materials import DEFAULT_K, Material, get_material
 from .materials import effective_modulus as _effective_modulus
 
@@ -108,7 +109,7 @@ class WallInteraction:
         return int(np.size(self.stuck))
 
 
-def _vectors(name, value, n_expected=None):
+def _vectors(name, value):
     arr = np.asarray(value, dtype=float)
     if arr.ndim == 1:
         arr = arr[None, :]
@@ -146,6 +147,10 @@ def _materials(material, n):
         dtype=float,
     )
     return tuple(table[inv, j] for j in range(4))
+
+
+# Peak bytes per particle of wall_interaction (result table, regime, flags, temporaries).
+_BYTES_PER_PARTICLE = 8 * (11 + 1 + 6 + 3) + 3
 
 
 def wall_interaction(
@@ -243,6 +248,9 @@ def wall_interaction(
     single = np.ndim(velocity) == 1
     v = _vectors("velocity", velocity)
     N = v.shape[0]
+    # Refused before anything of size N is made: the (N, 11) result table, the per-particle inputs
+    # made here (modulus, p_y, yield strength) and the compliant prepass (3 columns), 8 bytes each.
+    check_memory(N * _BYTES_PER_PARTICLE, f"wall_interaction of {N} particles", "pass the particles in blocks")
     nrm = _vectors("normal", normal)
     if nrm.shape[0] not in (1, N):
         raise ValueError(f"normal must be one vector or one per particle ({N}), got {nrm.shape[0]}")
@@ -331,7 +339,8 @@ def wall_interaction(
 
 def _compliant_impulse_ratio(ut_mag, V, Vy, mu, E, mats, wall_mat, poisson_ratio, effective_shear_modulus):
     """``|J_t| / (mu J_n)`` of the compliant model per particle, from the universal tables."""
-    from .core.tangential import effective_shear_modulus as _gstar
+    from .core import hertz as _hertz
+    from .core import tangential as _tg
     from .oblique import universal_table
 
     n = ut_mag.size
@@ -339,17 +348,16 @@ def _compliant_impulse_ratio(ut_mag, V, Vy, mu, E, mats, wall_mat, poisson_ratio
         G = _per_particle(
             "effective_shear_modulus", check_positive("effective_shear_modulus", effective_shear_modulus), n
         )
-        kappa = 4.0 * G / E
+        kappa = _tg.stiffness_ratio(G, E)
     elif poisson_ratio is not None:
         nu = float(poisson_ratio)
         if isinstance(poisson_ratio, bool) or not (-1.0 < nu <= 0.5):
             raise ValueError(f"poisson_ratio must be in (-1, 0.5], got {poisson_ratio!r}")
-        kappa = np.full(n, 2.0 * (1.0 - nu) / (2.0 - nu))
+        kappa = np.full(n, _tg.stiffness_ratio_same_poisson(nu))
     elif mats is not None and wall_mat is not None:
         Ew, nuw = wall_mat.youngs_modulus, wall_mat.poisson_ratio
-        G = np.array([_gstar(e1, n1, Ew, nuw) for e1, n1 in zip(mats[0], mats[1])])
-        E_mat = 1.0 / ((1.0 - mats[1] ** 2) / mats[0] + (1.0 - nuw**2) / Ew)
-        kappa = 4.0 * G / E_mat
+        G = np.array([_tg.effective_shear_modulus(e1, n1, Ew, nuw) for e1, n1 in zip(mats[0], mats[1])])
+        kappa = _tg.stiffness_ratio(G, _hertz.effective_modulus(mats[0], mats[1], Ew, nuw))
     else:
         raise ValueError(
             "tangential='mindlin' needs poisson_ratio=..., effective_shear_modulus=... or material=... and wall=..."

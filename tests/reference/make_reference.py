@@ -32,10 +32,11 @@ from pathlib import Path
 import numpy as np
 
 import microimpact as mi
-from microimpact import contact, coupling, dynamics, impact, materials
-from microimpact.coupling import restitution_table, wall_interaction
+from microimpact import adhesion, contact, dynamics, impact, materials
+from microimpact.cexport import restitution_table
 from microimpact.fitting import fit_restitution
 from microimpact.sweep import sweep
+from microimpact.wall import wall_interaction
 
 HERE = Path(__file__).resolve().parent
 REFERENCE_FILE = HERE / "reference_outputs.npz"
@@ -283,7 +284,7 @@ def group_constants(inp):
         "LARGE_STRAIN_RATIO": np.float64(impact.LARGE_STRAIN_RATIO),
         "BETA_25_12": np.float64(dynamics.BETA_25_12),
         "HERTZ_TIME_CONSTANT": np.float64(dynamics.HERTZ_TIME_CONSTANT),
-        "STICKING_CONSTANT": np.float64(coupling.STICKING_CONSTANT),
+        "STICKING_CONSTANT": np.float64(adhesion.STICKING_CONSTANT),
         "DEFAULT_K": np.float64(materials.DEFAULT_K),
     }
 

@@ -32,7 +32,9 @@ import signal
 import sys
 import warnings
 
+from .. import _signals
 from .._optional import MissingExtraError
+from .._signals import Interrupted  # noqa: F401  (re-exported: the exception a signal raises)
 
 #: Subcommand modules, in the order ``--help`` lists them.
 COMMANDS = [
@@ -48,6 +50,7 @@ COMMANDS = [
     "oblique",
     "stick",
     "dem_check",
+    "cache",
 ]
 
 
@@ -83,46 +86,12 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     parser.add_argument("--version", action=_Version, nargs=0, help="show the version and exit")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     for name in [only] if only in COMMANDS else COMMANDS:
-        try:
-            mod = importlib.import_module(f".{name}", __name__)
-        except ModuleNotFoundError as exc:  # a command not yet built
-            if exc.name == f"{__name__}.{name}":
-                continue
-            raise
-        mod.register(sub)
+        importlib.import_module(f".{name}", __name__).register(sub)
     return parser
 
 
 def _short_warning(message, category, filename, lineno, file=None, line=None):
     return f"warning: {message}\n"
-
-
-class Interrupted(KeyboardInterrupt):
-    """SIGINT or SIGTERM during a command (a KeyboardInterrupt, so cleanup code runs)."""
-
-    def __init__(self, signum=signal.SIGINT):
-        super().__init__(signum)
-        self.signum = int(signum)
-
-
-def _raise_interrupt(signum, frame):
-    raise Interrupted(signum)
-
-
-@contextlib.contextmanager
-def _interrupts_raise():
-    """During a command, SIGINT and SIGTERM raise :class:`Interrupted` (main thread only)."""
-    old = {}
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        try:
-            old[sig] = signal.signal(sig, _raise_interrupt)
-        except (ValueError, OSError):  # not the main thread: leave the handlers alone
-            pass
-    try:
-        yield
-    finally:
-        for sig, handler in old.items():
-            signal.signal(sig, handler)
 
 
 def error_message(exc: BaseException) -> str:
@@ -177,7 +146,27 @@ class _NamedStdout:
 
 def main(argv=None) -> int:
     """Entry point of the ``microimpact`` command; returns the exit status."""
+    _signals.install()  # from the start: a signal while parsing is an interrupt too (microimpact._signals)
+    try:
+        return _main(argv)
+    except BaseException as exc:
+        # an interrupt, or what a library made of one (a C extension's import turns it into
+        # "ImportError: initialization failed"): one line and 128 + signal, never a traceback
+        signum = getattr(exc, "signum", None) or _signals.pending()
+        if signum is None and isinstance(exc, KeyboardInterrupt):
+            signum = signal.SIGINT
+        if signum is None:
+            raise
+        _signals.cleanup()
+        print(_signals.message(signum), file=sys.stderr)
+        return 128 + int(signum)
+    finally:
+        _signals.restore()
+
+
+def _main(argv):
     argv = sys.argv[1:] if argv is None else list(argv)
+    _signals.set_prefix("microimpact")
     # Import only the command being run: a command's dependencies cost more than its work.
     parser = build_parser(only=argv[0] if argv and argv[0] in COMMANDS else None)
     try:
@@ -189,24 +178,29 @@ def main(argv=None) -> int:
         return 2
     warnings.formatwarning = _short_warning
     prefix = f"microimpact {args.command}"
+    _signals.set_prefix(prefix)
     stdout = sys.stdout
+    if stdout is None:  # started with standard output closed (microimpact impact 50 >&-): before any work
+        print(
+            f"{prefix}: error: <standard output>: closed (redirect it instead: > FILE or > /dev/null)", file=sys.stderr
+        )
+        return 2
     try:
-        with _interrupts_raise():
-            sys.stdout = _NamedStdout(stdout)
-            try:
-                rc = args.func(args)
-                sys.stdout.flush()
-            finally:
-                sys.stdout = stdout
-    except KeyboardInterrupt as exc:
-        signum = getattr(exc, "signum", signal.SIGINT)
-        name = "SIGTERM" if signum == signal.SIGTERM else "Ctrl-C"
-        print(f"{prefix}: interrupted ({name}); nothing was left half-written", file=sys.stderr)
-        return 128 + int(signum)
+        sys.stdout = _NamedStdout(stdout)
+        try:
+            rc = args.func(args)
+            sys.stdout.flush()
+        finally:
+            sys.stdout = stdout
+        _signals.check()  # an interrupt whose exception was swallowed on the way (in a __del__, a callback)
+    except KeyboardInterrupt:
+        raise
     except BrokenPipeError:  # e.g. piped into head: stop quietly
         _silence_stdout()
         return 0
     except (ValueError, MissingExtraError, OSError, MemoryError) as exc:
+        if _signals.pending() is not None:  # what a library made of an interrupt
+            raise _signals.Interrupted(_signals.pending()) from None
         if isinstance(exc, MemoryError):
             msg = "out of memory (see MICROIMPACT_MAX_MEMORY and give smaller sizes)"
         else:

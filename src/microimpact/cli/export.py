@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
+import argparse
 import math
 from pathlib import Path
 
 from ..adhesion import work_of_adhesion
 from ..cexport import DEFAULT_VS_OVER_VY, generate_c_source, write_band, write_c_source, write_tables
-from ..core.wall import sphere_mass
 from ..fitting import INTERVALS, LOSSES
+from ..materials import sphere_mass
 from ._common import (
     add_pair_arguments,
     check_input_file,
@@ -117,11 +118,12 @@ def run(args) -> int:
             c = parse_float(args.confidence, "--confidence")
             if not 0.0 < c < 1.0:
                 raise ValueError(f"--confidence must lie in (0, 1), got {c!r}")
-    diameters = parse_values(args.diameters, "--diameters") if args.diameters else None
+    diameters = parse_values(args.diameters, "--diameters") if args.diameters is not None else None
     if diameters is not None:
         check_positive("--diameters", diameters)
+    pair_args = args  # the options the pair is built from (args itself is never changed)
     if (args.particle or args.surface) and args.radius is None and args.diameter is None and diameters is not None:
-        args.diameter = float(diameters[0])
+        pair_args = argparse.Namespace(**{**vars(args), "diameter": float(diameters[0])})
     if args.surface_energy is not None:
         gammas = parse_values(args.surface_energy, "--surface-energy")
         if gammas.size > 2:
@@ -136,10 +138,10 @@ def run(args) -> int:
         check_nonnegative(name, value)
         if math.isinf(value):
             raise ValueError(f"{name} must be finite, got {value!r}")
-    velocities = parse_values(args.velocities, "--velocities") if args.velocities else None
+    velocities = parse_values(args.velocities, "--velocities") if args.velocities is not None else None
     if velocities is not None:
         check_nonnegative("--velocities", velocities)
-    vs = parse_values(args.vs_over_vy, "--vs-over-vy") if args.vs_over_vy else DEFAULT_VS_OVER_VY
+    vs = parse_values(args.vs_over_vy, "--vs-over-vy") if args.vs_over_vy is not None else DEFAULT_VS_OVER_VY
     check_nonnegative("--vs-over-vy", vs)
     dem_codes = _dem_codes(args)
     fit = None
@@ -147,14 +149,12 @@ def run(args) -> int:
         fit, caught = _fit(args)
         pair = fit.pair
     else:
-        pair = pair_from_args(args)
+        pair = pair_from_args(pair_args)
     if diameters is not None:
-        rho = pair.density if pair.density is not None else float("nan")
+        if pair.density is None:
+            raise ValueError("--diameters needs the particle's density (--density, or a particle material)")
         for d in diameters:
-            try:
-                m = sphere_mass(0.5 * float(d), rho)
-            except OverflowError:
-                m = math.inf
+            m = float(sphere_mass(0.5 * float(d), pair.density))
             if not (m > 0 and math.isfinite(m)):
                 raise ValueError(
                     f"--diameters {float(d):g} m is outside what double precision can model: the particle mass "

@@ -8,6 +8,7 @@ import warnings
 
 import numpy as np
 
+from .. import quantities
 from .._validation import check_velocity
 from ..core import models
 from ..io import write_json
@@ -17,21 +18,24 @@ from ._common import add_pair_arguments, pair_from_args, parse_values
 #: Memory per speed [bytes]: 18 result arrays with their temporaries, and the JSON or table text.
 BYTES_PER_SPEED = 2000
 
-# (attribute, header, scale to the shown unit, format)
+#: The table's columns: (attribute, header, scale to the shown unit, format), from the quantities table.
 COLUMNS = [
-    ("velocity", "V [m/s]", 1.0, "{:.4g}"),
-    ("restitution", "e", 1.0, "{:.5f}"),
-    ("rebound_velocity", "V_r [m/s]", 1.0, "{:.4g}"),
-    ("energy_loss", "1-e^2", 1.0, "{:.4f}"),
-    ("max_approach", "alpha* [nm]", 1e9, "{:.5g}"),
-    ("plastic_approach", "alpha_p [nm]", 1e9, "{:.5g}"),
-    ("max_force", "P* [uN]", 1e6, "{:.5g}"),
-    ("unloading_radius", "R_p [um]", 1e6, "{:.4g}"),
-    ("elastic_stage_time", "t1 [ns]", 1e9, "{:.4f}"),
-    ("plastic_stage_time", "t2 [ns]", 1e9, "{:.4f}"),
-    ("loading_time", "t_L [ns]", 1e9, "{:.4f}"),
-    ("unloading_time", "t_U [ns]", 1e9, "{:.4f}"),
-    ("contact_time", "t_c [ns]", 1e9, "{:.4f}"),
+    (n, quantities.header(n), quantities.QUANTITIES[n].scale, quantities.QUANTITIES[n].fmt)
+    for n in (
+        "velocity",
+        "restitution",
+        "rebound_velocity",
+        "energy_loss",
+        "max_approach",
+        "plastic_approach",
+        "max_force",
+        "unloading_radius",
+        "elastic_stage_time",
+        "plastic_stage_time",
+        "loading_time",
+        "unloading_time",
+        "contact_time",
+    )
 ]
 
 

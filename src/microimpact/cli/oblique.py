@@ -9,7 +9,7 @@ import sys
 
 import numpy as np
 
-from ._common import add_pair_arguments, pair_from_args, parse_float, parse_values
+from ._common import PAIR_OPTIONS, add_pair_arguments, pair_from_args, parse_float, parse_values, refuse_together
 
 
 def register(sub) -> None:
@@ -65,6 +65,8 @@ def run(args) -> int:
     from .. import oblique as ob
 
     if args.alumina:
+        # the published case fixes the pair: a pair option beside it would be ignored
+        refuse_together(args, ("alumina",), tuple(PAIR_OPTIONS))
         pair = ob.alumina_pair()
         nu = ob.ALUMINA_CASE["poisson_ratio"]
         V = ob.ALUMINA_CASE["velocity"]

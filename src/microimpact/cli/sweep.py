@@ -16,9 +16,9 @@ import sys
 
 import numpy as np
 
+from .. import quantities
 from .._validation import check_positive
-from ..core import quantities
-from ..materials import PAPER_CASES, list_materials
+from ..materials import DEFAULT_K, PAPER_CASES, list_materials
 from ..pair import ContactPair
 from ..sweep import SWEEP_DIMENSIONS
 from ._common import (
@@ -66,7 +66,7 @@ def register(sub) -> None:
     b.add_argument(
         "--yield-strength", metavar="PA", help="yield strength Y [Pa]: p_y = k Y when --limiting-pressure is not given"
     )
-    b.add_argument("--k", metavar="K", help="p_y / Y (default 2.2)")
+    b.add_argument("--k", metavar="K", help=f"p_y / Y (default {DEFAULT_K})")
     add_model_arguments(p)
     o = p.add_argument_group("output")
     o.add_argument("--out", required=True, metavar="FILE", help="FILE.nc (NetCDF) or FILE.csv")

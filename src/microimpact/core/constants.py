@@ -9,5 +9,7 @@ __all__ = ["LARGE_STRAIN_RATIO", "DEFAULT_K"]
 #: are flagged (``large_strain``), not refused.
 LARGE_STRAIN_RATIO = 0.3
 
-#: ``k`` of ``p_y = k Y``: the middle of the seed's range 2.1-2.3 (its own two cases give 2.11 and 2.32).
+#: Default ratio ``k = p_y / Y`` of limiting contact pressure to yield strength. The seed takes ``k``
+#: "in the range of 2.1-2.3" (after Hardy et al. 1971); its two cases give 156/74 = 2.11 (silicon)
+#: and 158/68 = 2.32 (mica). We take the middle of the stated range, 2.2.
 DEFAULT_K = 2.2

@@ -12,7 +12,46 @@ import math
 from ._jit import jitable
 from .special import BETA_25_12
 
-__all__ = ["force", "contact_radius", "central_pressure", "max_approach", "time_scale", "contact_time"]
+__all__ = [
+    "effective_modulus",
+    "equal_bodies_modulus",
+    "stiffness",
+    "force",
+    "contact_radius",
+    "central_pressure",
+    "max_approach",
+    "time_scale",
+    "dem_time_scale",
+    "rise_time",
+    "half_period",
+    "contact_time",
+]
+
+
+@jitable
+def effective_modulus(E1, nu1, E2, nu2):
+    """``E* = 1/((1 - nu1^2)/E1 + (1 - nu2^2)/E2)`` [Pa] of two elastic bodies (seed, after eq. 2).
+
+    ``E2 = inf`` is a rigid body (its term vanishes). Plain arithmetic (squares as products): also
+    takes numpy arrays.
+    """
+    return 1.0 / ((1.0 - nu1 * nu1) / E1 + (1.0 - nu2 * nu2) / E2)
+
+
+@jitable
+def equal_bodies_modulus(E, nu):
+    """Young's modulus ``E1 = 2 (1 - nu^2) E*`` [Pa] of two equal bodies whose ``E*`` is ``E`` [Pa].
+
+    The inverse of :func:`effective_modulus` with ``E1 = E2`` and ``nu1 = nu2 = nu`` (what a DEM code
+    that mixes one material with itself needs to reproduce a given ``E*``).
+    """
+    return 2.0 * (1.0 - nu * nu) * E
+
+
+@jitable
+def stiffness(E, R):
+    """Hertz's stiffness ``k_n = 4/3 E* R^(1/2)`` [N/m^(3/2)] of ``P = k_n alpha^(3/2)`` (seed eq. 2)."""
+    return 4.0 / 3.0 * E * math.sqrt(R)
 
 
 @jitable
@@ -52,6 +91,40 @@ def time_scale(V, E, R, m):
 
 
 @jitable
+def dem_time_scale(V, E, R, m):
+    """``(m*/(k_n V^(1/2)))^(2/5)`` [s], ``k_n`` = :func:`stiffness`: the time unit of the damped Hertz laws.
+
+    ``alpha_m / V`` without the energy balance's ``15/16`` (the scaling in which the DEM codes' damped
+    Hertz equation ``x'' = -(x^(3/2) + kappa x^(1/2) x')`` has no parameter but the damping ``kappa``).
+    """
+    return (m / (stiffness(E, R) * math.sqrt(V))) ** 0.4
+
+
+@jitable
+def rise_time(alpha_m, V):
+    """``(2/5) B(2/5, 1/2) alpha_m / V`` [s]: Hertz loading from first touch at ``V`` to rest at ``alpha_m``.
+
+    Seed eq. 20 with ``u = 1`` (the elastic stage run to rest); run backwards it is the Hertz
+    unloading time from ``alpha_m`` to the release at ``V`` (eq. 26, with ``alpha_m`` the elastic
+    recovery ``alpha* - alpha_p`` and ``V`` the rebound speed).
+    """
+    return 0.4 * BETA_25_12 * alpha_m / V
+
+
+@jitable
+def half_period(V, E, R, m):
+    """Loading (= unloading) time of an elastic Hertz impact at ``V``, ``(2/5) B(2/5, 1/2) alpha_m/V`` [s].
+
+    :func:`rise_time` at the elastic maximum approach (seed eqs. 17, 20), from :func:`time_scale`
+    (no power of ``V`` beyond ``V^(-1/5)``); ``inf`` at ``V = 0``. Half of :func:`contact_time`.
+    """
+    return 0.4 * BETA_25_12 * time_scale(V, E, R, m)
+
+
+@jitable
 def contact_time(V, E, R, m):
-    """Duration of an elastic Hertz impact, ``(4/5) B(2/5, 1/2) alpha_m / V`` [s] (seed eq. 30, exact constant)."""
-    return 0.8 * BETA_25_12 * time_scale(V, E, R, m)
+    """Duration of an elastic Hertz impact, ``(4/5) B(2/5, 1/2) alpha_m / V`` [s] (seed eq. 30, exact constant).
+
+    Twice :func:`half_period` (the same bits as ``0.8 B alpha_m/V``: doubling is exact).
+    """
+    return 2.0 * half_period(V, E, R, m)

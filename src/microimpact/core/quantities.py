@@ -3,71 +3,214 @@
 Every place that labels a number reads it from here: :class:`~microimpact.pair.ImpactResult`'s
 documentation, the CLI's table and JSON units, CSV headers, a sweep's attributes, history columns
 and the figures' data columns. Units are UDUNITS strings (``"1"`` for dimensionless), as CF
-conventions for NetCDF expect.
+conventions for NetCDF expect; text has ``""``. The display columns (symbol, display unit and
+scale, format) label the CLI's table and the figures' axes, and the check column names what an
+input must be. A new outcome field is one row here.
+
+Two spellings of a name, both derived here: the attribute name (``max_approach``) for attributes,
+JSON keys, NetCDF variables and options, and the CSV column name with its SI unit as a suffix
+(``max_approach_m``, :func:`column`) where a file carries no separate unit.
 """
 
 from __future__ import annotations
 
 from typing import NamedTuple
 
-__all__ = ["Quantity", "QUANTITIES", "OUTCOME_FIELDS", "FLAG_FIELDS", "HISTORY_FIELDS", "table", "label"]
+__all__ = [
+    "Quantity",
+    "QUANTITIES",
+    "OUTCOME_FIELDS",
+    "FLAG_FIELDS",
+    "HISTORY_FIELDS",
+    "table",
+    "label",
+    "column",
+    "columns",
+    "header",
+    "axis_label",
+]
 
 
 class Quantity(NamedTuple):
-    """One quantity: its name, unit, a short description and the seed's equation (``""`` if none)."""
+    """One quantity: the row of every label, unit and display of one number.
+
+    ``name`` is the attribute, column and option name (``max_approach``); ``unit`` the SI unit as
+    a UDUNITS string (``"1"`` dimensionless, ``""`` for text); ``description`` a short phrase;
+    ``equation`` the seed's equation number(s) (``""`` if none); ``symbol`` the plain-text symbol
+    (``alpha*``) and ``tex`` the matplotlib one (``$\\alpha^*$``); ``display_unit`` the unit shown
+    to people (``nm``; ``""``: the SI unit) and ``scale`` the factor from SI to it (``1e9``);
+    ``fmt`` the format of one displayed value; ``check`` what an input of it must be
+    (``"positive"``, ``"nonnegative"``, ``"poisson"``, ``"flag"``; ``""`` for outputs).
+    """
 
     name: str
     unit: str
     description: str
     equation: str = ""
+    symbol: str = ""
+    tex: str = ""
+    display_unit: str = ""
+    scale: float = 1.0
+    fmt: str = "{:.6g}"
+    check: str = ""
+
+    @property
+    def shown_unit(self) -> str:
+        """The unit shown to people: :attr:`display_unit`, else the SI :attr:`unit`."""
+        return self.display_unit or self.unit
 
 
-def _q(name, unit, description, equation=""):
-    return name, Quantity(name, unit, description, equation)
+def _q(name, unit, description, equation="", symbol="", tex="", display="", scale=1.0, fmt="{:.6g}", check=""):
+    return name, Quantity(name, unit, description, equation, symbol, tex, display, scale, fmt, check)
 
+
+_NS = dict(display="ns", scale=1e9, fmt="{:.4f}")  # times shown in ns
 
 #: Every quantity microimpact reports or takes, by name.
 QUANTITIES: dict[str, Quantity] = dict(
     [
         # outcome of one impact
-        _q("velocity", "m/s", "impact speed V"),
-        _q("yield_velocity", "m/s", "yield velocity V_y, 1/2 m* V_y^2 = 2/5 P_y alpha_y", "28"),
-        _q("normalized_velocity", "1", "V / V_y"),
-        _q("elastic", "1", "True where V <= V_y (purely elastic impact)"),
-        _q("restitution", "1", "coefficient of restitution e", "27"),
-        _q("rebound_velocity", "m/s", "rebound speed V_r = e V"),
-        _q("max_approach", "m", "maximum approach alpha*", "22"),
-        _q("plastic_approach", "m", "plastic (unrecoverable) approach alpha_p", "11"),
-        _q("max_force", "N", "maximum contact force P*", "14"),
-        _q("unloading_radius", "m", "curvature radius of the flattened contact R_p", "9"),
-        _q("energy_loss", "1", "fraction of kinetic energy lost, 1 - e^2", "29"),
-        _q("max_contact_radius", "m", "contact radius at maximum approach a* = (R* alpha*)^(1/2)", "3"),
+        _q("velocity", "m/s", "impact speed V", "", "V", "$V$", fmt="{:.4g}", check="nonnegative"),
+        _q("yield_velocity", "m/s", "yield velocity V_y, 1/2 m* V_y^2 = 2/5 P_y alpha_y", "28", "V_y", "$V_y$"),
+        _q("normalized_velocity", "1", "V / V_y", "", "V/V_y", "$V/V_y$"),
+        _q("elastic", "1", "True where V <= V_y (purely elastic impact)", check="flag"),
+        _q("restitution", "1", "coefficient of restitution e", "27", "e", "$e$", fmt="{:.5f}"),
+        _q("rebound_velocity", "m/s", "rebound speed V_r = e V", "", "V_r", "$V_r$", fmt="{:.4g}"),
+        _q("max_approach", "m", "maximum approach alpha*", "22", "alpha*", r"$\alpha^*$", "nm", 1e9, "{:.5g}"),
+        _q(
+            "plastic_approach",
+            "m",
+            "plastic (unrecoverable) approach alpha_p",
+            "11",
+            "alpha_p",
+            r"$\alpha_p$",
+            "nm",
+            1e9,
+            "{:.5g}",
+        ),
+        _q("max_force", "N", "maximum contact force P*", "14", "P*", "$P^*$", "uN", 1e6, "{:.5g}"),
+        _q(
+            "unloading_radius",
+            "m",
+            "curvature radius of the flattened contact R_p",
+            "9",
+            "R_p",
+            "$R_p$",
+            "um",
+            1e6,
+            "{:.4g}",
+        ),
+        _q("energy_loss", "1", "fraction of kinetic energy lost, 1 - e^2", "29", "1-e^2", "$1 - e^2$", fmt="{:.4f}"),
+        _q(
+            "max_contact_radius",
+            "m",
+            "contact radius at maximum approach a* = (R* alpha*)^(1/2)",
+            "3",
+            "a*",
+            "$a^*$",
+            "um",
+            1e6,
+            "{:.4g}",
+        ),
         _q("large_strain", "1", "True where a*/R* > 0.3 (outside the small-strain range)"),
-        _q("elastic_stage_time", "s", "stage 1 (Hertz loading) duration t1", "20"),
-        _q("plastic_stage_time", "s", "stage 2 (plastic loading) duration t2", "23"),
-        _q("loading_time", "s", "loading time t_L = t1 + t2", "32"),
-        _q("unloading_time", "s", "unloading time t_U", "26"),
-        _q("contact_time", "s", "contact time t_c = t_L + t_U", "33"),
+        _q("elastic_stage_time", "s", "stage 1 (Hertz loading) duration t1", "20", "t1", "$t_1$", **_NS),
+        _q("plastic_stage_time", "s", "stage 2 (plastic loading) duration t2", "23", "t2", "$t_2$", **_NS),
+        _q("loading_time", "s", "loading time t_L = t1 + t2", "32", "t_L", "$t_L$", **_NS),
+        _q("unloading_time", "s", "unloading time t_U", "26", "t_U", "$t_U$", **_NS),
+        _q("contact_time", "s", "contact time t_c = t_L + t_U", "33", "t_c", "$t_c$", **_NS),
         # a pair's inputs and effective values
-        _q("limiting_pressure", "Pa", "limiting contact pressure p_y", "6"),
-        _q("yield_strength", "Pa", "yield strength Y of the softer body (p_y = k Y)"),
-        _q("k", "1", "ratio k = p_y / Y"),
-        _q("particle_modulus", "Pa", "Young's modulus of the particle E1"),
-        _q("surface_modulus", "Pa", "Young's modulus of the surface E2"),
-        _q("particle_poisson", "1", "Poisson ratio of the particle nu1"),
-        _q("surface_poisson", "1", "Poisson ratio of the surface nu2"),
-        _q("density", "kg/m^3", "particle density rho"),
-        _q("radius", "m", "particle radius R (sphere on a flat: R* = R)"),
-        _q("diameter", "m", "particle diameter d = 2 R"),
-        _q("effective_modulus", "Pa", "effective modulus E* = 1/((1-nu1^2)/E1 + (1-nu2^2)/E2)"),
-        _q("effective_radius", "m", "effective radius R*"),
-        _q("effective_mass", "kg", "effective mass m*"),
+        _q(
+            "limiting_pressure",
+            "Pa",
+            "limiting contact pressure p_y",
+            "6",
+            "p_y",
+            "$p_y$",
+            "MPa",
+            1e-6,
+            check="positive",
+        ),
+        _q(
+            "yield_strength",
+            "Pa",
+            "yield strength Y of the softer body (p_y = k Y)",
+            "",
+            "Y",
+            "$Y$",
+            "MPa",
+            1e-6,
+            check="positive",
+        ),
+        _q("k", "1", "ratio k = p_y / Y", "", "k = p_y/Y", "$k = p_y/Y$", check="positive"),
+        _q(
+            "particle_modulus",
+            "Pa",
+            "Young's modulus of the particle E1",
+            "",
+            "E1",
+            "$E_1$",
+            "GPa",
+            1e-9,
+            check="positive",
+        ),
+        _q(
+            "surface_modulus",
+            "Pa",
+            "Young's modulus of the surface E2",
+            "",
+            "E2",
+            "$E_2$",
+            "GPa",
+            1e-9,
+            check="positive",
+        ),
+        _q("particle_poisson", "1", "Poisson ratio of the particle nu1", "", "nu1", r"$\nu_1$", check="poisson"),
+        _q("surface_poisson", "1", "Poisson ratio of the surface nu2", "", "nu2", r"$\nu_2$", check="poisson"),
+        _q("density", "kg/m^3", "particle density rho", "", "rho", r"$\rho$", check="positive"),
+        _q("radius", "m", "particle radius R (sphere on a flat: R* = R)", "", "R", "$R$", "um", 1e6, check="positive"),
+        _q("diameter", "m", "particle diameter d = 2 R", "", "d", "$d$", "um", 1e6, check="positive"),
+        _q(
+            "effective_modulus",
+            "Pa",
+            "effective modulus E* = 1/((1-nu1^2)/E1 + (1-nu2^2)/E2)",
+            "",
+            "E*",
+            "$E^*$",
+            "GPa",
+            1e-9,
+            check="positive",
+        ),
+        _q("effective_radius", "m", "effective radius R*", "", "R*", "$R^*$", "um", 1e6, check="positive"),
+        _q("effective_mass", "kg", "effective mass m*", "", "m*", "$m^*$", check="positive"),
         # one impact against time
-        _q("time", "s", "time since first contact t"),
-        _q("approach", "m", "approach alpha (negative: a gap, no contact)"),
-        _q("approach_velocity", "m/s", "approach velocity dalpha/dt (positive while approaching)", "17"),
-        _q("force", "N", "contact force P", "2, 8, 10"),
+        _q("time", "s", "time since first contact t", "", "t", "$t$", **_NS),
+        _q("approach", "m", "approach alpha (negative: a gap, no contact)", "", "alpha", r"$\alpha$", "nm", 1e9),
+        _q(
+            "approach_velocity",
+            "m/s",
+            "approach velocity dalpha/dt (positive while approaching)",
+            "17",
+            "dalpha/dt",
+            r"$\dot\alpha$",
+        ),
+        _q("force", "N", "contact force P", "2, 8, 10", "P", "$P$", "uN", 1e6),
         _q("stage", "1", "0 no contact, 1 Hertz loading, 2 plastic loading, 3 elastic unloading"),
+        # the seed's normalised contact (eqs. 12-15)
+        _q(
+            "normalized_approach", "1", "normalised approach alpha/alpha_y", "12", "alpha/alpha_y", r"$\alpha/\alpha_y$"
+        ),
+        _q("normalized_force", "1", "normalised force P/P_y", "13-15", "P/P_y", "$P/P_y$"),
+        # derived quantities of the figures and reports
+        _q("plastic_frequency", "rad/s", "angular frequency of the plastic stage omega", "18-23", "omega", r"$\omega$"),
+        _q("plastic_ratio", "1", "plastic share alpha_p / alpha*", "", "alpha_p/alpha*", r"$\alpha_p/\alpha^*$"),
+        _q("deresiewicz_time", "s", "Deresiewicz's elastic contact time", "30", "t_D", "$t_D$", **_NS),
+        _q("ning_loading_time", "s", "Ning's high-speed loading time", "31", "t_N", "$t_N$", **_NS),
+        _q("calibrated", "1", "1 where the model was calibrated to the reference, else 0", check="flag"),
+        # text
+        _q("model", "", "name of the impact model"),
+        _q("series", "", "label of the curve"),
+        _q("kind", "", "'model' (computed) or 'measured' (user data)"),
+        _q("branch", "", "'loading' (eqs. 2, 8) or 'unloading' (eq. 10)"),
     ]
 )
 
@@ -109,3 +252,61 @@ def label(name: str) -> str:
 def table(names) -> dict[str, tuple[str, str]]:
     """``{name: (unit, description with its equation)}`` for ``names`` (the form headers and attrs use)."""
     return {n: (QUANTITIES[n].unit, label(n)) for n in names}
+
+
+def _suffix(unit: str) -> str:
+    """``"m/s"`` -> ``"_m_s"``, ``"kg/m^3"`` -> ``"_kg_m3"``; ``""`` for ``"1"`` and text."""
+    if unit in ("", "1"):
+        return ""
+    return "_" + unit.replace("/", "_").replace("^", "").replace(" ", "_")
+
+
+def column(name: str, display: bool = False) -> str:
+    """The CSV column name of quantity ``name``: the name with its unit as a suffix (``force_N``).
+
+    With ``display`` the suffix is the display unit (``contact_time_ns``).
+    """
+    q = QUANTITIES[name]
+    return name + _suffix(q.shown_unit if display else q.unit)
+
+
+def columns(names, display: bool = False) -> dict[str, tuple[str, str]]:
+    """``{column name: (unit, description with its equation)}`` of :func:`column` for ``names``."""
+    out = {}
+    for n in names:
+        q = QUANTITIES[n]
+        out[column(n, display)] = (q.shown_unit if display else q.unit, label(n))
+    return out
+
+
+def header(name: str) -> str:
+    """A short table heading: the symbol and the display unit, ``alpha* [nm]`` (no unit if dimensionless)."""
+    q = QUANTITIES[name]
+    unit = q.shown_unit
+    return f"{q.symbol or name} [{unit}]" if unit not in ("", "1") else (q.symbol or name)
+
+
+def axis_label(name: str, text: str = "") -> str:
+    """A figure axis label: ``text`` (default the description), the TeX symbol, the display unit in brackets.
+
+    ``Maximum approach, $\\alpha^*$ (nm)``; the unit's powers in TeX (``kg m$^{-3}$``).
+    """
+    q = QUANTITIES[name]
+    words = text or q.description.split(",")[0]
+    if not text and q.symbol and words.endswith(" " + q.symbol):  # "impact speed V" -> "impact speed"
+        words = words[: -len(q.symbol) - 1]
+    unit = q.shown_unit
+    tail = f" ({tex_unit(unit)})" if unit not in ("", "1") else ""
+    sym = f", {q.tex}" if q.tex else ""
+    return f"{words[0].upper()}{words[1:]}{sym}{tail}"
+
+
+def tex_unit(unit: str) -> str:
+    """A UDUNITS unit in matplotlib text: ``"kg/m^3"`` -> ``"kg m$^{-3}$"``, ``"um"`` -> ``"$\\mu$m"``."""
+    if unit.startswith("u"):
+        unit = r"$\mu$" + unit[1:]
+    if "/" in unit:
+        num, den = unit.split("/", 1)
+        base, _, power = den.partition("^")
+        return f"{num} {base}$^{{-{power or 1}}}$" if power else f"{num}/{den}"
+    return unit

@@ -27,6 +27,7 @@ __all__ = [
     "hertz_beta_scaled_s",
     "BETA_25_12",
     "HERTZ_TIME_CONSTANT",
+    "HERTZ_TIME_CONSTANT_PRINTED",
 ]
 
 _TINY = 1e-300
@@ -152,6 +153,9 @@ BETA_25_12 = beta(0.4, 0.5)
 #: Exact constant of Hertz's contact time, ``(4/5) B(2/5,1/2) (15/16)^(2/5) = 2.868``
 #: (the seed's eq. 30 prints it as 2.87).
 HERTZ_TIME_CONSTANT = 0.8 * BETA_25_12 * (15.0 / 16.0) ** 0.4
+#: Deresiewicz's (1968) prefactor as the seed's eq. 30 prints it, 2.87: :data:`HERTZ_TIME_CONSTANT`
+#: rounded (kept for reproducing the seed's printed numbers).
+HERTZ_TIME_CONSTANT_PRINTED = 2.87
 
 
 @jitable

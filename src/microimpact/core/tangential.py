@@ -65,6 +65,7 @@ __all__ = [
     "effective_shear_modulus",
     "mindlin_stiffness",
     "stiffness_ratio",
+    "stiffness_ratio_same_poisson",
     "normalized_angle",
     "rigid_impulse",
     "history_constants",
@@ -123,6 +124,18 @@ def mindlin_stiffness(contact_radius, effective_shear):
 def stiffness_ratio(effective_shear, effective_modulus):
     """``kappa = 4 G*/E*`` [-]: tangential over normal (Hertz) contact stiffness, ``8 G* a / (2 E* a)``."""
     return 4.0 * effective_shear / effective_modulus
+
+
+@jitable
+def stiffness_ratio_same_poisson(nu):
+    """``kappa = 2 (1 - nu)/(2 - nu)`` [-]: :func:`stiffness_ratio` of two bodies with one Poisson's ratio.
+
+    Exact for two equal materials and for one material on a rigid flat: with
+    ``G = E/(2 (1 + nu))`` each body adds ``(2 - nu)/G`` to ``1/G*`` and ``(1 - nu^2)/E`` to
+    ``1/E*``, so ``4 G*/E* = 4 (1 - nu^2)/(2 (1 + nu)(2 - nu)) = 2 (1 - nu)/(2 - nu)`` whatever the
+    moduli, as long as both ``nu`` are equal.
+    """
+    return 2.0 * (1.0 - nu) / (2.0 - nu)
 
 
 @jitable

@@ -13,19 +13,20 @@ import math
 
 import numpy as np
 
+from .. import quantities
 from . import style as _style
 
 __all__ = ["comparison_data", "plot_comparison", "COMPARISON_COLUMNS", "MODEL_LABELS", "MODEL_STYLES"]
 
-#: Columns of :func:`comparison_data`: name -> unit.
+#: Columns of :func:`comparison_data`: name -> unit (from :data:`~microimpact.core.quantities.QUANTITIES`;
+#: the contact time in its display unit, ns).
 COMPARISON_COLUMNS = {
-    "model": "",
-    "calibrated": "1",
-    "velocity_m_s": "m/s",
-    "restitution": "1",
-    "energy_loss": "1",
-    "contact_time_ns": "ns",
-    "large_strain": "1",
+    name: unit
+    for name, (unit, _) in {
+        **quantities.columns(["model", "calibrated", "velocity", "restitution", "energy_loss"]),
+        **quantities.columns(["contact_time"], display=True),
+        **quantities.columns(["large_strain"]),
+    }.items()
 }
 
 #: Short legend labels of the models.
@@ -92,7 +93,8 @@ def comparison_data(comparison=None, **kwargs) -> dict:
         "velocity_m_s": np.tile(V, len(names)),
         "restitution": np.asarray(ds["restitution"].values, dtype=float).reshape(n),
         "energy_loss": np.asarray(ds["energy_loss"].values, dtype=float).reshape(n),
-        "contact_time_ns": np.asarray(ds["contact_time"].values, dtype=float).reshape(n) * 1e9,
+        "contact_time_ns": np.asarray(ds["contact_time"].values, dtype=float).reshape(n)
+        * quantities.QUANTITIES["contact_time"].scale,
         "large_strain": np.asarray(ds["large_strain"].values, dtype=int).reshape(n),
     }
 

@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import oblique as ob
+from ..core import tangential as tg
 from . import style as _style
 
 __all__ = ["oblique_data", "plot_oblique", "universal_data", "plot_universal"]
@@ -138,9 +139,8 @@ def universal_data(kappa=None, *, x=(1.0, 0.1, 0.01), psi=None) -> dict:
     """
     if kappa is None:
         nu = ob.ALUMINA_CASE["poisson_ratio"]
-        kappa = 2 * (1 - nu) / (2 - nu)
+        kappa = tg.stiffness_ratio_same_poisson(nu)
     psi = np.linspace(0.0, 8.0, 321) if psi is None else np.atleast_1d(np.asarray(psi, dtype=float))
-    from ..core import tangential as tg
 
     cols = {k: [] for k in ("model", "x", "psi_1", "psi_2", "impulse_ratio")}
     for xv in x:

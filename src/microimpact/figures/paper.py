@@ -33,9 +33,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy import optimize
 
-from .. import contact
+from .. import contact, quantities
 from ..pair import ContactPair
 from . import style as _style
 
@@ -59,46 +58,53 @@ __all__ = [
     "plot_dynamics",
 ]
 
-#: Every column a ``*_data`` function returns: name -> (unit, description).
-COLUMNS: dict[str, tuple[str, str]] = {
-    "series": ("-", "label of the curve"),
-    "kind": ("-", "'model' (computed) or 'measured' (user data)"),
-    "velocity_m_s": ("m/s", "impact speed V"),
-    "yield_velocity_m_s": ("m/s", "yield velocity V_y (eq. 28)"),
-    "restitution": ("1", "coefficient of restitution e (eq. 27)"),
-    "energy_loss": ("1", "fraction of kinetic energy lost 1 - e^2 (eq. 29)"),
-    "large_strain": ("1", "1 where the contact radius exceeds 0.3 R* (outside small strain), else 0"),
-    "limiting_pressure_Pa": ("Pa", "limiting contact pressure p_y"),
-    "particle_modulus_Pa": ("Pa", "Young's modulus of the particle E1"),
-    "effective_modulus_Pa": ("Pa", "effective modulus E*"),
-    "density_kg_m3": ("kg/m^3", "particle density rho"),
-    "branch": ("-", "'loading' (eqs. 2, 8) or 'unloading' (eq. 10)"),
-    "approach_m": ("m", "approach alpha"),
-    "force_N": ("N", "normal contact force P"),
-    "max_approach_m": ("m", "maximum approach alpha* (eq. 22)"),
-    "plastic_approach_m": ("m", "plastic approach alpha_p (eq. 11)"),
-    "plastic_ratio": ("1", "alpha_p / alpha*"),
-    "elastic_stage_time_s": ("s", "stage 1 time t1 (eq. 20)"),
-    "plastic_stage_time_s": ("s", "stage 2 time t2 (eq. 23)"),
-    "loading_time_s": ("s", "loading time t_L = t1 + t2 (eq. 32)"),
-    "unloading_time_s": ("s", "unloading time t_U (eq. 26)"),
-    "contact_time_s": ("s", "contact time t_c = t_L + t_U (eq. 33)"),
-    "deresiewicz_time_s": ("s", "Deresiewicz's elastic contact time (eq. 30)"),
-    "ning_loading_time_s": ("s", "Ning's high-speed loading time (eq. 31)"),
-    "time_s": ("s", "time since first contact t"),
-    "approach_velocity_m_s": ("m/s", "approach velocity d(alpha)/dt (+V at contact, -V_r at separation)"),
-    "stage": ("1", "contact stage: 1 Hertz loading, 2 plastic loading, 3 elastic unloading"),
-}
+#: Every column a ``*_data`` function returns: name -> (unit, description), from
+#: :data:`microimpact.core.quantities.QUANTITIES` (the CSV names carry their SI unit, ``force_N``).
+COLUMNS: dict[str, tuple[str, str]] = quantities.columns(
+    [
+        "series",
+        "kind",
+        "velocity",
+        "yield_velocity",
+        "restitution",
+        "energy_loss",
+        "large_strain",
+        "limiting_pressure",
+        "particle_modulus",
+        "effective_modulus",
+        "density",
+        "branch",
+        "approach",
+        "force",
+        "max_approach",
+        "plastic_approach",
+        "plastic_ratio",
+        "elastic_stage_time",
+        "plastic_stage_time",
+        "loading_time",
+        "unloading_time",
+        "contact_time",
+        "deresiewicz_time",
+        "ning_loading_time",
+        "time",
+        "approach_velocity",
+        "stage",
+    ]
+)
 
-#: Parameters of :func:`energy_loss_data` (seed Figs. 3-5): name -> (column, legend symbol, display unit, scale).
+#: Parameters of :func:`energy_loss_data` (seed Figs. 3-5): name -> (column, legend symbol, display unit,
+#: scale), from :data:`~microimpact.core.quantities.QUANTITIES`.
 ENERGY_LOSS_PARAMETERS: dict[str, tuple[str, str, str, float]] = {
-    "limiting_pressure": ("limiting_pressure_Pa", r"$p_y$", "MPa", 1e-6),
-    "particle_modulus": ("particle_modulus_Pa", r"$E_1$", "GPa", 1e-9),
-    "effective_modulus": ("effective_modulus_Pa", r"$E^*$", "GPa", 1e-9),
-    "density": ("density_kg_m3", r"$\rho$", r"kg m$^{-3}$", 1.0),
+    n: (
+        quantities.column(n),
+        quantities.QUANTITIES[n].tex,
+        quantities.tex_unit(quantities.QUANTITIES[n].shown_unit),
+        quantities.QUANTITIES[n].scale,
+    )
+    for n in ("limiting_pressure", "particle_modulus", "effective_modulus", "density")
 }
 
-_V_LABEL = r"Impact velocity, $V$ (m/s)"
+_V_LABEL = quantities.axis_label("velocity", "impact velocity")
 _VMAX = 120.0  # the seed's velocity range [m/s]
 
 
@@ -132,8 +138,9 @@ def _groups(table, key):
 def large_strain_velocity(pair) -> float:
     """Impact speed [m/s] above which the contact radius exceeds ``0.3 R*`` (small strain ends).
 
-    Found by root finding on ``pair.impact(V).max_contact_radius / R* - 0.3``;
-    ``inf`` if not reached below 1e6 m/s.
+    The seed's model in closed form
+    (:func:`~microimpact.core.models.thornton_ning_2016.large_strain_velocity`);
+    ``inf`` if above 1e6 m/s.
 
     Parameters
     ----------
@@ -150,17 +157,9 @@ def large_strain_velocity(pair) -> float:
     >>> round(large_strain_velocity(ContactPair.paper_case("silicon")), 1)
     23.3
     """
-    R = pair.effective_radius
+    from ..compare import seed_large_strain_velocity
 
-    def f(V):
-        return float(pair.impact(V, warn=False).max_contact_radius) / R - 0.3
-
-    lo, hi = 1e-6, 1e6
-    if f(hi) <= 0:
-        return math.inf
-    if f(lo) > 0:
-        return 0.0
-    return float(optimize.brentq(f, lo, hi, xtol=1e-12, rtol=1e-13))
+    return seed_large_strain_velocity(pair)
 
 
 def _fmt_value(x):

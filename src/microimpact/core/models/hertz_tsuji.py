@@ -50,6 +50,7 @@ from __future__ import annotations
 
 import math
 
+from .. import hertz
 from .._jit import jitable
 from ._common import as_floats, check_flag, dem_outcome, nan_outcome
 from .hertz_viscoelastic import scaled_damped_hertz
@@ -123,8 +124,8 @@ def outcome(V, E, R, m, p_y, params):
         return nan_outcome(V)
     if V == 0.0:
         return dem_outcome(V, 1.0, 0.0, 0.0, 0.0, R, math.inf, math.inf)
-    rho = 4.0 / 3.0 * E * math.sqrt(R)
-    T = (m / (rho * math.sqrt(V))) ** 0.4
+    rho = hertz.stiffness(E, R)
+    T = hertz.dem_time_scale(V, E, R, m)
     X = V * T
     # damping term alpha_T (m (4/3) E R^(1/2))^(1/2) alpha^(1/4) alpha_dot, scaled by m X / T^2:
     kappa = params[0] * math.sqrt(m * rho) * X**0.25 * (X / T) / (m * X / (T * T))

@@ -52,6 +52,7 @@ from __future__ import annotations
 
 import math
 
+from .. import hertz
 from .._jit import jitable
 from ._common import as_floats, check_flag, dem_outcome, nan_outcome
 
@@ -261,10 +262,10 @@ def outcome(V, E, R, m, p_y, params):
     """Outcome of one impact (see the module docstring; ``p_y`` unused)."""
     if not _valid(params) or not (V >= 0.0 and V < math.inf):
         return nan_outcome(V)
-    rho = 4.0 / 3.0 * E * math.sqrt(R)
+    rho = hertz.stiffness(E, R)
     if V == 0.0:
         return dem_outcome(V, 1.0, 0.0, 0.0, 0.0, R, math.inf, math.inf)
-    T = (m / (rho * math.sqrt(V))) ** 0.4
+    T = hertz.dem_time_scale(V, E, R, m)
     X = V * T
     kappa = params[0] / T
     e, x_max, t_max, p_max, t_end, x_end = scaled_impact(kappa, params[1] == 1.0)

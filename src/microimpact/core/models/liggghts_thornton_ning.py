@@ -121,7 +121,6 @@ import math
 from .. import hertz
 from .._jit import jitable
 from ..constants import LARGE_STRAIN_RATIO
-from ..special import BETA_25_12
 from . import thornton_ning_2016 as seed
 from ._common import no_parameters
 
@@ -263,7 +262,7 @@ def outcome(V, E, R, m, p_y, params):
     if V == inf:
         tU = 0.0
     elif elastic:
-        tU = 0.4 * BETA_25_12 * hertz.time_scale(V, E, R, m)
+        tU = hertz.half_period(V, E, R, m)
     else:
         c = Phat / A15  # 1 - beta^(3/2)
         h = -math.expm1((2.0 / 3.0) * math.log1p(-c)) if c < 1.0 else 1.0  # 1 - beta

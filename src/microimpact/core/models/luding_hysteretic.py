@@ -160,3 +160,38 @@ def force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
     """Normal force [N] at approach ``alpha`` with largest approach so far ``alpha_max`` (>= 0)."""
     p = signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params)
     return p if p > 0.0 else 0.0
+
+
+@jitable
+def loading_stiffness_for(e, t_c, m):
+    """``k1 = m* (pi (1 + e)/(2 t_c))^2`` [N/m]: the loading stiffness whose impact lasts ``t_c`` [s] with ``e``.
+
+    The inverse of the contact time of the constant-``k2`` spring (module docstring):
+    ``t_c = pi/(2 omega_1) + pi/(2 omega_2)`` with ``omega_2 = omega_1/e`` (``e = (k1/k2)^(1/2)``).
+    """
+    return m * (math.pi * (1.0 + e) / (2.0 * t_c)) ** 2
+
+
+@jitable
+def plasticity_depth_for(V, e, k1, k2, m, R):
+    """Luding's ``phi_f`` [-] that gives the restitution ``e`` at the speed ``V`` [m/s], given ``k1 < k2``.
+
+    While ``alpha* = V/omega_1 <= delta_p`` (module docstring), ``e^2 = k1/k2(alpha*)`` with
+    ``k2(alpha*) = k1 + (k2 - k1) alpha*/delta_p``; so ``delta_p = (k2 - k1) alpha*/(k1/e^2 - k1)``, and
+    ``phi_f = delta_p (k2 - k1)/(2 k2 R*)`` inverts :func:`plasticity_overlap`.
+    """
+    a1 = V * math.sqrt(m / k1)
+    dp = (k2 - k1) * a1 / (k1 / (e * e) - k1)
+    return dp * (k2 - k1) / (k2 * 2.0 * R)
+
+
+@jitable
+def characteristic_velocity(k1, E, R, m):
+    """LIGGGHTS' ``characteristicVelocity`` ``v_c`` [m/s] that makes its ``hooke`` stiffness equal ``k1`` [N/m].
+
+    LIGGGHTS-PUBLIC ``src/normal_model_hooke.h`` sets
+    ``k_n = 16/15 R^(1/2) Y* (15 m* v_c^2/(16 R^(1/2) Y*))^(1/5)``; with ``Y* = E*`` this is
+    ``v_c = ((15 k1/(16 R^(1/2) E*))^5 16 R^(1/2) E*/(15 m*))^(1/2)``.
+    """
+    sq = math.sqrt(R)
+    return math.sqrt((15.0 * k1 / (16.0 * sq * E)) ** 5 * 16.0 * sq * E / (15.0 * m))

@@ -22,7 +22,7 @@ from .. import hertz
 from .._jit import jitable
 from ..constants import LARGE_STRAIN_RATIO
 from ..hertz_beta_table import U_SPLIT
-from ..special import BETA_25_12, hertz_beta_scaled_s, hertz_beta_scaled_u
+from ..special import hertz_beta_scaled_s, hertz_beta_scaled_u
 from ._common import no_parameters
 
 NAME = "thornton_ning_2016"
@@ -149,7 +149,7 @@ def elastic_stage_time(V, E, R, m, alpha_y, V_y):
         else:  # next to V_y: 1 - u from (V - V_y)(V + V_y), exact to rounding, not from u
             G = hertz_beta_scaled_s(math.sqrt((V - V_y) * (V + V_y)) / V)
         return 0.4 * (alpha_y / V) * G
-    return 0.4 * BETA_25_12 * hertz.time_scale(V, E, R, m)
+    return hertz.half_period(V, E, R, m)
 
 
 @jitable
@@ -170,6 +170,12 @@ def plastic_stage_time(V, R, m, p_y, alpha_y, V_y):
 def plastic_frequency(p_y, R, m):
     """Angular frequency of the plastic stage, ``omega = (pi p_y R*/m*)^(1/2)`` [rad/s] (eqs. 18-23)."""
     return math.sqrt(math.pi * p_y * R / m)
+
+
+@jitable
+def ning_loading_time(p_y, R, m):
+    """Ning's (1995) loading time at high speed, ``pi/(2 omega)`` [s] (eq. 31): the limit of ``t1 + t2``."""
+    return 0.5 * math.pi / plastic_frequency(p_y, R, m)
 
 
 @jitable
@@ -207,10 +213,10 @@ def outcome(V, E, R, m, p_y, params):
     if v == inf:  # V = inf, or V/V_y beyond the largest float: the limit t_U ~ v^(-1/4) -> 0
         tU = 0.0
     elif elastic:
-        tU = 0.4 * BETA_25_12 * hertz.time_scale(V, E, R, m)  # the Hertz half-period
+        tU = hertz.half_period(V, E, R, m)
     else:
         # Hertz unloading with R_p from alpha* to alpha_p (eq. 26): the stage-1 integral run backwards.
-        tU = 0.4 * BETA_25_12 * recovery / rebound
+        tU = hertz.rise_time(recovery, rebound)
     tL = t1 + t2
     return (
         V,
@@ -331,3 +337,23 @@ def ends_at_zero_force(params):
 def validate(params):
     """No parameters of its own: ``params`` must be empty."""
     return no_parameters(NAME, params)
+
+
+@jitable
+def large_strain_velocity(E, R, m, p_y):
+    """Impact speed [m/s] at which ``a*/R*`` reaches :data:`~microimpact.core.constants.LARGE_STRAIN_RATIO`.
+
+    Closed form (derived here from the seed's energy balances; the root finders it replaces agreed
+    to 1e-12): the limit ``a* = r R*`` (``r = 0.3``) is the maximum approach ``alpha* = r^2 R*``
+    (eq. 3). If that is at most ``alpha_y`` the impact is elastic and eq. 17 at rest,
+    ``1/2 m* V^2 = 2/5 k_n alpha*^(5/2)`` (``k_n = 4/3 E* R*^(1/2)``), gives ``V``. Otherwise eq. 22,
+    ``A = alpha*/alpha_y = (1 + s)/3`` with ``s = v q``, ``q^2 = (24 - 4/v^2)/5``, inverts as
+    ``s = 3 A - 1``, ``v^2 = (5 s^2 + 4)/24`` and ``V = v V_y`` (eq. 28).
+    """
+    r = LARGE_STRAIN_RATIO
+    a_star = r * r * R
+    a_y, P_y, Vy = yield_point(E, R, m, p_y)
+    if a_star <= a_y:
+        return math.sqrt(0.8 * hertz.stiffness(E, R) * a_star * a_star * math.sqrt(a_star) / m)
+    s = 3.0 * (a_star / a_y) - 1.0
+    return math.sqrt((5.0 * s * s + 4.0) / 24.0) * Vy

@@ -1,0 +1,320 @@
+"""The figures of the seed's Section 3, their data and the report, written in one go (:func:`reproduce`)."""
+
+from __future__ import annotations
+
+import io
+import os
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..figures import paper as figs
+from ..io import write_table
+from ._claims import PAPER_QUOTES, PAPER_STATEMENTS, check_statements, compare_with_paper
+from ._report import report_blocks, to_html, to_markdown
+from ._setup import (
+    DEFAULT_OUT_DIR,
+    FIG3_PRESSURES,
+    FIG4_MODULI,
+    FIG4_SURFACE,
+    FIG5_DENSITIES,
+    FIG6_VELOCITIES,
+    FIG7_VELOCITY,
+    FIG10_VELOCITY,
+    FIGURES,
+    SEED,
+    TOLERANCE,
+)
+
+__all__ = ["PaperReport", "reproduce", "load_measurements"]
+
+_SOURCE = f"seed: {SEED}"  # the provenance line of every CSV file
+
+
+def load_measurements(path):
+    """Measured impact speeds and restitution coefficients from a CSV file.
+
+    Uses :func:`microimpact.fitting.load_restitution_csv` (columns ``velocity``,
+    ``restitution``; errors name the file and line); an uncertainty column is
+    ignored here.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The CSV file.
+
+    Returns
+    -------
+    velocity : ndarray
+        Impact speeds ``V`` [m/s].
+    restitution : ndarray
+        Coefficients of restitution ``e`` [-].
+
+    Raises
+    ------
+    ValueError
+        If the file is malformed (the message gives the line number).
+    """
+    from ..fitting import load_restitution_csv
+
+    data = load_restitution_csv(path)
+    return np.asarray(data[0], float), np.asarray(data[1], float)
+
+
+# ----------------------------------------------------------------------------- figures
+def _fig2(data):
+    return figs.restitution_data(data=data), lambda t: figs.plot_restitution(table=t)
+
+
+def _fig3(data):
+    return (
+        figs.energy_loss_data("limiting_pressure", FIG3_PRESSURES),
+        lambda t: figs.plot_energy_loss("limiting_pressure", FIG3_PRESSURES, table=t),
+    )
+
+
+def _fig4(data):
+    return (
+        figs.energy_loss_data("particle_modulus", FIG4_MODULI, **FIG4_SURFACE),
+        lambda t: figs.plot_energy_loss("particle_modulus", FIG4_MODULI, table=t),
+    )
+
+
+def _fig5(data):
+    return (
+        figs.energy_loss_data("density", FIG5_DENSITIES),
+        lambda t: figs.plot_energy_loss("density", FIG5_DENSITIES, table=t),
+    )
+
+
+def _fig6(data):
+    return figs.force_displacement_data(FIG6_VELOCITIES), lambda t: figs.plot_force_displacement(table=t)
+
+
+def _fig7(data):
+    return figs.force_time_data(FIG7_VELOCITY), lambda t: figs.plot_force_time(table=t)
+
+
+def _fig8(data):
+    return figs.approach_data(), lambda t: figs.plot_approach(table=t)
+
+
+def _fig9(data):
+    return figs.contact_time_data(), lambda t: figs.plot_contact_times(table=t)
+
+
+def _fig10(data):
+    return figs.dynamics_data(FIG10_VELOCITY), lambda t: figs.plot_dynamics(table=t)
+
+
+_MAKERS = dict(zip([f[0] for f in FIGURES], [_fig2, _fig3, _fig4, _fig5, _fig6, _fig7, _fig8, _fig9, _fig10]))
+
+_FORMATS = ("png", "pdf", "svg", "eps")
+
+
+@dataclass
+class PaperReport:
+    """What :func:`reproduce` wrote, and the comparison it made.
+
+    Attributes
+    ----------
+    out_dir : Path
+        Directory the files were written to.
+    figures : dict of str -> list of Path
+        Image files of each figure (``fig02`` ... ``fig10``).
+    tables : dict of str -> Path
+        The CSV behind each figure.
+    markdown, html, comparison_csv : Path
+        ``report.md``, ``report.html`` (self-contained), ``comparison.csv``.
+    comparison : list of dict
+        :func:`compare_with_paper` rows.
+    statements : list of dict
+        :func:`check_statements` rows.
+    elapsed : float
+        Wall time [s].
+    """
+
+    out_dir: Path
+    figures: dict = field(default_factory=dict)
+    tables: dict = field(default_factory=dict)
+    markdown: Path | None = None
+    html: Path | None = None
+    comparison_csv: Path | None = None
+    comparison: list = field(default_factory=list)
+    statements: list = field(default_factory=list)
+    elapsed: float = 0.0
+
+    @property
+    def all_agree_or_explained(self) -> bool:
+        """True when every quoted number agrees within the tolerance or carries an explanation."""
+        return all(r["agrees"] or r["note"] for r in self.comparison)
+
+    def summary(self) -> str:
+        """A few lines for the terminal."""
+        n_ok = sum(r["agrees"] for r in self.comparison)
+        n_expl = sum((not r["agrees"]) and bool(r["note"]) for r in self.comparison)
+        n_st = sum(r["holds"] for r in self.statements)
+        return (
+            f"wrote {len(self.figures)} figures, {len(self.tables)} tables and the report to {self.out_dir}\n"
+            f"  paper numbers: {n_ok} of {len(self.comparison)} within {TOLERANCE:.0%}, "
+            f"{n_expl} explained in the report\n"
+            f"  paper statements: {n_st} of {len(self.statements)} hold\n"
+            f"  report: {self.html}\n"
+            f"  time: {self.elapsed:.1f} s"
+        )
+
+
+def _progress_fn(progress):
+    if callable(progress):
+        return (lambda msg, end="\n": progress(msg) if end == "\n" else None), False
+    return (lambda msg, end="\n": None), False
+
+
+def _normalize_data(data):
+    out = {}
+    for name, value in (data or {}).items():
+        if isinstance(value, (str, os.PathLike)):
+            out[str(name)] = load_measurements(value)
+        else:
+            V, e = value
+            out[str(name)] = (np.asarray(V, float), np.asarray(e, float))
+    return out
+
+
+def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progress=True) -> PaperReport:
+    """Regenerate Section 3 of the seed paper: Figures 2-10, their data, and a report.
+
+    Parameters
+    ----------
+    out_dir : str or Path
+        Output directory (created if needed); default ``microimpact-paper``.
+    data : dict of str -> path or (velocity, restitution), optional
+        Measured restitution data to overlay on Fig. 2, e.g.
+        ``{"silicon": "wall1990_silicon.csv"}`` (CSV columns ``velocity`` [m/s],
+        ``restitution`` [-]). The paper's Wall et al. (1990) points are not shipped.
+    formats : sequence of str
+        Image formats among ``png``, ``pdf``, ``svg``, ``eps`` (the HTML report always embeds PNG).
+    progress : bool or callable
+        ``True``: a progress bar on stderr (:func:`microimpact.io.progress_bar`); a callable
+        receives one line per figure (``"[3/9] fig04 ... done (0.41 s)"``); ``False``: quiet.
+
+    Notes
+    -----
+    The output folder owns only what it wrote (:func:`microimpact.io.owned_directory`):
+    its files are staged and committed only when all are complete; an existing
+    ``out_dir`` is written into only when a manifest of an earlier run lists every
+    file in it unchanged, and a data file inside it is refused.
+
+    Returns
+    -------
+    PaperReport
+    """
+    t0 = time.perf_counter()
+    if isinstance(formats, str):
+        formats = [f for f in formats.split(",") if f.strip()]
+    formats = [str(f).strip().lower().lstrip(".") for f in formats]
+    bad = [f for f in formats if f not in _FORMATS]
+    if bad or not formats:
+        raise ValueError(f"formats must be among {', '.join(_FORMATS)}, got {', '.join(formats) or 'none'}")
+    inputs = [v for v in (data or {}).values() if isinstance(v, (str, os.PathLike))]
+    data = _normalize_data(data)
+    emit, inline = _progress_fn(progress)
+    from ..io import atomic_write, check_output_path, owned_directory, progress_bar
+
+    out = Path(out_dir)
+    check_output_path(out, directory=True)
+    report = PaperReport(out_dir=out)
+    from ..figures import style as _style
+
+    plt = _style.pyplot()
+    pngs = {}
+    n = len(FIGURES)
+    bar = progress_bar(n + 1, "paper", unit="step", disable=progress is not True)
+    # Staged, then committed with a manifest of what was written (microimpact.io.owned_directory).
+    with bar, owned_directory(out, "paper", inputs=inputs) as tmp:
+        for i, (stem, title, _caption) in enumerate(FIGURES, start=1):
+            t1 = time.perf_counter()
+            head = f"[{i}/{n}] {stem} {title} ..."
+            if inline:
+                emit(head, end="")
+            bar.set_description(f"paper {stem}")
+            table, draw = _MAKERS[stem](data)
+            write_table(
+                tmp / f"{stem}.csv", table, title=f"Fig. {int(stem[3:])}: {title}", columns=figs.COLUMNS, source=_SOURCE
+            )
+            report.tables[stem] = out / f"{stem}.csv"
+            with _style.style():
+                ax = draw(table)
+                fig = (np.ravel(ax)[0]).figure
+                try:
+                    buf = io.BytesIO()
+                    fig.savefig(buf, format="png", dpi=_style.DPI)
+                    pngs[stem] = buf.getvalue()
+                    files = []
+                    for fmt in formats:
+                        with atomic_write(tmp / f"{stem}.{fmt}", "wb") as fh:
+                            if fmt == "png":
+                                fh.write(pngs[stem])
+                            else:
+                                meta = {"pdf": {"CreationDate": None}, "svg": {"Date": None}}.get(fmt, {})
+                                fig.savefig(fh, format=fmt, metadata=meta or None)
+                        files.append(out / f"{stem}.{fmt}")
+                finally:
+                    plt.close(fig)
+            report.figures[stem] = files
+            bar.update(1)
+            tail = f" done ({time.perf_counter() - t1:.2f} s)"
+            emit(tail if inline else head + tail)
+        t1 = time.perf_counter()
+        head = f"[report] comparing {len(PAPER_QUOTES)} quoted numbers and {len(PAPER_STATEMENTS)} statements ..."
+        if inline:
+            emit(head, end="")
+        bar.set_description("paper report")
+        report.comparison = compare_with_paper()
+        report.statements = check_statements()
+        write_table(
+            tmp / "comparison.csv",
+            {
+                k: np.array([r[k] for r in report.comparison], dtype=object)
+                for k in (
+                    "name",
+                    "quantity",
+                    "where",
+                    "unit",
+                    "quoted",
+                    "computed",
+                    "relative_difference",
+                    "agrees",
+                    "note",
+                )
+            },
+            title="The seed's quoted numbers (Section 3) against the model now",
+            source=_SOURCE,
+            columns={
+                "name": ("-", "identifier"),
+                "quantity": ("-", "what is compared"),
+                "where": ("-", "place in the paper"),
+                "unit": ("-", "unit of quoted and computed"),
+                "quoted": ("unit", "value printed in the paper"),
+                "computed": ("unit", "value computed now"),
+                "relative_difference": ("1", "(computed - quoted) / quoted"),
+                "agrees": ("1", f"1 if |relative_difference| <= {TOLERANCE}"),
+                "note": ("-", "explanation"),
+            },
+        )
+        report.comparison_csv = out / "comparison.csv"
+        report.elapsed = time.perf_counter() - t0
+        report.markdown = out / "report.md"
+        report.html = out / "report.html"
+        blocks = report_blocks(report, data, formats)
+        with atomic_write(tmp / "report.md") as fh:
+            fh.write(to_markdown(blocks, report))
+        with atomic_write(tmp / "report.html") as fh:
+            fh.write(to_html(blocks, pngs))
+        bar.update(1)
+    report.elapsed = time.perf_counter() - t0
+    tail = f" done ({time.perf_counter() - t1:.2f} s)"
+    emit(tail if inline else head + tail)
+    return report
