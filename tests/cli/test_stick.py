@@ -21,7 +21,7 @@ def test_table_is_the_api(capsys):
     add = SILICON.sticking_velocity([1e-7, 2e-6], model="additive", work_of_adhesion=1.0)
     for r, f, a in zip(rows, full, add):
         assert float(r[1]) == pytest.approx(a, rel=1e-4) and float(r[3]) == pytest.approx(f, rel=1e-4)
-    assert "part by more than 10 % below d = 1.66e-06 m" in out
+    assert "part by more than 10 % below d = 1.659e-06 m" in out
 
 
 def test_json_and_csv(capsys, tmp_path):
