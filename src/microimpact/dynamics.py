@@ -959,7 +959,12 @@ def _model_run(mod, V, E, R, m, p_y, params, T, rtol, atol, method):
     def rhs2(t, y):
         return [y[1], -f(y[0] * X, y[1] * V, amax, E, R, m, p_y, params) * c]
 
-    sep = mod.separation_approach(E, R, m, p_y, params) / X if hasattr(mod, "separation_approach") else 0.0
+    if hasattr(mod, "separation_approach_after"):  # where the contact breaks depends on alpha_max
+        sep = mod.separation_approach_after(amax, E, R, m, p_y, params) / X
+    elif hasattr(mod, "separation_approach"):
+        sep = mod.separation_approach(E, R, m, p_y, params) / X
+    else:
+        sep = 0.0
     events = [_event(lambda t, y: y[0] - sep, -1)]
     if mod.ends_at_zero_force(params):
         g = mod.signed_force

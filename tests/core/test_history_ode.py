@@ -40,6 +40,7 @@ PARAMS = {
     ],
     "kogut_etsion_ekk": [{"yield_strength": 40e6, "poisson_ratio": 0.3}],
     "thornton_ning_1998_elastic_adhesive": [{"work_of_adhesion": 0.1}],
+    "thornton_ning_1998_adhesive_plastic": [{"work_of_adhesion": 0.1}],
     "luding_adhesive": [
         {"loading_stiffness": 1e3, "unloading_stiffness": 4e3, "adhesion_stiffness": 50.0, "plasticity_depth": 0.2}
     ],

@@ -48,6 +48,7 @@ COMMANDS = [
     "bench",
     "materials",
     "oblique",
+    "stick",
     "dem_check",
     "cache",
 ]

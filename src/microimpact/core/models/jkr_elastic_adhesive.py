@@ -57,6 +57,8 @@ NAME = "jkr_elastic_adhesive"
 TITLE = "JKR elastic adhesion, contact at zero approach, pull-off at -3 pi gamma R (LAMMPS granular jkr)"
 PARAMETERS = (("surface_energy", "J/m^2", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)"),)
 DEFAULTS = (math.nan,)
+#: The particle can stick (``e = 0`` at and below the sticking velocity).
+STICKS = True
 
 #: ``g(c_F) - g(c_0)``: the pull-off work in units of ``E* R*^(4/3) (pi gamma/E*)^(5/3)``.
 WORK_CONSTANT = (
@@ -83,6 +85,15 @@ def validate(params):
 def pulloff_approach(E, R, gamma):
     """``delta_c = (3 pi^2/16)^(1/3) (R* gamma^2/E*^2)^(1/3)`` [m]: the contact breaks at approach ``-delta_c``."""
     return (3.0 * math.pi * math.pi / 16.0) ** (1.0 / 3.0) * (R * gamma * gamma / (E * E)) ** (1.0 / 3.0)
+
+
+@jitable
+def sticking_velocity(E, R, m, p_y, params):
+    """Sticking velocity [m/s], ``V_s = (2 W/m*)^(1/2)`` with ``W`` the pull-off work
+    ``WORK_CONSTANT E* R*^(4/3) (pi gamma/E*)^(5/3)``: ``e = 0`` at and below it."""
+    gamma = params[0]
+    W = WORK_CONSTANT * E * R ** (4.0 / 3.0) * (math.pi * gamma / E) ** (5.0 / 3.0)
+    return math.sqrt(2.0 * W / m)
 
 
 @jitable
