@@ -97,12 +97,12 @@ def _prepare(folder: Path, name: str):
 
 def _old_intact(folder: Path, name: str) -> bool:
     argv, out, kind, _ = CASES[name]
-    if kind == "file":
-        return (folder / out).read_text() == OLD
+    if kind == "file":  # bytes: a finished run may have left a binary file (a figure, NetCDF) there
+        return (folder / out).read_bytes() == OLD.encode()
     if kind == "dir":
         d = folder / out
         names = sorted(p.name for p in d.iterdir())
-        return names == [".microimpact-manifest.json", "old.txt"] and (d / "old.txt").read_text() == OLD
+        return names == [".microimpact-manifest.json", "old.txt"] and (d / "old.txt").read_bytes() == OLD.encode()
     return True
 
 

@@ -63,8 +63,9 @@ def _check(pair, V, name, params):
     assert abs(h.loading_time / float(o.loading_time) - 1.0) < TOL
     assert abs(h.max_approach / float(o.max_approach) - 1.0) < TOL
     assert abs(h.max_force / float(o.max_force) - 1.0) < TOL
-    # energy is never created: the rebound is never faster than the impact ...
-    assert h.rebound_velocity <= V * (1.0 + 1e-12)
+    # energy is never created: the rebound is never faster than the impact (to the solver's
+    # rtol of 1e-12: an elastic impact has come back 1e-12 fast) ...
+    assert h.rebound_velocity <= V * (1.0 + 1e-11)
     # ... and, without adhesion, the speed never exceeds the impact speed during the contact
     if "adhesive" not in name:  # an attractive force speeds the particle up at first contact
         assert np.all(np.abs(h.approach_velocity) <= V * (1.0 + 1e-9))

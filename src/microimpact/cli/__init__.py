@@ -24,6 +24,7 @@ Any other exception is a bug: its traceback is printed, so it stays visible.
 from __future__ import annotations
 
 import argparse
+import atexit
 import contextlib
 import importlib
 import os
@@ -213,19 +214,36 @@ def _main(argv):
 def console_main() -> int:
     """The ``microimpact`` command (and ``python -m microimpact``): :func:`main`, then exit.
 
-    After an interrupt the process ends at once, once :func:`main` has returned (every output is
-    cleaned up by then): it does not wait for worker threads of a chunked sweep that may still hold
-    queued blocks (dask's pool finishes its queue at exit), which could keep a SIGTERM'd run alive.
+    Once :func:`main` has returned, the work is done and every output in place (or cleaned up
+    after an interrupt): the process then ignores SIGINT and SIGTERM, flushes its streams, runs
+    its ``atexit`` functions and ends at once. Python's own finalization, skipped so, puts the
+    default handlers back first and then frees every module: a signal in that window (up to a
+    tenth of a second after an export) killed a finished run with a bare -15 and no line. Nor does
+    the process wait for worker threads of a chunked sweep that may still hold queued blocks
+    (dask's pool finishes its queue at exit), which could keep a SIGTERM'd run alive.
     """
     rc = main()
-    if rc in (128 + signal.SIGINT, 128 + signal.SIGTERM):
-        for stream in (sys.stdout, sys.stderr):
-            try:
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        try:
+            signal.signal(sig, signal.SIG_IGN)
+        except (ValueError, OSError):  # pragma: no cover - not the main thread
+            pass
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            if stream is not None:
                 stream.flush()
-            except (OSError, ValueError):
-                pass
-        os._exit(rc)
-    return rc
+        except BrokenPipeError:  # e.g. piped into head: stop quietly
+            pass
+        except (OSError, ValueError) as exc:  # the last of standard output did not reach its file
+            if stream is sys.stdout and rc == 0:
+                reason = getattr(exc, "strerror", None) or str(exc)
+                with contextlib.suppress(OSError, ValueError):
+                    print(f"microimpact: error: <standard output>: {reason}", file=sys.stderr, flush=True)
+                rc = 2
+    run_exit = getattr(atexit, "_run_exitfuncs", None)
+    if run_exit is not None:
+        run_exit()
+    os._exit(int(rc or 0))
 
 
 if __name__ == "__main__":  # pragma: no cover
