@@ -22,6 +22,7 @@ LAYERS = {
     "_optional": 1,
     "materials": 1,
     "io": 1,
+    "_signals": 1,
     "_face": 2,
     "contact": 2,
     "impact": 2,

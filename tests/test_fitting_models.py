@@ -105,6 +105,7 @@ def power_law_data(pair, a, noise, seed, V):
 STICKING = {
     "jkr_elastic_adhesive": ("surface_energy", (0.05, 0.2), {}),
     "thornton_ning_1998_elastic_adhesive": ("work_of_adhesion", (0.05, 0.2), {}),
+    "thornton_ning_1998_adhesive_plastic": ("work_of_adhesion", (0.05, 0.2), {}),
     "luding_adhesive": (
         "adhesion_stiffness",
         (200.0, 1000.0),

@@ -14,7 +14,12 @@ time histories.
 36.24
 """
 
-import importlib as _importlib
+from . import _signals
+
+if _signals.running_as_command():  # the microimpact command: a signal from now on ends it with one line
+    _signals.install_early()
+
+import importlib as _importlib  # noqa: E402
 
 from . import materials, models
 from .core.models import available as _available  # noqa: F401  (the registry loads with the package)

@@ -15,6 +15,7 @@ number and returns a Python ``float``.
 
 from __future__ import annotations
 
+import re
 import sys
 
 import numpy as np
@@ -160,11 +161,56 @@ def check_velocity(name: str, value, *, scalar: bool = False):
     return _scalar(name, arr, value) if scalar else arr
 
 
+#: Below this ``p_y`` [Pa] the yield velocity is checked for underflow (no real material comes near it).
+TINY_LIMITING_PRESSURE = 1e-3
+
+
 def check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure):
-    """``E*``, ``R*``, ``m*`` (positive, finite) and ``p_y`` (positive, ``inf`` allowed) as float arrays."""
-    return (
+    """``E*``, ``R*``, ``m*`` (positive, finite) and ``p_y`` (positive, ``inf`` allowed) as float arrays.
+
+    A ``p_y`` so small that the yield velocity ``V_y`` (proportional to ``p_y^(5/2)``, seed eq. 28)
+    underflows to 0 in double precision is refused, naming it (the model divides by ``V_y``).
+    """
+    out = (
         check_positive("effective_modulus", effective_modulus),
         check_positive("effective_radius", effective_radius),
         check_positive("effective_mass", effective_mass),
         check_positive("limiting_pressure", limiting_pressure, allow_inf=True),
     )
+    p_y = out[3]
+    if p_y.size and np.min(p_y) < TINY_LIMITING_PRESSURE:
+        check_yield_velocity(*out)
+    return out
+
+
+def check_yield_velocity(E, R, m, p_y) -> None:
+    """Raise a ValueError naming ``limiting_pressure`` where ``V_y`` underflows to 0 (only tiny ``p_y``)."""
+    from .core.models.thornton_ning_2016 import yield_point
+
+    E, R, m, p_y = np.broadcast_arrays(E, R, m, p_y)
+    for i in np.flatnonzero(p_y < TINY_LIMITING_PRESSURE):
+        args = (float(E.flat[i]), float(R.flat[i]), float(m.flat[i]), float(p_y.flat[i]))
+        if not yield_point(*args)[2] > 0.0:
+            raise ValueError(
+                f"limiting_pressure {args[3]!r} Pa is too small: the yield velocity V_y (proportional to "
+                f"p_y^(5/2), eq. 28) underflows to 0 in double precision"
+            )
+
+
+_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?|[+-]?(?:inf|infinity|nan)", re.IGNORECASE)
+
+
+def is_number_text(text) -> bool:
+    """True when ``text`` (surrounding blanks allowed) is a decimal number as a person writes it.
+
+    ``12``, ``-1.5``, ``.5``, ``2e9``, ``inf``, ``nan``; not Python's extras that :class:`float`
+    also takes (``1_0`` is 10 to Python, a typo to a person; ``0x1p3``).
+    """
+    return _NUMBER.fullmatch(str(text).strip()) is not None
+
+
+def parse_number(text, name: str = "value") -> float:
+    """``float(text)`` for a decimal number (:func:`is_number_text`), else a ValueError naming ``name``."""
+    if not is_number_text(text):
+        raise ValueError(f"{name} must be a number, got {text!r}")
+    return float(str(text).strip())

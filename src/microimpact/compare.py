@@ -38,6 +38,8 @@ from .pair import ContactPair, LargeStrainWarning
 
 __all__ = [
     "compare_models",
+    "compare_tangential",
+    "TANGENTIAL_FIELDS",
     "dem_input_lines",
     "default_models",
     "seed_large_strain_velocity",
@@ -358,3 +360,95 @@ def _given(params, names):
         if not isinstance(p, dict):
             raise ValueError(f"params[{n!r}] must be a dict {{parameter: value}}, got {p!r}")
     return params
+
+
+#: Data variables of :func:`compare_tangential` (dims ``tangential`` x ``angle``): name -> (unit, description).
+TANGENTIAL_FIELDS: dict[str, tuple[str, str]] = {
+    "tangential_restitution": ("1", "tangential restitution of the centre v_t'/v_t"),
+    "rebound_spin": ("rad/s", "rebound spin, positive adding to the contact point's slip"),
+    "rebound_angle": ("deg", "rebound angle of the centre from the normal"),
+    "contact_rebound_angle": ("deg", "rebound angle of the contact point from the normal"),
+    "impulse_ratio": ("1", "|J_t| / (mu J_n)"),
+    "normal_restitution": ("1", "normal restitution e"),
+}
+
+
+def compare_tangential(
+    pair,
+    velocity,
+    angle,
+    friction,
+    tangential=None,
+    *,
+    poisson_ratio=None,
+    effective_shear_modulus=None,
+    spin=0.0,
+    method="table",
+):
+    """Several tangential laws side by side for oblique impacts of one pair (an :class:`xarray.Dataset`).
+
+    Each law is :func:`microimpact.oblique.oblique_impact` with ``tangential=`` that law, at the
+    resultant speed ``velocity`` [m/s], the impact angles ``angle`` [deg] from the normal and the
+    friction coefficient ``friction``; the Dataset has dimensions ``tangential`` x ``angle`` and the
+    variables of :data:`TANGENTIAL_FIELDS` (plus ``regime``).
+
+    Parameters
+    ----------
+    pair : ContactPair
+        Sphere on a flat.
+    velocity : float
+        Resultant impact speed [m/s].
+    angle : array_like
+        Impact angles from the normal [deg], in [0, 90).
+    friction : float
+        Coulomb friction coefficient [-].
+    tangential : sequence of str, optional
+        Laws of :data:`microimpact.oblique.TANGENTIAL_MODELS` (default: all of them).
+    poisson_ratio, effective_shear_modulus, spin, method : optional
+        As :func:`~microimpact.oblique.oblique_impact`.
+    """
+    from . import oblique as ob
+
+    xr = require("xarray", "tangential comparisons")
+    names = list(ob.TANGENTIAL_MODELS if tangential is None else tangential)
+    if not names:
+        raise ValueError("tangential must name at least one law, got an empty list")
+    for n in names:
+        if n not in ob.TANGENTIAL_MODELS:
+            raise ValueError(f"tangential must be among {ob.TANGENTIAL_MODELS}, got {n!r}")
+    ang = np.atleast_1d(np.asarray(angle, dtype=float))
+    if ang.ndim != 1:
+        raise ValueError(f"angle must be a list of angles, got shape {np.shape(angle)}")
+    outs = [
+        ob.oblique_impact(
+            pair,
+            velocity,
+            ang,
+            friction,
+            poisson_ratio=poisson_ratio,
+            effective_shear_modulus=effective_shear_modulus,
+            tangential=n,
+            spin=spin,
+            method=method,
+        )
+        for n in names
+    ]
+    data = {
+        k: (
+            ("tangential", "angle"),
+            np.stack([np.broadcast_to(getattr(o, k), ang.shape) for o in outs]),
+            {"units": u, "description": d},
+        )
+        for k, (u, d) in TANGENTIAL_FIELDS.items()
+    }
+    data["regime"] = (("tangential", "angle"), np.stack([np.broadcast_to(o.regime, ang.shape) for o in outs]))
+    return xr.Dataset(
+        data,
+        coords={"tangential": names, "angle": ("angle", ang, {"units": "deg"})},
+        attrs={
+            "pair": str(getattr(pair, "label", "") or ""),
+            "velocity": float(velocity),
+            "friction": float(friction),
+            "kappa": float(outs[0].kappa),
+        },
+    )

@@ -55,6 +55,9 @@ from pathlib import Path
 
 import numpy as np
 
+from . import _signals
+from ._validation import is_number_text
+
 __all__ = [
     "atomic_write",
     "owned_directory",
@@ -90,8 +93,13 @@ def _signals_deferred():
     """Hold SIGINT/SIGTERM during a few system calls that must not be split (a rename pair).
 
     A signal arriving inside is remembered and delivered (its old handler called)
-    when the block ends. Only in the main thread; elsewhere a no-op.
+    when the block ends. Only in the main thread; elsewhere a no-op. An interrupt
+    that arrived earlier and whose exception was swallowed on the way (Python drops
+    an exception raised in a ``__del__`` or a callback) is raised before the block
+    (:func:`microimpact._signals.check`): nothing is renamed into place after a
+    signal.
     """
+    _signals.check()
     if threading.current_thread() is not threading.main_thread():
         yield
         return
@@ -296,6 +304,7 @@ def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newli
     except OSError:
         perm = _umask_mode()
     fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+    _signals.track(tmp)
     try:
         with os.fdopen(fd, mode, **kw) as fh:
             yield fh
@@ -304,9 +313,11 @@ def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newli
         os.chmod(tmp, perm)
         with _signals_deferred():
             os.replace(tmp, target)
+            _signals.untrack(tmp)
     except BaseException as exc:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
+        _signals.untrack(tmp)
         if isinstance(exc, OSError) and exc.filename is None:  # e.g. ENOSPC from write(): name the target
             exc.filename = os.fspath(target)
         raise
@@ -477,6 +488,7 @@ def owned_directory(path, command: str, *, inputs=()):
     else:
         old = None
         stage = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent))
+    _signals.track(stage, "dir")
     try:
         yield stage
         names = sorted(e.name for e in os.scandir(stage))
@@ -491,6 +503,7 @@ def owned_directory(path, command: str, *, inputs=()):
                 if target.exists():
                     raise _oserror(errno.EEXIST, "appeared while the output was written", target)
                 os.rename(stage, target)
+                _signals.untrack(stage)
             stage = None
             _fsync_dir(target.parent)
         else:
@@ -507,6 +520,7 @@ def owned_directory(path, command: str, *, inputs=()):
     finally:
         if stage is not None:
             shutil.rmtree(stage, ignore_errors=True)
+            _signals.untrack(stage)
 
 
 @contextlib.contextmanager
@@ -736,6 +750,7 @@ def write_netcdf(ds, path, *, engine=None, progress=False):
     target = _resolve(Path(path))
     fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
     os.close(fd)
+    _signals.track(tmp)
     try:
         try:
             perm = stat.S_IMODE(os.stat(target).st_mode)
@@ -758,9 +773,11 @@ def write_netcdf(ds, path, *, engine=None, progress=False):
         os.chmod(tmp, perm)
         with _signals_deferred():
             os.replace(tmp, target)
+            _signals.untrack(tmp)
     except BaseException:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
+        _signals.untrack(tmp)
         raise
     return Path(path)
 
@@ -1004,8 +1021,8 @@ def read_table(path) -> dict:
     for j, k in enumerate(header):
         key = re.sub(r"\s*\[[^\]]*\]$", "", k)
         cells = [r[j] for r in body]
-        try:
+        if all(is_number_text(c) for c in cells):  # float() would also take 1_0 (as 10)
             out[key] = np.array([float(c) for c in cells])
-        except ValueError:
+        else:
             out[key] = np.array(cells, dtype=object)
     return out

@@ -37,16 +37,18 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from ._validation import check_nonnegative, check_poisson
+from ._validation import check_nonnegative, check_poisson, check_positive
 from .core import cache, hertz
 from .core import tangential as tg
+from .core import tangential_laws as tl
 from .core.arrays import evaluate
-from .impact import restitution_coefficient, yield_velocity
+from .impact import elastic_max_approach, restitution_coefficient, yield_velocity
 
 __all__ = [
     "ObliqueImpact",
     "OBLIQUE_REGIMES",
     "TANGENTIAL_MODELS",
+    "UNIVERSAL_LAWS",
     "oblique_impact",
     "stiffness_ratio_of",
     "universal_curve",
@@ -59,8 +61,14 @@ __all__ = [
     "measured_alumina",
 ]
 
-#: Tangential models :func:`oblique_impact` knows, by name.
-TANGENTIAL_MODELS = ("mindlin", "rigid")
+#: Tangential models :func:`oblique_impact` knows, by name: the compliant contact of
+#: :mod:`microimpact.core.tangential`, the rigid-body impulse, and the DEM codes' laws of
+#: :mod:`microimpact.core.tangential_laws` (``"lammps_mindlin_rescale_force"`` is ``"mindlin"``).
+TANGENTIAL_MODELS = ("mindlin", "rigid", *tl.ALL_LAWS)
+#: Laws whose outcome is a universal curve of ``psi``, ``kappa`` and ``V_y/V_n`` (tabulated for
+#: ``method="table"``). LIGGGHTS's arm ``R - delta/2`` adds ``alpha_m/R``, and a constant stiffness
+#: given in N/m makes ``kappa`` depend on the speed: those two are always integrated.
+UNIVERSAL_LAWS = tuple(m for m in TANGENTIAL_MODELS if m not in ("rigid", "liggghts_history"))
 #: Regime names by code (:mod:`microimpact.core.tangential`).
 OBLIQUE_REGIMES = {
     tg.REGIME_STICKING: "sticking",
@@ -75,18 +83,39 @@ DEFAULT_STEPS = 400
 # ============================================================================ compiled integrator
 
 
-def _integrate(u0_hat, kappa, x, steps):
-    """Final slip and regime of :func:`~microimpact.core.tangential.integrate_tangential` over arrays."""
+def _integrate(u0_hat, kappa, x, steps, law="mindlin"):
+    """Final slip and regime of :func:`~microimpact.core.tangential.integrate_tangential` (``"mindlin"``)
+    or :func:`~microimpact.core.tangential_laws.integrate_law` (the others, with the arm ``R``) over arrays."""
     u0_hat, kappa, x = (np.asarray(a, dtype=float) for a in (u0_hat, kappa, x))
-    ur, rg = evaluate(tg.integrate_tangential, u0_hat, kappa, x, np.asarray(float(steps)), nout=2)
+    if law in ("mindlin", "lammps_mindlin_rescale_force"):
+        ur, rg = evaluate(tg.integrate_tangential, u0_hat, kappa, x, np.asarray(float(steps)), nout=2)
+        return ur, rg.astype(np.int8)
+    if law == "stronge":
+        e = np.vectorize(lambda v: tg.history_constants(v)[13], otypes=[float])(x)
+        return _integrate_stronge(u0_hat, kappa, e, steps)
+    vr, wr, rg = _integrate_law(law, u0_hat, 0.0, kappa, x, 0.0, steps)
+    return vr + wr, rg
+
+
+def _integrate_stronge(u0_hat, kappa, e, steps):
+    """Final slip and regime of :func:`~microimpact.core.tangential_laws.integrate_stronge` over arrays."""
+    args = (np.asarray(a, dtype=float) for a in (u0_hat, kappa, e))
+    ur, rg = evaluate(tl.integrate_stronge, *args, np.asarray(float(steps)), nout=2)
     return ur, rg.astype(np.int8)
+
+
+def _integrate_law(law, v0_hat, w0_hat, kappa, x, eps, steps):
+    """``(v_r, w_r, regime)`` of :func:`~microimpact.core.tangential_laws.integrate_law` over arrays."""
+    args = (np.asarray(a, dtype=float) for a in (v0_hat, w0_hat, kappa, x, eps))
+    vr, wr, rg = evaluate(tl.integrate_law, np.asarray(tl.law_code(law)), *args, np.asarray(float(steps)), nout=3)
+    return vr, wr, rg.astype(np.int8)
 
 
 # ============================================================================ the universal curve
 
 
-def universal_curve(psi, kappa, x=1.0, *, steps=DEFAULT_STEPS):
-    """Tangential impulse of the compliant model as a function of the normalised angle.
+def universal_curve(psi, kappa, x=1.0, *, steps=DEFAULT_STEPS, law="mindlin"):
+    """Tangential impulse of a compliant law as a function of the normalised angle.
 
     Returns ``F = |J_t| / (mu J_n)`` in [0, 1] (1: sliding throughout, the Coulomb limit)
     and the final slip ratio ``u_r / u0`` at each ``psi``, for the stiffness ratio
@@ -103,12 +132,17 @@ def universal_curve(psi, kappa, x=1.0, *, steps=DEFAULT_STEPS):
         ``V_y / V_n`` [-]; default 1 (elastic).
     steps : int, optional
         Integration steps per contact stage.
+    law : str, optional
+        One of :data:`UNIVERSAL_LAWS` (default ``"mindlin"``). For ``"lammps_linear_history"``
+        ``kappa`` is ``k_t/(2 E* a_m)``.
 
     Returns
     -------
     F, slip_ratio, regime : ndarray
         ``|J_t|/(mu J_n)`` [-], ``u_r/u0`` [-] (NaN at ``psi = 0``) and regime codes.
     """
+    if law not in UNIVERSAL_LAWS:
+        raise ValueError(f"law must be one of {UNIVERSAL_LAWS}, got {law!r}")
     psi = np.atleast_1d(check_nonnegative("psi", psi)).astype(float)
     kappa = float(_check_kappa(kappa))
     x = float(check_nonnegative("x", x))
@@ -119,7 +153,7 @@ def universal_curve(psi, kappa, x=1.0, *, steps=DEFAULT_STEPS):
     ratio = np.full_like(psi, np.nan)
     regime = np.empty(psi.shape, dtype=np.int8)
     u0 = psi / kappa
-    ur, regime[...] = _integrate(u0, kappa, x, steps)
+    ur, regime[...] = _integrate(u0, kappa, x, steps, law)
     F[...] = (u0 - ur) / tg.SLIP_FACTOR / one_e
     pos = u0 > 0.0
     ratio[pos] = ur[pos] / u0[pos]
@@ -154,12 +188,15 @@ class UniversalTable:
         Grid of ``log10(V_y/V_n)`` [-].
     values : ndarray (n_x, n_psi)
         ``F`` [-].
+    law : str
+        The tangential law tabulated (one of :data:`UNIVERSAL_LAWS`).
     """
 
     kappa: float
     psi: np.ndarray
     log_x: np.ndarray
     values: np.ndarray
+    law: str = "mindlin"
 
     @property
     def psi_max(self) -> float:
@@ -187,10 +224,11 @@ class UniversalTable:
 
 
 @functools.lru_cache(maxsize=16)
-def _table(kappa, dpsi, psi_max, n_x, x_min, steps):
+def _table(kappa, dpsi, psi_max, n_x, x_min, steps, law):
     psi = np.linspace(0.0, psi_max, int(round(psi_max / dpsi)) + 1)
     log_x = np.linspace(math.log10(x_min), 0.0, n_x)
-    kind, key = "universal_table", _table_key(kappa, dpsi, psi_max, n_x, x_min, steps)
+    kind = "universal_table" if law == "mindlin" else f"universal_table_{law}"
+    key = _table_key(kappa, dpsi, psi_max, n_x, x_min, steps)
     values = _cached_values(kind, key, (n_x, psi.size))
     if values is None:
         # processes started together on an empty cache: one builds the table, the others wait and read it
@@ -199,13 +237,13 @@ def _table(kappa, dpsi, psi_max, n_x, x_min, steps):
             if values is None:
                 values = np.empty((n_x, psi.size))
                 for j, lx in enumerate(log_x):
-                    F, _, regime = universal_curve(psi, kappa, 10.0**lx, steps=steps)
+                    F, _, regime = universal_curve(psi, kappa, 10.0**lx, steps=steps, law=law)
                     values[j] = np.where(regime == tg.REGIME_SLIDING, 1.0, F)  # exactly the Coulomb limit
                 if not np.all(values[:, -1] == 1.0):  # pragma: no cover - grid too short for this kappa
                     raise RuntimeError(f"psi_max = {psi_max} does not reach sliding throughout for kappa = {kappa}")
                 cache.store_array(kind, key, values)
     values.setflags(write=False)
-    return UniversalTable(kappa, psi, log_x, values)
+    return UniversalTable(kappa, psi, log_x, values, law)
 
 
 def _table_key(*args) -> str:
@@ -227,7 +265,7 @@ def _cached_values(kind, key, shape):
     return values
 
 
-def universal_table(kappa, *, dpsi=0.025, psi_max=None, n_x=31, x_min=1e-3, steps=200):
+def universal_table(kappa, *, dpsi=0.025, psi_max=None, n_x=31, x_min=1e-3, steps=200, law="mindlin"):
     """The :class:`UniversalTable` of ``kappa`` (built on first use, then cached).
 
     Building integrates ``n_psi x n_x`` impacts (about 10^4, compiled: 3-4 s in a new process with
@@ -250,13 +288,21 @@ def universal_table(kappa, *, dpsi=0.025, psi_max=None, n_x=31, x_min=1e-3, step
         Number of ``log10(V_y/V_n)`` nodes from ``log10(x_min)`` to 0.
     steps : int, optional
         Integration steps per stage for each node.
+    law : str, optional
+        One of :data:`UNIVERSAL_LAWS` (default ``"mindlin"``; ``"lammps_mindlin_rescale_force"`` is
+        the same table).
     """
+    if law not in UNIVERSAL_LAWS:
+        raise ValueError(f"law must be one of {UNIVERSAL_LAWS}, got {law!r}")
+    if law == "lammps_mindlin_rescale_force":
+        law = "mindlin"
     kappa = _check_kappa(kappa)
     if psi_max is None:
         psi_max = math.ceil(8.0 * kappa + 2.0)
-    if abs(1.0 / dpsi - round(1.0 / dpsi)) > 1e-9:
+    dpsi = check_positive("dpsi", dpsi, scalar=True)
+    if math.isinf(dpsi) or abs(1.0 / dpsi - round(1.0 / dpsi)) > 1e-9:
         raise ValueError(f"1/dpsi must be an integer, got dpsi = {dpsi!r}")
-    return _table(round(kappa, 12), float(dpsi), float(psi_max), int(n_x), float(x_min), int(steps))
+    return _table(round(kappa, 12), float(dpsi), float(psi_max), int(n_x), float(x_min), int(steps), law)
 
 
 # ============================================================================ the application
@@ -364,6 +410,7 @@ def oblique_impact(
     spin=0.0,
     method="table",
     steps=DEFAULT_STEPS,
+    tangential_stiffness=None,
 ) -> ObliqueImpact:
     """Rebound of a sphere hitting a flat wall obliquely (vectorized over impacts).
 
@@ -379,15 +426,26 @@ def oblique_impact(
         Coulomb friction coefficient ``mu`` [-], >= 0.
     poisson_ratio, effective_shear_modulus : optional
         How to get ``G*`` (see :func:`stiffness_ratio_of`); not needed for ``"rigid"``.
-    tangential : {"mindlin", "rigid"}
-        Tangential model (module docstring).
+    tangential : str
+        Tangential model, one of :data:`TANGENTIAL_MODELS`: ``"mindlin"`` (default), ``"rigid"``
+        (module docstring), or a DEM code's law (:mod:`microimpact.core.tangential_laws`):
+        ``"lammps_mindlin"``, ``"lammps_mindlin_force"``, ``"lammps_mindlin_rescale"``,
+        ``"lammps_mindlin_rescale_force"`` (the same as ``"mindlin"``), ``"lammps_linear_history"``,
+        ``"liggghts_history"``, ``"di_renzo_di_maio"``, or Stronge's compliant impact ``"stronge"``
+        (its own linear normal spring with the seed's ``e``; only the tangential outcome is its).
     spin : array_like, optional
         Incoming spin ``omega`` [rad/s], positive adding to the slip (``u0 = v_t + r omega``).
     method : {"table", "direct"}
-        Compliant model only: interpolate the :func:`universal_table` of the pair's
-        ``kappa`` (error below ``3e-3 mu J_n``), or integrate each impact.
+        Compliant models: interpolate the :func:`universal_table` of the pair's ``kappa`` and
+        the law (error below ``3e-3 mu J_n``), or integrate each impact. Laws without a
+        universal curve (``"liggghts_history"``, ``"lammps_linear_history"`` with a
+        ``tangential_stiffness``) are always integrated.
     steps : int
-        Integration steps per stage for ``method="direct"``.
+        Integration steps per stage where an impact is integrated.
+    tangential_stiffness : float, optional
+        ``"lammps_linear_history"`` only: the constant stiffness ``k_t`` [N/m]. Default: each
+        impact's Mindlin stiffness at its largest contact radius, ``8 G* a_m`` (``a_m`` of the
+        elastic impact at ``V_n``), which gives the law a universal curve.
 
     Returns
     -------
@@ -407,6 +465,14 @@ def oblique_impact(
         raise ValueError(f"tangential must be one of {TANGENTIAL_MODELS}, got {tangential!r}")
     if method not in ("table", "direct"):
         raise ValueError(f"method must be 'table' or 'direct', got {method!r}")
+    if tangential_stiffness is not None:
+        if tangential != "lammps_linear_history":
+            raise ValueError(
+                f"tangential_stiffness is used by tangential='lammps_linear_history' only, got tangential={tangential!r}"
+            )
+        k_lin = float(np.asarray(tangential_stiffness, dtype=float))
+        if not (0.0 < k_lin < math.inf):
+            raise ValueError(f"tangential_stiffness must be positive and finite, got {tangential_stiffness!r}")
     speed = np.asarray(velocity, dtype=float)
     if np.any(~(speed > 0)) or np.any(~np.isfinite(speed)):
         raise ValueError(
@@ -448,7 +514,39 @@ def oblique_impact(
     J = np.zeros(u0.shape)
     regime = np.empty(u0.shape, dtype=np.int8)
     frictionless = (mu == 0.0) | (u0 == 0.0)
-    if tangential == "rigid":
+    dw = None  # change of R omega [m/s] where it is not 5/2 J_t/m (an arm other than R)
+    law = "mindlin" if tangential == "lammps_mindlin_rescale_force" else tangential
+    if law not in ("mindlin", "rigid"):
+        x = np.where(Vn > 0, Vy / np.where(Vn > 0, Vn, 1.0), np.inf)
+        kap = kappa
+        if tangential_stiffness is not None:
+            a_m = np.sqrt(R * np.asarray(elastic_max_approach(Vn, E, R, m), dtype=float))
+            kap = k_lin / (2.0 * E * a_m)
+            psi = np.abs(kap * u0_hat)
+        if method == "table" and law in UNIVERSAL_LAWS and tangential_stiffness is None:
+            table = universal_table(kappa, law=law)
+            F = table(np.where(frictionless, 0.0, psi), np.minimum(x, 1.0))
+            J = np.where(frictionless, 0.0, -np.sign(u0) * F * one_e)
+            regime[...] = np.where(F >= 1.0, tg.REGIME_SLIDING, tg.REGIME_MICROSLIP)
+        elif law == "stronge":
+            u0s = np.where(frictionless, 0.0, u0_hat)
+            ur, rg = _integrate_stronge(u0s, kappa, e, steps)
+            J = (ur - u0s) / tg.SLIP_FACTOR
+            regime[...] = rg
+        else:
+            eps = 0.0
+            if law == "liggghts_history":
+                eps = np.asarray(elastic_max_approach(Vn, E, R, m), dtype=float) / R
+            scale = np.where(frictionless, 1.0, mu * Vn)
+            v0h = np.where(frictionless, 0.0, vt / scale)
+            w0h = np.where(frictionless, 0.0, R * w0 / scale)
+            vr, wr, rg = _integrate_law(law, v0h, w0h, kap, np.minimum(x, 1.0), eps, steps)
+            J = np.where(frictionless, 0.0, vr - v0h)
+            dw = np.where(frictionless, 0.0, (wr - w0h) * mu * Vn)
+            regime[...] = rg
+        regime[frictionless & (mu > 0.0)] = tg.REGIME_STICKING
+        regime[mu == 0.0] = tg.REGIME_SLIDING
+    elif tangential == "rigid":
         stop = np.abs(u0_hat) / tg.SLIP_FACTOR
         rolling = stop <= one_e
         J = np.where(frictionless, 0.0, -np.sign(u0) * np.where(rolling, stop, one_e))
@@ -472,8 +570,12 @@ def oblique_impact(
 
     Jt = np.where(frictionless, 0.0, J * mu * Vn)  # J_t / m [m/s]
     vt_out = vt + Jt
-    w_out = w0 + tg.SLIP_FACTOR * 5.0 / 7.0 * Jt / R  # r omega' = r omega + 5/2 J_t/m
-    ur = u0 + tg.SLIP_FACTOR * Jt
+    if dw is None:
+        w_out = w0 + tg.SLIP_FACTOR * 5.0 / 7.0 * Jt / R  # r omega' = r omega + 5/2 J_t/m
+        ur = u0 + tg.SLIP_FACTOR * Jt
+    else:
+        w_out = w0 + dw / R
+        ur = u0 + Jt + dw
     Vn_out = e * Vn
     with np.errstate(divide="ignore", invalid="ignore"):
         e_t = np.where(vt != 0.0, vt_out / vt, np.nan)

@@ -18,7 +18,14 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from . import contact, impact
-from ._validation import check_poisson, check_positive, check_velocity
+from ._validation import (
+    TINY_LIMITING_PRESSURE,
+    check_nonnegative,
+    check_poisson,
+    check_positive,
+    check_velocity,
+    check_yield_velocity,
+)
 from .core import models, quantities
 from .core.constants import LARGE_STRAIN_RATIO
 from .core.models import thornton_ning_2016 as _seed
@@ -284,6 +291,10 @@ class ContactPair:
             "limiting_pressure",
             check_positive("limiting_pressure", self.limiting_pressure, allow_inf=True, scalar=True),
         )
+        if self.limiting_pressure < TINY_LIMITING_PRESSURE:  # V_y ~ p_y^(5/2) may underflow (eq. 28)
+            check_yield_velocity(
+                self.effective_modulus, self.effective_radius, self.effective_mass, self.limiting_pressure
+            )
         if self.density is not None:
             object.__setattr__(self, "density", check_positive("density", self.density, scalar=True))
 
@@ -941,6 +952,81 @@ class ContactPair:
         else:
             data = dynamics.integrate_model(mod.NAME, velocity, *self._args, params, n=n, times=times)
         return dynamics.ImpactHistory.from_dict(data, method=method)
+
+    def sticking_velocity(self, diameter=None, *, model: str = "thornton_ning_1998_adhesive_plastic", **params):
+        """The capture (sticking) velocity [m/s]: the particle sticks (``e = 0``) at and below it.
+
+        Parameters
+        ----------
+        diameter : float or array_like, optional
+            Particle diameters [m] (positive, finite) at which to evaluate it, the pair resized to
+            each (:meth:`resized`: ``E*``, ``p_y`` and density kept; a sphere-on-flat pair); default
+            this pair's particle.
+        model : str, optional
+            An adhesive model of :func:`microimpact.models.available` that defines its sticking
+            velocity (``"thornton_ning_1998_adhesive_plastic"``, the default, Thornton & Ning's whole
+            law; ``"thornton_ning_1998_elastic_adhesive"``; ``"jkr_elastic_adhesive"``), or
+            ``"additive"``: Thornton & Ning's additive rule (their eq. 78, the seed's plastic loss
+            plus the elastic adhesive one, :func:`microimpact.core.adhesion.restitution`), which
+            takes ``work_of_adhesion``.
+        **params : float
+            The model's parameters by name (``work_of_adhesion`` [J/m^2] for Thornton & Ning's).
+
+        Returns
+        -------
+        float or ndarray
+            ``V_s`` [m/s], a float for one diameter (or none), else shaped like ``diameter``.
+
+        Raises
+        ------
+        ValueError
+            If the model is unknown or has no sticking velocity, a parameter is missing or invalid,
+            a diameter is not positive and finite, or diameters are given for a pair without density.
+
+        Examples
+        --------
+        >>> pair = ContactPair.paper_case("silicon")
+        >>> round(pair.sticking_velocity(work_of_adhesion=0.1), 4)  # V_s < V_y: Thornton & Ning's eq. 54
+        0.3184
+        >>> pair.sticking_velocity([0.1e-6, 0.2e-6], work_of_adhesion=1.0).round(1)
+        array([253.5,  94.5])
+        """
+        if model == "additive":
+            from .core import adhesion as _adh
+
+            unknown = sorted(set(params) - {"work_of_adhesion"})
+            if unknown or "work_of_adhesion" not in params:
+                raise ValueError(
+                    "the additive rule takes one parameter, work_of_adhesion"
+                    + (f"; got {unknown[0]!r}" if unknown else " (no default)")
+                )
+            G = params["work_of_adhesion"]
+            G = float(check_nonnegative("work_of_adhesion", G))
+
+            def one(pair):
+                E, R, m, p_y = pair._args
+                return _adh.capture_velocity(_seed.yield_point(E, R, m, p_y)[2], _adh.sticking_velocity(G, E, R, m))
+
+        else:
+            mod = models.get(model)
+            fn = mod.sticking_velocity
+            if fn is None:
+                names = [n for n in models.available() if models.get(n).sticking_velocity is not None]
+                raise ValueError(
+                    f"model {model!r} has no sticking velocity; models that have one: {', '.join(names)}, additive"
+                )
+            p = models.resolve_params(mod, params)
+
+            def one(pair):
+                return fn(*pair._args, p)
+
+        if diameter is None:
+            return float(one(self))
+        d = check_positive("diameter", diameter)
+        if self.density is None:
+            raise ValueError("diameters need a pair with a particle density (a sphere on a flat)")
+        out = np.array([one(self.resized(radius=0.5 * x)) for x in d.ravel()]).reshape(d.shape)
+        return float(out) if np.ndim(diameter) == 0 else out
 
     def restitution(self, velocity, *, out=None):
         """Restitution coefficient only (seed eq. 27), the fastest path.

@@ -387,6 +387,11 @@ def sweep(
     spec = {"pair": pair, "model": name, "params": params[name]}
     # Refuse bad combinations now, not inside a dask task (one value of each input is enough).
     pair.effective_values(**{k: v.reshape(-1)[:1] for k, v in values.items() if k != "velocity"})
+    # V_y is a power law of each input, so its smallest value over the grid is at a corner: a p_y so tiny
+    # that V_y underflows (the model divides by it) is refused now, naming it (2^k corners, k <= 8).
+    ends = {k: np.unique([np.min(v), np.max(v)]) for k, v in values.items() if k != "velocity"}
+    mesh = np.meshgrid(*ends.values(), indexing="ij") if ends else []
+    check_pair(*pair.effective_values(**{k: g.ravel() for k, g in zip(ends, mesh)}))
     attrs = {
         "title": "microimpact parameter sweep",
         "model": "elastic-plastic impact of a sphere on a flat, Aerosol Sci. Tech. 50(4):321-330 (2016), "

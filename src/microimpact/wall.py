@@ -33,6 +33,17 @@ with ``F`` from the universal table of ``kappa = 4 G*/E*`` at the normalised ang
 ``psi = kappa |u_t| / (mu V)`` and ``V_y/V``. It keeps the slip's direction, and
 never adds energy. With adhesion (``G > 0``) the table is that of the non-adhesive
 history, scaled by the adhesive ``J_n``: an approximation.
+
+The DEM codes' laws of :mod:`microimpact.core.tangential_laws` (``"lammps_mindlin"``,
+``"lammps_mindlin_force"``, ``"lammps_mindlin_rescale"``, ``"lammps_mindlin_rescale_force"`` (=
+``"mindlin"``), ``"lammps_linear_history"`` (stiffness ``8 G* a_m`` of each impact),
+``"liggghts_history"``, ``"di_renzo_di_maio"``) are applied the same way, each through its own
+universal table. Two of them are not exactly the code's law here (:func:`microimpact.oblique.oblique_impact`
+integrates both exactly): LIGGGHTS's shorter arm ``R - delta/2`` is taken as ``R`` (its spin differs
+by about ``delta_max/(2R)``, 1e-3 for the alumina case), and the linear law's stiffness follows each
+impact's speed instead of being one constant. Unlike the compliant ``"mindlin"``, the laws
+``"lammps_mindlin"``, ``"liggghts_history"`` and ``"di_renzo_di_maio"`` can create energy at small
+angles (their stored force grows with the contact radius at a fixed displacement): so do the codes.
 """
 
 from __future__ import annotations
@@ -45,6 +56,8 @@ import numpy as np
 from ._validation import check_nonnegative, check_positive
 from .core import wall as _wall
 from .core.arrays import evaluate
+from .core.tangential_laws import ALL_LAWS as LAWS
+from .io import check_memory
 from .materials import DEFAULT_K, Material, get_material
 from .materials import effective_modulus as _effective_modulus
 
@@ -148,6 +161,10 @@ def _materials(material, n):
     return tuple(table[inv, j] for j in range(4))
 
 
+# Peak bytes per particle of wall_interaction (result table, regime, flags, temporaries).
+_BYTES_PER_PARTICLE = 8 * (11 + 1 + 6 + 3) + 3
+
+
 def wall_interaction(
     velocity,
     normal,
@@ -215,15 +232,16 @@ def wall_interaction(
         Incoming angular velocities [rad/s]; default zero.
     k : float, optional
         ``p_y / Y`` when ``limiting_pressure`` is not given (default 2.2).
-    tangential : {"rigid", "mindlin"}, optional
-        Tangential model: the rigid-body Coulomb impulse (default) or the compliant
-        contact (module docstring); ``rolling`` then flags particles whose contact
-        stuck at some time during the impact.
+    tangential : str, optional
+        Tangential model: ``"rigid"``, the rigid-body Coulomb impulse (default), the compliant
+        contact ``"mindlin"`` or a DEM code's law of
+        :data:`microimpact.core.tangential_laws.LAWS` (module docstring); ``rolling`` then
+        flags particles whose contact stuck at some time during the impact.
     poisson_ratio : float, optional
-        ``"mindlin"`` only: one Poisson's ratio for particle and wall, giving
+        Compliant laws only: one Poisson's ratio for particle and wall, giving
         ``kappa = 2(1 - nu)/(2 - nu)``; default from the materials.
     effective_shear_modulus : float, optional
-        ``"mindlin"`` only: ``G*`` [Pa], giving ``kappa = 4 G*/E*``.
+        Compliant laws only: ``G*`` [Pa], giving ``kappa = 4 G*/E*``.
 
     Returns
     -------
@@ -238,11 +256,14 @@ def wall_interaction(
     >>> out.restitution.round(4), out.regime
     (array([0.7248]), array(['rolling'], dtype='<U7'))
     """
-    if tangential not in ("rigid", "mindlin"):
-        raise ValueError(f"tangential must be 'rigid' or 'mindlin', got {tangential!r}")
+    if tangential not in ("rigid", "mindlin", *LAWS):
+        raise ValueError(f"tangential must be 'rigid', 'mindlin' or one of {LAWS}, got {tangential!r}")
     single = np.ndim(velocity) == 1
     v = _vectors("velocity", velocity)
     N = v.shape[0]
+    # Refused before anything of size N is made: the (N, 11) result table, the per-particle inputs
+    # made here (modulus, p_y, yield strength) and the compliant prepass (3 columns), 8 bytes each.
+    check_memory(N * _BYTES_PER_PARTICLE, f"wall_interaction of {N} particles", "pass the particles in blocks")
     nrm = _vectors("normal", normal)
     if nrm.shape[0] not in (1, N):
         raise ValueError(f"normal must be one vector or one per particle ({N}), got {nrm.shape[0]}")
@@ -298,10 +319,12 @@ def wall_interaction(
         tuple(w[:, j] if w.shape[0] == N else np.array(w[0, j]) for j in range(3)) if has_spin else (np.array(0.0),) * 3
     )
     if tangential == "rigid":
-        F = np.array(-1.0)
+        F = np.array(math.nan)
     else:
         V0, slip, Vy0 = evaluate(_wall.approach_and_slip, *vT, *nT, *wT, d, rho, E, p_y, nout=3)
-        F = _compliant_impulse_ratio(slip, V0, Vy0, mu, E, mats, wall_mat, poisson_ratio, effective_shear_modulus)
+        F = _compliant_impulse_ratio(
+            slip, V0, Vy0, mu, E, mats, wall_mat, poisson_ratio, effective_shear_modulus, tangential
+        )
     table = np.empty((N, len(_wall.WALL_FIELDS)))
     out = evaluate(_wall.wall_impact, *vT, *nT, *wT, d, rho, E, p_y, G, mu, F, nout=table.shape[1], out=table.T)
     o = dict(zip(_wall.WALL_FIELDS, out))
@@ -329,8 +352,8 @@ def wall_interaction(
     )
 
 
-def _compliant_impulse_ratio(ut_mag, V, Vy, mu, E, mats, wall_mat, poisson_ratio, effective_shear_modulus):
-    """``|J_t| / (mu J_n)`` of the compliant model per particle, from the universal tables."""
+def _compliant_impulse_ratio(ut_mag, V, Vy, mu, E, mats, wall_mat, poisson_ratio, effective_shear_modulus, law):
+    """``|J_t| / (mu J_n)`` of the compliant law per particle, from the universal tables."""
     from .core import hertz as _hertz
     from .core import tangential as _tg
     from .oblique import universal_table
@@ -352,7 +375,7 @@ def _compliant_impulse_ratio(ut_mag, V, Vy, mu, E, mats, wall_mat, poisson_ratio
         kappa = _tg.stiffness_ratio(G, _hertz.effective_modulus(mats[0], mats[1], Ew, nuw))
     else:
         raise ValueError(
-            "tangential='mindlin' needs poisson_ratio=..., effective_shear_modulus=... or material=... and wall=..."
+            f"tangential={law!r} needs poisson_ratio=..., effective_shear_modulus=... or material=... and wall=..."
         )
     F = np.zeros(n)
     approaching = V > 0.0
@@ -361,5 +384,6 @@ def _compliant_impulse_ratio(ut_mag, V, Vy, mu, E, mats, wall_mat, poisson_ratio
         x = np.where(V > 0.0, Vy / np.where(V > 0, V, 1.0), 1.0)
     for kap in np.unique(np.round(kappa, 12)):
         sel = np.round(kappa, 12) == kap
-        F[sel] = universal_table(float(kap))(psi[sel], np.minimum(x[sel], 1.0))
+        table_law = "lammps_mindlin" if law == "liggghts_history" else law  # the same spring, arm R
+        F[sel] = universal_table(float(kap), law=table_law)(psi[sel], np.minimum(x[sel], 1.0))
     return np.where(approaching & (mu > 0.0), F, 0.0)

@@ -42,11 +42,12 @@ def _run(model, V, E, R, m, p_y, params, ts, rtol):
     def rhs2(t, y):
         return [y[1], -f(y[0] * xs, y[1] * V, amax, E, R, m, p_y, params) * c]
 
-    sep = (
-        model.separation_approach(E, R, m, p_y, params) / xs
-        if getattr(model, "separation_approach", None) is not None
-        else 0.0
-    )
+    if getattr(model, "separation_approach_after", None) is not None:  # depends on alpha_max
+        sep = model.separation_approach_after(amax, E, R, m, p_y, params) / xs
+    elif getattr(model, "separation_approach", None) is not None:
+        sep = model.separation_approach(E, R, m, p_y, params) / xs
+    else:
+        sep = 0.0
 
     def zero_overlap(t, y):
         return y[0] - sep

@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from .._validation import check_nonnegative
-from ._common import comment_text, sized_pair
+from ._common import check_size_names, comment_text, sized_pair
 from ._csource import generate_c_source
 from ._tables import DEFAULT_SPEEDS, DEFAULT_V_OVER_VY, DEFAULT_VS_OVER_VY, write_size_table, write_universal_table
 
@@ -180,6 +180,7 @@ def write_band(
     for end in ends:
         pair = end["pair"]
         sizes = [2.0 * pair.effective_radius] if diameters is None else list(np.atleast_1d(diameters))
+        check_size_names(sizes)
         jobs += [(end, d, sized_pair(pair, d)) for d in sizes]
         if c_source:
             sources[end["name"]] = generate_c_source(

@@ -22,6 +22,19 @@ def comment_text(text) -> str:
     return out
 
 
+def check_size_names(sizes):
+    """Refuse two diameters whose per-size file names (``d<micrometres:g>um``) would be the same."""
+    seen = {}
+    for d in sizes:
+        tag = f"{float(d) * 1e6:g}"
+        if tag in seen:
+            raise ValueError(
+                f"diameters {seen[tag]!r} and {float(d)!r} m would both be written to the table d{tag}um "
+                "(its name keeps 6 significant digits): give diameters that differ there"
+            )
+        seen[tag] = float(d)
+
+
 def sized_pair(pair, diameter):
     """``pair`` at particle diameter ``diameter`` [m] (ValueError without a density)."""
     if pair.density is None:

@@ -235,8 +235,10 @@ def generate_c_source(
         ``G`` [J/m^2], the work of adhesion (``2 gamma`` for identical surfaces); default 0.
     friction : float, optional
         Coulomb coefficient ``mu`` [-]; default 0.
-    tangential : {"rigid", "mindlin"}, optional
-        Tangential model, as ``tangential=`` of :func:`~microimpact.wall.wall_interaction`.
+    tangential : str, optional
+        Tangential model, as ``tangential=`` of :func:`~microimpact.wall.wall_interaction`:
+        ``"rigid"``, ``"mindlin"`` or a DEM code's law of
+        :data:`microimpact.core.tangential_laws.ALL_LAWS` (through its universal table, as there).
         ``"rigid"`` (default): the rigid-body Coulomb impulse (the source is the same,
         byte for byte, as before the option existed). ``"mindlin"``: the compliant contact
         of :mod:`microimpact.oblique`; the file then also holds the
@@ -287,7 +289,7 @@ def generate_c_source(
     label = f"{comment_text(pair.label)}; " if pair is not None and pair.label else ""
     desc = f"{label}E* = {E:.6g} Pa, p_y = {p_y:.6g} Pa, G = {G:.6g} J/m^2, mu = {mu:.6g}"
     if kappa is not None:
-        desc += f"; tangential: mindlin, kappa = 4 G* / E* = {kappa:.6g}"
+        desc += f"; tangential: {tangential}, kappa = 4 G* / E* = {kappa:.6g}"
     if comment is not None:
         desc += "\n *\n * " + comment_text(comment)
     text = _C_TEMPLATE.format(
@@ -299,13 +301,15 @@ def generate_c_source(
         mu=_c_double(mu),
         stick=repr(STICKING_CONSTANT),
     )
-    return text if kappa is None else _mindlin_source(text, kappa)
+    return text if kappa is None else _mindlin_source(text, kappa, tangential)
 
 
 def _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus):
     """``kappa = 4 G*/E*`` of the compliant model, or None for the rigid one (inputs checked)."""
-    if tangential not in ("rigid", "mindlin"):
-        raise ValueError(f"tangential must be 'rigid' or 'mindlin', got {tangential!r}")
+    from ..core.tangential_laws import ALL_LAWS
+
+    if tangential not in ("rigid", "mindlin", *ALL_LAWS):
+        raise ValueError(f"tangential must be 'rigid', 'mindlin' or one of {ALL_LAWS}, got {tangential!r}")
     if tangential == "rigid":
         for name, value in (("poisson_ratio", poisson_ratio), ("effective_shear_modulus", effective_shear_modulus)):
             if value is not None:
@@ -325,7 +329,7 @@ def _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus):
         return stiffness_ratio_same_poisson(nu)
     if pair is None or getattr(pair, "particle", None) is None or getattr(pair, "surface", None) is None:
         raise ValueError(
-            "tangential='mindlin' needs poisson_ratio=..., effective_shear_modulus=... or a pair built from materials"
+            f"tangential={tangential!r} needs poisson_ratio=..., effective_shear_modulus=... or a pair built from materials"
         )
     from ..oblique import stiffness_ratio_of
 
@@ -360,15 +364,31 @@ _MINDLIN_EDITS = (
 )
 
 
-def _mindlin_source(text, kappa):
-    """The rigid source ``text`` turned into the compliant one for ``kappa``."""
+def _mindlin_source(text, kappa, law="mindlin"):
+    """The rigid source ``text`` turned into the compliant one for ``kappa`` (and the tangential ``law``)."""
     from ..oblique import table_c_source, universal_table
 
     for old, new in _MINDLIN_EDITS:
         if text.count(old) != 1:  # pragma: no cover - the template changed
             raise RuntimeError("the C template no longer has the rigid tangential block")
         text = text.replace(old, new)
-    table = table_c_source(universal_table(kappa), "microimpact_oblique")
+    if law not in ("mindlin", "lammps_mindlin_rescale_force"):
+        old = _MINDLIN_EDITS[0][1].splitlines(keepends=True)[0]
+        text = text.replace(
+            old,
+            f" *   tangential: the DEM law {law} (microimpact.core.tangential_laws; LIGGGHTS's arm taken as r),\n"
+            " *               loaded along the seed's normal history, of a solid sphere:\n",
+        )
+        text = text.replace(
+            " *               along the seed's normal history; microimpact.oblique) of a solid sphere:\n", "", 1
+        )
+    table_law = "lammps_mindlin" if law == "liggghts_history" else law  # the same spring with the arm r
+    tab = (
+        universal_table(kappa)
+        if table_law in ("mindlin", "lammps_mindlin_rescale_force")
+        else universal_table(kappa, law=table_law)
+    )
+    table = table_c_source(tab, "microimpact_oblique")
     table = table.replace("#include <math.h>\n", "")  # already included
     table += (
         f"\n/* kappa = 4 G* / E* of psi, unrounded (the table is built for it rounded to 12 digits) */\n"

@@ -8,7 +8,7 @@ import numpy as np
 
 from .._validation import check_nonnegative
 from ..adhesion import adhesive_restitution, sticking_velocity
-from ._common import comment_text, sized_pair
+from ._common import check_size_names, comment_text, sized_pair
 
 __all__ = ["restitution_table", "write_tables", "DEFAULT_V_OVER_VY", "DEFAULT_VS_OVER_VY", "DEFAULT_SPEEDS"]
 
@@ -132,6 +132,7 @@ def write_tables(
     jobs = []  # every size checked before any file is written
     for i, pair in enumerate(pairs):
         sizes = [2.0 * pair.effective_radius] if diameters is None else list(np.atleast_1d(diameters))
+        check_size_names(sizes)
         tag = f"{_slug(pair.label or f'pair{i}')}_" if multi else ""
         jobs += [(pair, tag, d, sized_pair(pair, d)) for d in sizes]
     out_dir.mkdir(parents=True, exist_ok=True)

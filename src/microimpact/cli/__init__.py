@@ -24,6 +24,7 @@ Any other exception is a bug: its traceback is printed, so it stays visible.
 from __future__ import annotations
 
 import argparse
+import atexit
 import contextlib
 import importlib
 import os
@@ -32,7 +33,9 @@ import signal
 import sys
 import warnings
 
+from .. import _signals
 from .._optional import MissingExtraError
+from .._signals import Interrupted  # noqa: F401  (re-exported: the exception a signal raises)
 
 #: Subcommand modules, in the order ``--help`` lists them.
 COMMANDS = [
@@ -46,7 +49,9 @@ COMMANDS = [
     "bench",
     "materials",
     "oblique",
+    "stick",
     "dem_check",
+    "cache",
 ]
 
 
@@ -88,34 +93,6 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
 
 def _short_warning(message, category, filename, lineno, file=None, line=None):
     return f"warning: {message}\n"
-
-
-class Interrupted(KeyboardInterrupt):
-    """SIGINT or SIGTERM during a command (a KeyboardInterrupt, so cleanup code runs)."""
-
-    def __init__(self, signum=signal.SIGINT):
-        super().__init__(signum)
-        self.signum = int(signum)
-
-
-def _raise_interrupt(signum, frame):
-    raise Interrupted(signum)
-
-
-@contextlib.contextmanager
-def _interrupts_raise():
-    """During a command, SIGINT and SIGTERM raise :class:`Interrupted` (main thread only)."""
-    old = {}
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        try:
-            old[sig] = signal.signal(sig, _raise_interrupt)
-        except (ValueError, OSError):  # not the main thread: leave the handlers alone
-            pass
-    try:
-        yield
-    finally:
-        for sig, handler in old.items():
-            signal.signal(sig, handler)
 
 
 def error_message(exc: BaseException) -> str:
@@ -170,7 +147,27 @@ class _NamedStdout:
 
 def main(argv=None) -> int:
     """Entry point of the ``microimpact`` command; returns the exit status."""
+    _signals.install()  # from the start: a signal while parsing is an interrupt too (microimpact._signals)
+    try:
+        return _main(argv)
+    except BaseException as exc:
+        # an interrupt, or what a library made of one (a C extension's import turns it into
+        # "ImportError: initialization failed"): one line and 128 + signal, never a traceback
+        signum = getattr(exc, "signum", None) or _signals.pending()
+        if signum is None and isinstance(exc, KeyboardInterrupt):
+            signum = signal.SIGINT
+        if signum is None:
+            raise
+        _signals.cleanup()
+        print(_signals.message(signum), file=sys.stderr)
+        return 128 + int(signum)
+    finally:
+        _signals.restore()
+
+
+def _main(argv):
     argv = sys.argv[1:] if argv is None else list(argv)
+    _signals.set_prefix("microimpact")
     # Import only the command being run: a command's dependencies cost more than its work.
     parser = build_parser(only=argv[0] if argv and argv[0] in COMMANDS else None)
     try:
@@ -182,24 +179,29 @@ def main(argv=None) -> int:
         return 2
     warnings.formatwarning = _short_warning
     prefix = f"microimpact {args.command}"
+    _signals.set_prefix(prefix)
     stdout = sys.stdout
+    if stdout is None:  # started with standard output closed (microimpact impact 50 >&-): before any work
+        print(
+            f"{prefix}: error: <standard output>: closed (redirect it instead: > FILE or > /dev/null)", file=sys.stderr
+        )
+        return 2
     try:
-        with _interrupts_raise():
-            sys.stdout = _NamedStdout(stdout)
-            try:
-                rc = args.func(args)
-                sys.stdout.flush()
-            finally:
-                sys.stdout = stdout
-    except KeyboardInterrupt as exc:
-        signum = getattr(exc, "signum", signal.SIGINT)
-        name = "SIGTERM" if signum == signal.SIGTERM else "Ctrl-C"
-        print(f"{prefix}: interrupted ({name}); nothing was left half-written", file=sys.stderr)
-        return 128 + int(signum)
+        sys.stdout = _NamedStdout(stdout)
+        try:
+            rc = args.func(args)
+            sys.stdout.flush()
+        finally:
+            sys.stdout = stdout
+        _signals.check()  # an interrupt whose exception was swallowed on the way (in a __del__, a callback)
+    except KeyboardInterrupt:
+        raise
     except BrokenPipeError:  # e.g. piped into head: stop quietly
         _silence_stdout()
         return 0
     except (ValueError, MissingExtraError, OSError, MemoryError) as exc:
+        if _signals.pending() is not None:  # what a library made of an interrupt
+            raise _signals.Interrupted(_signals.pending()) from None
         if isinstance(exc, MemoryError):
             msg = "out of memory (see MICROIMPACT_MAX_MEMORY and give smaller sizes)"
         else:
@@ -212,19 +214,36 @@ def main(argv=None) -> int:
 def console_main() -> int:
     """The ``microimpact`` command (and ``python -m microimpact``): :func:`main`, then exit.
 
-    After an interrupt the process ends at once, once :func:`main` has returned (every output is
-    cleaned up by then): it does not wait for worker threads of a chunked sweep that may still hold
-    queued blocks (dask's pool finishes its queue at exit), which could keep a SIGTERM'd run alive.
+    Once :func:`main` has returned, the work is done and every output in place (or cleaned up
+    after an interrupt): the process then ignores SIGINT and SIGTERM, flushes its streams, runs
+    its ``atexit`` functions and ends at once. Python's own finalization, skipped so, puts the
+    default handlers back first and then frees every module: a signal in that window (up to a
+    tenth of a second after an export) killed a finished run with a bare -15 and no line. Nor does
+    the process wait for worker threads of a chunked sweep that may still hold queued blocks
+    (dask's pool finishes its queue at exit), which could keep a SIGTERM'd run alive.
     """
     rc = main()
-    if rc in (128 + signal.SIGINT, 128 + signal.SIGTERM):
-        for stream in (sys.stdout, sys.stderr):
-            try:
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        try:
+            signal.signal(sig, signal.SIG_IGN)
+        except (ValueError, OSError):  # pragma: no cover - not the main thread
+            pass
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            if stream is not None:
                 stream.flush()
-            except (OSError, ValueError):
-                pass
-        os._exit(rc)
-    return rc
+        except BrokenPipeError:  # e.g. piped into head: stop quietly
+            pass
+        except (OSError, ValueError) as exc:  # the last of standard output did not reach its file
+            if stream is sys.stdout and rc == 0:
+                reason = getattr(exc, "strerror", None) or str(exc)
+                with contextlib.suppress(OSError, ValueError):
+                    print(f"microimpact: error: <standard output>: {reason}", file=sys.stderr, flush=True)
+                rc = 2
+    run_exit = getattr(atexit, "_run_exitfuncs", None)
+    if run_exit is not None:
+        run_exit()
+    os._exit(int(rc or 0))
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -9,7 +9,7 @@ import sys
 
 import numpy as np
 
-from .._validation import check_positive
+from .._validation import check_positive, parse_number
 from ..io import check_figure_path, check_input_file, check_memory, check_output_path
 from ..materials import DEFAULT_K, PAPER_CASES, list_materials, sphere_mass
 from ..pair import ContactPair
@@ -55,11 +55,13 @@ def show_progress(args=None) -> bool:
 
 
 def parse_float(text: str, name: str = "value") -> float:
-    """A float from the command line, or a ValueError naming ``name``."""
-    try:
-        return float(text)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {text!r}") from None
+    """A float from the command line (a decimal number: ``1_0`` is refused), or a ValueError naming ``name``."""
+    return parse_number(text, name)
+
+
+def number(text: str) -> float:
+    """argparse ``type=`` of a numeric option: a decimal number (argparse names the option on failure)."""
+    return parse_number(text)
 
 
 def parse_values(texts, name: str = "velocity", *, bytes_per_value: float = 8.0, unique: bool = False) -> np.ndarray:
@@ -75,7 +77,7 @@ def parse_values(texts, name: str = "velocity", *, bytes_per_value: float = 8.0,
         for part in str(text).split(","):
             part = part.strip()
             if not part:
-                continue
+                raise ValueError(f"{name} has an empty value in {str(text)!r} (values are separated by one comma)")
             if ":" in part:
                 bits = part.split(":")
                 if len(bits) != 3:
@@ -153,13 +155,13 @@ def add_pair_arguments(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--case", choices=sorted(PAPER_CASES), help="one of the seed paper's cases")
     g.add_argument("--particle", metavar="MATERIAL", help=f"particle material ({', '.join(list_materials())})")
     g.add_argument("--surface", metavar="MATERIAL", help="surface material (flat)")
-    g.add_argument("--radius", type=float, metavar="M", help="particle radius [m]")
-    g.add_argument("--diameter", type=float, metavar="M", help="particle diameter [m]")
-    g.add_argument("--density", type=float, metavar="KG/M3", help="particle density [kg/m^3]")
-    g.add_argument("--effective-modulus", type=float, metavar="PA", help="effective modulus E* [Pa]")
-    g.add_argument("--limiting-pressure", type=float, metavar="PA", help="limiting contact pressure p_y [Pa]")
-    g.add_argument("--yield-strength", type=float, metavar="PA", help="yield strength Y [Pa]; p_y = k Y")
-    g.add_argument("--k", type=float, help=f"p_y / Y (default {DEFAULT_K}, the middle of the seed's 2.1-2.3)")
+    g.add_argument("--radius", type=number, metavar="M", help="particle radius [m]")
+    g.add_argument("--diameter", type=number, metavar="M", help="particle diameter [m]")
+    g.add_argument("--density", type=number, metavar="KG/M3", help="particle density [kg/m^3]")
+    g.add_argument("--effective-modulus", type=number, metavar="PA", help="effective modulus E* [Pa]")
+    g.add_argument("--limiting-pressure", type=number, metavar="PA", help="limiting contact pressure p_y [Pa]")
+    g.add_argument("--yield-strength", type=number, metavar="PA", help="yield strength Y [Pa]; p_y = k Y")
+    g.add_argument("--k", type=number, help=f"p_y / Y (default {DEFAULT_K}, the middle of the seed's 2.1-2.3)")
 
 
 def check_pair_options(args) -> None:

@@ -225,7 +225,11 @@ def run(args) -> int:
         cmd += ["--size", mode, "--ratios-json", str(report_path), "--benchmark-disable-gc", "--benchmark-sort=name"]
         cmd += ["--benchmark-storage", "file://" + str(Path(tmp) / "storage")]  # no .benchmarks/ in the cwd
         print(f"running the benchmark suite in {suite} ({mode} sizes) ...", file=sys.stderr, flush=True)
-        proc = subprocess.run(cmd, capture_output=True, text=True)
+        # the suite is its own pytest run: options meant for the caller's pytest (PYTEST_ADDOPTS, e.g.
+        # --cov, which would time the benchmarks under a tracer and leave .coverage in the cwd) are not
+        # passed on
+        env = {k: v for k, v in os.environ.items() if k != "PYTEST_ADDOPTS"}
+        proc = subprocess.run(cmd, capture_output=True, text=True, env=env)
         if proc.returncode != 0 or not report_path.is_file():
             print(proc.stdout[-6000:], file=sys.stderr)
             print(proc.stderr[-2000:], file=sys.stderr)

@@ -8,6 +8,7 @@ from pathlib import Path
 
 from ..adhesion import work_of_adhesion
 from ..cexport import DEFAULT_VS_OVER_VY, generate_c_source, write_band, write_c_source, write_tables
+from ..core.tangential_laws import ALL_LAWS as LAWS
 from ..fitting import INTERVALS, LOSSES
 from ..materials import sphere_mass
 from ._common import (
@@ -79,9 +80,10 @@ def register(sub) -> None:
     t = p.add_argument_group("tangential model of the C file")
     t.add_argument(
         "--tangential",
-        choices=("rigid", "mindlin"),
+        choices=("rigid", "mindlin", *LAWS),
         help="rigid: rigid-body Coulomb impulse (default); mindlin: compliant contact (Mindlin's no-slip spring "
-        "with a Coulomb limit) through the universal table of kappa = 4 G*/E*, baked into the C file; needs "
+        "with a Coulomb limit) through the universal table of kappa = 4 G*/E*, baked into the C file; the DEM "
+        "codes' laws (lammps_mindlin, ..., liggghts_history, di_renzo_di_maio) likewise; needs "
         "--poisson-ratio, --shear-modulus or --particle/--surface",
     )
     k = t.add_mutually_exclusive_group()
@@ -118,7 +120,7 @@ def run(args) -> int:
             c = parse_float(args.confidence, "--confidence")
             if not 0.0 < c < 1.0:
                 raise ValueError(f"--confidence must lie in (0, 1), got {c!r}")
-    diameters = parse_values(args.diameters, "--diameters") if args.diameters else None
+    diameters = parse_values(args.diameters, "--diameters") if args.diameters is not None else None
     if diameters is not None:
         check_positive("--diameters", diameters)
     pair_args = args  # the options the pair is built from (args itself is never changed)
@@ -138,10 +140,10 @@ def run(args) -> int:
         check_nonnegative(name, value)
         if math.isinf(value):
             raise ValueError(f"{name} must be finite, got {value!r}")
-    velocities = parse_values(args.velocities, "--velocities") if args.velocities else None
+    velocities = parse_values(args.velocities, "--velocities") if args.velocities is not None else None
     if velocities is not None:
         check_nonnegative("--velocities", velocities)
-    vs = parse_values(args.vs_over_vy, "--vs-over-vy") if args.vs_over_vy else DEFAULT_VS_OVER_VY
+    vs = parse_values(args.vs_over_vy, "--vs-over-vy") if args.vs_over_vy is not None else DEFAULT_VS_OVER_VY
     check_nonnegative("--vs-over-vy", vs)
     dem_codes = _dem_codes(args)
     fit = None
@@ -161,8 +163,8 @@ def run(args) -> int:
                     f"is {m:g} kg"
                 )
     out = Path(args.out)
+    c_kw = {"tangential": tangential, **kappa_kw} if tangential != "rigid" else {}
     decks = _dem_decks(args, pair, dem_codes) if dem_codes else None
-    c_kw = {"tangential": tangential, **kappa_kw} if tangential == "mindlin" else {}
     if fit is not None:
         written = write_band(
             fit,
@@ -306,7 +308,9 @@ def _tangential_options(args):
             raise ValueError(f"{given[0][0]} is used by --tangential mindlin only (the rigid model has no stiffness)")
         return tangential, {}
     if args.no_c:
-        raise ValueError("--tangential mindlin and --no-c cannot be used together (the model is in the C file only)")
+        raise ValueError(
+            f"--tangential {tangential} and --no-c cannot be used together (the model is in the C file only)"
+        )
     if args.poisson_ratio is not None:
         nu = parse_float(args.poisson_ratio, "--poisson-ratio")
         check_poisson("--poisson-ratio", nu)
@@ -319,7 +323,7 @@ def _tangential_options(args):
         return tangential, {"effective_shear_modulus": g}
     if not (args.particle and args.surface):
         raise ValueError(
-            "--tangential mindlin needs the tangential stiffness: give --poisson-ratio NU or --shear-modulus G* "
+            f"--tangential {tangential} needs the tangential stiffness: give --poisson-ratio NU or --shear-modulus G* "
             "(or --particle and --surface, whose moduli give it)"
         )
     return tangential, {}

@@ -22,7 +22,14 @@ from ..fitting import (
 )
 from ..io import save_figure, write_json
 from ..materials import PAPER_CASES, get_material
-from ._common import add_pair_arguments, check_input_file, check_outputs, pair_from_args, parse_float
+from ._common import (
+    add_pair_arguments,
+    check_input_file,
+    check_outputs,
+    pair_from_args,
+    parse_float,
+    parse_model_params,
+)
 
 
 def register(sub) -> None:
@@ -49,6 +56,14 @@ def register(sub) -> None:
         help="rank these models on the data (AIC, AICc, BIC, Akaike weights, K-fold CV): each a model name "
         "(free p_y), NAME:PARAM+PARAM (those free) or NAME:none (nothing fitted); models: "
         + ", ".join(available_models()),
+    )
+    p.add_argument(
+        "--param",
+        action="append",
+        default=[],
+        metavar="MODEL:NAME=VALUE",
+        help="with --models: a model parameter's value (its start value where NAME is fitted), as in compare, "
+        "e.g. --param linear_spring_dashpot:restitution=0.7 (repeat for more)",
     )
     p.add_argument("--folds", default="5", metavar="K", help="folds of the cross-validation with --models (default 5)")
     p.add_argument(
@@ -136,13 +151,14 @@ def _rank(args, data, pair, f_scale_given, confidence) -> int:
         raise ValueError(f"--folds must be an integer, got {args.folds!r}") from None
     if folds < 2:
         raise ValueError(f"--folds must be >= 2, got {folds}")
-    with warnings.catch_warnings(record=True) as caught:
+    specs = _model_specs(args.models, args.param)
+    with warnings.catch_warnings(record=True) as caught, _cli_words(specs):
         warnings.simplefilter("always", FitWarning)
         ranking = rank_models(
             velocity,
             restitution,
             pair,
-            args.models,
+            specs,
             sigma=sigma,
             loss=args.loss,
             k_folds=folds,
@@ -178,6 +194,49 @@ def _rank(args, data, pair, f_scale_given, confidence) -> int:
     return 0
 
 
+def _model_specs(models, params):
+    """``--models`` as rank_models specs, each with the values ``--param MODEL:NAME=VALUE`` gives its model."""
+    texts = [t.strip() for t in str(models).split(",")]
+    names = [t.partition(":")[0].strip() for t in texts]  # checked by rank_models
+    values = parse_model_params(params, sorted(set(names))) if params else {}
+    specs = []
+    for text, name in zip(texts, names):
+        if name in values:
+            rest = text.partition(":")[2].strip()
+            free = () if rest.lower() == "none" else tuple(r.strip() for r in rest.split("+")) if rest else None
+            spec = {"model": name, "model_params": dict(values[name]), "label": text}
+            if free is not None:
+                spec["params"] = free
+            specs.append(spec)
+        else:
+            specs.append(text)
+    return specs
+
+
+class _cli_words:
+    """Say ``--param MODEL:NAME=VALUE`` where the library's message says ``model_params={...}``."""
+
+    def __init__(self, specs):
+        self.models = [s["model"] if isinstance(s, dict) else s.partition(":")[0].strip() for s in specs]
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, kind, exc, tb):
+        import re
+
+        if kind is not None and issubclass(kind, ValueError) and "model_params=" in str(exc):
+            from ..core.models import parameters
+
+            def option(m):
+                name = m.group(1)
+                model = next((x for x in self.models if name in parameters(x)), "MODEL")
+                return f"give --param {model}:{name}=VALUE"
+
+            raise ValueError(re.sub(r"give model_params=\{'(\w+)': \.\.\.\}", option, str(exc))) from None
+        return False
+
+
 def report_warnings(caught) -> None:
     """Each distinct recorded warning once on stderr."""
     seen = set()
@@ -195,6 +254,8 @@ def run(args) -> int:
     velocity, restitution, sigma = data
     f_scale = None if args.f_scale is None else parse_float(args.f_scale, "--f-scale")
     confidence = parse_float(args.confidence, "--confidence")
+    if args.param and not args.models:
+        raise ValueError("--param sets the parameters of the models of --models (the single fit is the seed's)")
     if args.models:
         pair = fit_pair(args, "limiting_pressure")
         return _rank(args, data, pair, f_scale is not None, confidence)

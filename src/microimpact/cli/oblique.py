@@ -9,7 +9,7 @@ import sys
 
 import numpy as np
 
-from ._common import add_pair_arguments, pair_from_args, parse_float, parse_values
+from ._common import PAIR_OPTIONS, add_pair_arguments, pair_from_args, parse_float, parse_values, refuse_together
 
 
 def register(sub) -> None:
@@ -34,11 +34,36 @@ def register(sub) -> None:
     p.add_argument("--poisson", metavar="NU", help="Poisson's ratio for G* (default: from the pair's materials)")
     p.add_argument("--spin", default="0", metavar="RAD/S", help="incoming spin, positive adding to the slip")
     p.add_argument(
-        "--tangential", choices=["mindlin", "rigid", "both"], default="both", help="tangential model(s) (default both)"
+        "--tangential",
+        default="both",
+        metavar="LAWS",
+        help="tangential model(s), comma-separated: mindlin, rigid, lammps_mindlin, lammps_mindlin_force, "
+        "lammps_mindlin_rescale, lammps_mindlin_rescale_force, lammps_linear_history, liggghts_history, "
+        "di_renzo_di_maio; 'both' = mindlin,rigid (default), 'all' = every one",
+    )
+    p.add_argument(
+        "--tangential-stiffness",
+        metavar="N/M",
+        help="lammps_linear_history: constant tangential stiffness [N/m] (default 8 G* a_m of each impact)",
     )
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
     p.add_argument("--plot", metavar="FILE.png", help="also draw the three curves to this image")
     p.set_defaults(func=run)
+
+
+def _models(text, known):
+    """The list of models named by ``--tangential`` (checked, in order, without repeats)."""
+    if text == "both":
+        return ["mindlin", "rigid"]
+    if text == "all":
+        return list(known)
+    names = [t.strip() for t in str(text).split(",") if t.strip()]
+    if not names:
+        raise ValueError(f"tangential must name at least one model, got {text!r}")
+    for n in names:
+        if n not in known:
+            raise ValueError(f"tangential must be among {', '.join(known)} (or both, all), got {n!r}")
+    return list(dict.fromkeys(names))
 
 
 def _rows(out):
@@ -65,6 +90,8 @@ def run(args) -> int:
     from .. import oblique as ob
 
     if args.alumina:
+        # the published case fixes the pair: a pair option beside it would be ignored
+        refuse_together(args, ("alumina",), tuple(PAIR_OPTIONS))
         pair = ob.alumina_pair()
         nu = ob.ALUMINA_CASE["poisson_ratio"]
         V = ob.ALUMINA_CASE["velocity"]
@@ -84,8 +111,25 @@ def run(args) -> int:
         nu = 0.3  # the seed's value for both bodies
     angles = parse_values(args.angles, "angles")
     spin = parse_float(args.spin, "spin")
-    models = ["mindlin", "rigid"] if args.tangential == "both" else [args.tangential]
-    results = {m: ob.oblique_impact(pair, V, angles, mu, poisson_ratio=nu, tangential=m, spin=spin) for m in models}
+    models = _models(args.tangential, ob.TANGENTIAL_MODELS)
+    k_lin = None
+    if args.tangential_stiffness is not None:
+        if "lammps_linear_history" not in models:
+            raise ValueError("--tangential-stiffness is used by --tangential lammps_linear_history only")
+        k_lin = parse_float(args.tangential_stiffness, "tangential-stiffness")
+    results = {
+        m: ob.oblique_impact(
+            pair,
+            V,
+            angles,
+            mu,
+            poisson_ratio=nu,
+            tangential=m,
+            spin=spin,
+            **({"tangential_stiffness": k_lin} if m == "lammps_linear_history" and k_lin is not None else {}),
+        )
+        for m in models
+    }
     if args.json:
         doc = {
             "velocity": V,
@@ -117,7 +161,7 @@ def run(args) -> int:
     if args.plot:
         from ..figures.oblique import oblique_data, plot_oblique
 
-        table = oblique_data(None if args.alumina else pair, velocity=V, friction=mu, poisson_ratio=nu)
+        table = oblique_data(None if args.alumina else pair, velocity=V, friction=mu, poisson_ratio=nu, models=models)
         axes = plot_oblique(None if args.alumina else pair, table=table, measured=args.alumina)
         fig = axes[0].figure
         root, ext = os.path.splitext(args.plot)

@@ -16,7 +16,7 @@ from ._jit import jitable
 from .models.thornton_ning_1998_elastic_adhesive import WORK_CONSTANT
 from .models.thornton_ning_2016 import restitution_at
 
-__all__ = ["STICKING_CONSTANT", "sticking_velocity", "adhesive", "restitution"]
+__all__ = ["STICKING_CONSTANT", "sticking_velocity", "adhesive", "restitution", "capture_velocity"]
 
 #: ``14.18439...``: the constant of Thornton & Ning's (1998) sticking velocity, ``V_s = (2 W_s/m*)^(1/2)``
 #: (their eqs. 52, 54, numbered as in the transcription SOURCES.md names). It is twice the JKR work ``W_s`` (in units of ``(G^5 R*^4 / E*^2)^(1/3)``)
@@ -59,3 +59,28 @@ def adhesive(V, e_p, V_s):
 def restitution(V, V_y, V_s):
     """``(e, stuck)`` of an adhesive elastic-plastic impact: the seed's ``e_p(V/V_y)`` (eq. 27) with the loss."""
     return adhesive(V, restitution_at(V, V_y), V_s)
+
+
+@jitable
+def capture_velocity(V_y, V_s):
+    """Largest impact speed [m/s] at which the additive rule (:func:`restitution`) sticks: ``V_s`` up to
+    ``V_y``, else the root of ``e_p(V/V_y) V = V_s`` (eq. 27; ``e_p V`` grows with ``V``), by bisection
+    to rounding. 0 without adhesion."""
+    if not V_s > 0.0:
+        return 0.0
+    if V_s <= V_y:
+        return V_s
+    lo = V_y
+    hi = 2.0 * V_s
+    while restitution_at(hi, V_y) * hi <= V_s:
+        lo = hi
+        hi *= 2.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if not lo < mid < hi:
+            break
+        if restitution_at(mid, V_y) * mid <= V_s:
+            lo = mid
+        else:
+            hi = mid
+    return lo

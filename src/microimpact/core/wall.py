@@ -113,8 +113,8 @@ def wall_impact(vx, vy, vz, nx, ny, nz, wx, wy, wz, d, rho, E, p_y, G, mu, F):
     ``v`` [m/s] and ``omega`` [rad/s] the incoming velocity and spin, ``n`` the wall normal (out of
     the wall; any length > 0), ``d`` [m] and ``rho`` [kg/m^3] the sphere's, ``E = E*`` [Pa],
     ``p_y`` [Pa] (``inf``: never yields), ``G`` [J/m^2] the work of adhesion, ``mu`` the friction
-    coefficient, ``F`` the compliant impulse ratio or ``-1`` for the rigid-body impulse (module
-    docstring). ``regime`` is :data:`NONE`, :data:`ROLLING`, :data:`SLIDING` or :data:`STUCK`. A
+    coefficient, ``F`` the compliant impulse ratio (negative where a law's impulse adds to the slip) or NaN
+    for the rigid-body impulse (module docstring). ``regime`` is :data:`NONE`, :data:`ROLLING`, :data:`SLIDING` or :data:`STUCK`. A
     zero normal gives NaN everywhere (the caller refuses it).
     """
     if nx == 0.0 and ny == 0.0 and nz == 0.0:
@@ -135,7 +135,7 @@ def wall_impact(vx, vy, vz, nx, ny, nz, wx, wy, wz, d, rho, E, p_y, G, mu, F):
     jn = (1.0 + e) * V  # normal impulse / m
     slip = math.sqrt(sx * sx + sy * sy + sz * sz)
     limit = mu * jn  # Coulomb limit mu J_n / m
-    if F < 0.0:  # rigid body: stop the slip if the friction allows it
+    if math.isnan(F):  # rigid body: stop the slip if the friction allows it
         rolling = (2.0 / 7.0) * slip <= limit
         scale = 2.0 / 7.0 if rolling else (limit / slip if slip > 0.0 else 0.0)
     else:  # compliant: |J_t| = F mu J_n along the slip

@@ -20,16 +20,40 @@ from .. import oblique as ob
 from ..core import tangential as tg
 from . import style as _style
 
-__all__ = ["oblique_data", "plot_oblique", "universal_data", "plot_universal"]
+__all__ = [
+    "LABELS",
+    "LAW_MODELS",
+    "oblique_data",
+    "plot_oblique",
+    "plot_tangential_laws",
+    "universal_data",
+    "plot_universal",
+]
 
 _MODELS = ("mindlin", "rigid")
-_LABELS = {"mindlin": "compliant (Mindlin)", "rigid": "rigid body"}
+#: Legend labels of the tangential models.
+LABELS = {
+    "mindlin": "compliant (Mindlin)",
+    "rigid": "rigid body",
+    "lammps_mindlin": "LAMMPS mindlin",
+    "lammps_mindlin_force": "LAMMPS mindlin/force",
+    "lammps_mindlin_rescale": "LAMMPS mindlin_rescale",
+    "lammps_mindlin_rescale_force": "LAMMPS mindlin_rescale/force",
+    "lammps_linear_history": "LAMMPS linear_history",
+    "liggghts_history": "LIGGGHTS history",
+    "di_renzo_di_maio": "Di Renzo & Di Maio 2005",
+    "stronge": "Stronge (linear springs)",
+}
+_LABELS = LABELS
 
 
-def oblique_data(pair=None, *, angle=None, velocity=None, friction=None, poisson_ratio=None, method="table") -> dict:
-    """Columns of :func:`plot_oblique`: both tangential models over the impact angle.
+def oblique_data(
+    pair=None, *, angle=None, velocity=None, friction=None, poisson_ratio=None, method="table", models=_MODELS
+) -> dict:
+    """Columns of :func:`plot_oblique`: the tangential models over the impact angle.
 
-    Defaults are the alumina case (:data:`microimpact.oblique.ALUMINA_CASE`).
+    Defaults are the alumina case (:data:`microimpact.oblique.ALUMINA_CASE`) and the models
+    ``("mindlin", "rigid")``; ``models`` takes any of :data:`microimpact.oblique.TANGENTIAL_MODELS`.
 
     Returns
     -------
@@ -59,7 +83,7 @@ def oblique_data(pair=None, *, angle=None, velocity=None, friction=None, poisson
             "regime",
         )
     }
-    for model in _MODELS:
+    for model in models:
         out = ob.oblique_impact(
             pair, velocity, angle, friction, poisson_ratio=poisson_ratio, tangential=model, method=method
         )
@@ -70,7 +94,7 @@ def oblique_data(pair=None, *, angle=None, velocity=None, friction=None, poisson
     return {k: np.concatenate(v) for k, v in cols.items()}
 
 
-def plot_oblique(pair=None, axes=None, *, measured=True, table=None, **kws):
+def plot_oblique(pair=None, axes=None, *, measured=True, table=None, labels=None, **kws):
     """Tangential restitution, rebound spin and contact rebound angle against the impact angle.
 
     Parameters
@@ -83,6 +107,8 @@ def plot_oblique(pair=None, axes=None, *, measured=True, table=None, **kws):
         Draw the published points (alumina case only).
     table : dict, optional
         The output of :func:`oblique_data` (else computed with ``**kws``).
+    labels : dict, optional
+        Legend labels by model, over :data:`LABELS`.
 
     Returns
     -------
@@ -103,11 +129,13 @@ def plot_oblique(pair=None, axes=None, *, measured=True, table=None, **kws):
         scale = {"rebound_spin": 10.0**-k3}
         if k3:
             keys[1] = ("rebound_spin", rf"rebound spin $\omega'$ [$10^{{{k3}}}$ rad/s]")
-        for i, model in enumerate(_MODELS):
+        models = list(dict.fromkeys(data["model"].tolist()))
+        for i, model in enumerate(models):
             sel = data["model"] == model
             for ax, (k, _) in zip(axes, keys):
                 y = data[k][sel] * scale.get(k, 1.0)
-                ax.plot(data["angle"][sel], y, label=_LABELS[model], **_style.series_style(i))
+                name = {**LABELS, **(labels or {})}.get(model, model)
+                ax.plot(data["angle"][sel], y, label=name, **_style.series_style(i))
         if measured and pair is None:
             for src, mk, lab in (
                 ("experiment", "o", "measured, Kharaz et al. 2001"),
@@ -126,6 +154,34 @@ def plot_oblique(pair=None, axes=None, *, measured=True, table=None, **kws):
         handles, labels = axes[0].get_legend_handles_labels()
         axes[0].figure.legend(handles, labels, loc="outside upper center", ncol=2, columnspacing=0.8, handlelength=2.2)
     return axes
+
+
+#: The tangential laws of :func:`plot_tangential_laws`, in drawing order (``"lammps_mindlin_rescale_force"``
+#: is ``"mindlin"``).
+LAW_MODELS = (
+    "mindlin",
+    "lammps_mindlin",
+    "lammps_mindlin_force",
+    "lammps_mindlin_rescale",
+    "lammps_linear_history",
+    "liggghts_history",
+    "di_renzo_di_maio",
+    "stronge",
+    "rigid",
+)
+
+
+def plot_tangential_laws(axes=None, *, models=LAW_MODELS, **kws):
+    """:func:`plot_oblique` of the alumina case for the DEM codes' tangential laws, with the published points.
+
+    ``"mindlin"`` is drawn as LAMMPS's ``mindlin_rescale/force`` (the same law); ``**kws`` go to
+    :func:`oblique_data`. Returns the three Axes.
+    """
+    data = oblique_data(models=models, **kws)
+    if axes is None:
+        with _style.style() as plt:
+            _, axes = plt.subplots(3, 1, sharex=True, figsize=(6.0, 7.2), layout="constrained")
+    return plot_oblique(None, axes, table=data, labels={"mindlin": "LAMMPS mindlin_rescale/force (= mindlin)"})
 
 
 def universal_data(kappa=None, *, x=(1.0, 0.1, 0.01), psi=None) -> dict:

@@ -68,6 +68,12 @@ as users name it (``model=NAME``). It declares what it is with module-level name
     ``separation_approach``).
 ``separation_approach(E, R, m, p_y, params)`` [``None``: 0]
     Approach [m] at which the contact breaks on unloading (negative for adhesive laws).
+``separation_approach_after(alpha_max, E, R, m, p_y, params)`` [``None``: ``separation_approach``]
+    The same where it depends on the largest approach ``alpha_max`` [m] reached (a law that
+    flattens the contact, whose unloading curve is set at the turning point).
+``sticking_velocity(E, R, m, p_y, params)`` [``None``: none known]
+    The speed [m/s] at and below which the particle sticks (``e = 0``), for a law with ``STICKS``
+    (:meth:`ContactPair.sticking_velocity <microimpact.pair.ContactPair.sticking_velocity>`).
 
 :func:`get` returns the :class:`Model` declaration of a name: the module's names with these
 defaults filled in. The generic machinery (arrays, histories, fitting, calibration, sweeps) asks
@@ -231,6 +237,8 @@ class Model:
     signed_force: Callable | None = None
     ends_at_zero_force: Callable | None = None
     separation_approach: Callable | None = None
+    separation_approach_after: Callable | None = None
+    sticking_velocity: Callable | None = None
     module: Any = None
 
     def __getattr__(self, name):  # the model's own helpers (e.g. a calibration's inverse)
@@ -242,7 +250,7 @@ class Model:
         return f"<model {self.NAME}: {self.TITLE}>"
 
 
-_HOOKS = ("signed_force", "ends_at_zero_force", "separation_approach")
+_HOOKS = ("signed_force", "ends_at_zero_force", "separation_approach", "separation_approach_after", "sticking_velocity")
 
 
 def declare(module) -> Model:

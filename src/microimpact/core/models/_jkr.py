@@ -25,6 +25,7 @@ __all__ = [
     "time_tensile",
     "hertz_impact",
     "impact",
+    "b_of_alpha",
 ]
 
 _X, _W = np.polynomial.legendre.leggauss(48)
@@ -150,3 +151,23 @@ def impact(V, E, R, m, s, b0, bF):
         e = math.sqrt(1.0 - W / K)
         t_un = t_load + time_tensile(bF, b0, K - W, E, R, m, s)
     return pack(V, n, n, 0.0, e, e * V, a_max, 0.0, p_max, n, bm * bm, R, n, n, t_load, t_un)
+
+
+@jitable
+def b_of_alpha(alpha, E, R, s):
+    """``b = a^(1/2)`` on the branch ``b >= b_f`` at approach ``alpha >= alpha_f`` (Newton from above:
+    ``b^4/R - 2 s b - alpha`` is convex and increasing there, so the iterates decrease to the root)."""
+    bf = (0.5 * s * R) ** (1.0 / 3.0)
+    if alpha <= bf**4 / R - 2.0 * s * bf:
+        return bf
+    b = max((R * abs(alpha)) ** 0.25, 2.0 * bf)
+    while b**4 / R - 2.0 * s * b < alpha:
+        b *= 2.0
+    for _ in range(200):
+        f = b**4 / R - 2.0 * s * b - alpha
+        d = 4.0 * b * b * b / R - 2.0 * s
+        step = f / d
+        b -= step
+        if step <= 1e-15 * b:
+            break
+    return max(b, bf)

@@ -80,6 +80,15 @@ def pulloff_approach(E, R, gamma):
 
 
 @jitable
+def sticking_velocity(E, R, m, p_y, params):
+    """Sticking velocity [m/s], ``V_s = (2 W/m*)^(1/2)`` with ``W`` the pull-off work
+    ``WORK_CONSTANT E* R*^(4/3) (pi gamma/E*)^(5/3)``: ``e = 0`` at and below it."""
+    gamma = params[0]
+    W = WORK_CONSTANT * E * R ** (4.0 / 3.0) * (math.pi * gamma / E) ** (5.0 / 3.0)
+    return math.sqrt(2.0 * W / m)
+
+
+@jitable
 def contact_radius(alpha, E, R, gamma):
     """JKR contact radius [m] at approach ``alpha`` (LAMMPS' closed form, ``gran_normal_jkr_contact_radius``)."""
     dR = alpha * R

@@ -60,9 +60,10 @@ Fields this model does not define (NaN): ``yield_velocity``, ``normalized_veloci
 
 Validity: elastic spheres with short-range adhesion (the JKR limit: large, soft, strongly
 adhesive particles); no plasticity (Thornton & Ning's plastic-adhesive unloading, on the
-flattened radius with a larger pull-off force, is not included: for impacts above the yield
-velocity :func:`microimpact.core.adhesion.restitution` combines the seed's plastic loss with
-``V_s``); no damping.
+flattened radius with a larger pull-off force, is
+:mod:`~microimpact.core.models.thornton_ning_1998_adhesive_plastic`; the additive rule of
+:func:`microimpact.core.adhesion.restitution` combines the seed's plastic loss with ``V_s``);
+no damping.
 """
 
 from __future__ import annotations
@@ -72,6 +73,7 @@ import math
 from .._jit import jitable
 from . import Parameter, _jkr, checks
 from ._common import in_bounds, nan_outcome
+from ._jkr import b_of_alpha as _b_of_alpha
 from ._jkr import force_b as _force_b
 from ._jkr import work_integral as _G
 
@@ -108,23 +110,10 @@ def sticking_work(E, R, G):
 
 
 @jitable
-def _b_of_alpha(alpha, E, R, s):
-    """``b = a^(1/2)`` on the branch ``b >= b_f`` at approach ``alpha >= alpha_f`` (Newton from above:
-    ``b^4/R - 2 s b - alpha`` is convex and increasing there, so the iterates decrease to the root)."""
-    bf = (0.5 * s * R) ** (1.0 / 3.0)
-    if alpha <= bf**4 / R - 2.0 * s * bf:
-        return bf
-    b = max((R * abs(alpha)) ** 0.25, 2.0 * bf)
-    while b**4 / R - 2.0 * s * b < alpha:
-        b *= 2.0
-    for _ in range(200):
-        f = b**4 / R - 2.0 * s * b - alpha
-        d = 4.0 * b * b * b / R - 2.0 * s
-        step = f / d
-        b -= step
-        if step <= 1e-15 * b:
-            break
-    return max(b, bf)
+def sticking_velocity(E, R, m, p_y, params):
+    """Sticking velocity [m/s], ``V_s = (2 W/m*)^(1/2)`` with ``W`` the work of the tensile branch
+    (:func:`sticking_work`; Thornton & Ning's eq. 54 with the exact constant 14.184): ``e = 0`` at and below it."""
+    return math.sqrt(2.0 * sticking_work(E, R, params[0]) / m)
 
 
 @jitable

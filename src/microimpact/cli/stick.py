@@ -1,0 +1,163 @@
+"""``microimpact stick``: capture (sticking) velocity against particle diameter for one pair, as a
+table, JSON, CSV and a stick/bounce map."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..io import write_csv, write_json
+from ._common import add_pair_arguments, check_outputs, pair_from_args, parse_float, parse_values
+
+#: Memory per diameter [bytes]: a few result arrays and the text.
+BYTES_PER_DIAMETER = 400
+DEFAULT_DIAMETERS = "5e-8,1e-7,2e-7,5e-7,1e-6,2e-6,5e-6,1e-5,2e-5"
+
+
+def register(sub) -> None:
+    p = sub.add_parser(
+        "stick",
+        help="capture (sticking) velocity against particle diameter: additive rule and Thornton & Ning's whole law",
+        description="The impact speed at and below which a particle sticks, over particle diameters, for "
+        "Thornton & Ning's (1998) additive rule (the seed's plastic loss plus the elastic adhesive one) and "
+        "their whole adhesive elastic-plastic law (thornton_ning_1998_adhesive_plastic), with each law's "
+        "yield velocity. The pair's E*, p_y and density are kept and the particle resized. Diameters [m]: "
+        "numbers, comma lists or ranges start:stop:count.",
+    )
+    p.add_argument("diameters", nargs="*", metavar="D", help=f"particle diameter(s) [m] (default: {DEFAULT_DIAMETERS})")
+    p.add_argument(
+        "--work-of-adhesion",
+        "-G",
+        required=True,
+        metavar="J/M2",
+        help="work of adhesion G [J/m^2] (2x a surface energy)",
+    )
+    p.add_argument(
+        "--law",
+        default="additive,thornton_ning_1998_adhesive_plastic",
+        metavar="NAME[,NAME]",
+        help="additive and/or thornton_ning_1998_adhesive_plastic (default: both)",
+    )
+    add_pair_arguments(p)
+    o = p.add_argument_group("output")
+    o.add_argument("--json", action="store_true", help="print JSON (SI units) instead of a table")
+    o.add_argument("--out", metavar="FILE.csv", help="also write the table to a CSV file")
+    o.add_argument("--plot", metavar="FILE", help="also draw the stick/bounce map to this image (png, pdf, svg)")
+    p.set_defaults(func=run)
+
+
+def _laws(text):
+    from ..stick import ADHESION_LAWS
+
+    names = [t.strip() for t in str(text).split(",") if t.strip()]
+    if not names:
+        raise ValueError(f"--law: no law named in {text!r}")
+    for n in names:
+        if n not in ADHESION_LAWS:
+            raise ValueError(f"--law must name {' and/or '.join(ADHESION_LAWS)}; got {n!r}")
+    if len(set(names)) != len(names):
+        raise ValueError(f"--law names a law more than once: {text!r}")
+    return names
+
+
+def _f(x, fmt="{:.5g}"):
+    return "nan" if math.isnan(x) else ("inf" if math.isinf(x) else fmt.format(x))
+
+
+def format_table(res, laws) -> str:
+    """The capture velocities as an aligned text table, one row per diameter."""
+    header = ["d [um]"]
+    for law in laws:
+        short = "additive" if law == "additive" else "whole law"
+        header += [f"V_s {short} [m/s]", f"V_y {short} [m/s]"]
+    rows = [header]
+    for i, d in enumerate(res["diameter"]):
+        row = [f"{d * 1e6:.4g}"]
+        for law in laws:
+            row += [_f(res[law]["capture_velocity"][i]), _f(res[law]["yield_velocity"][i])]
+        rows.append(row)
+    widths = [max(len(r[k]) for r in rows) for k in range(len(header))]
+    lines = ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in rows]
+    lines.insert(1, "  ".join("-" * w for w in widths))
+    return "\n".join(lines)
+
+
+def run(args) -> int:
+    d = parse_values(args.diameters or [DEFAULT_DIAMETERS], "diameter", bytes_per_value=BYTES_PER_DIAMETER, unique=True)
+    if not np.all(np.isfinite(d) & (d > 0.0)):
+        raise ValueError(f"diameter must be positive and finite, got {float(d[~(np.isfinite(d) & (d > 0.0))][0])!r}")
+    G = parse_float(args.work_of_adhesion, "--work-of-adhesion")
+    if not (G >= 0.0 and math.isfinite(G)):
+        raise ValueError(f"--work-of-adhesion must be non-negative and finite, got {G!r}")
+    laws = _laws(args.law)
+    check_outputs(files=[args.out], figures=[args.plot])
+    if args.out is not None and not str(args.out).lower().endswith(".csv"):
+        raise ValueError(f"--out must end in .csv, got {args.out!r}")
+    pair = pair_from_args(args)
+    if pair.density is None:
+        raise ValueError("stick needs a sphere-on-flat pair with a particle density")
+    from ..stick import capture_velocities, parting_diameter
+
+    res = capture_velocities(pair, d, G, laws)
+    part = parting_diameter(pair, G, 1.1, lo=1e-9, hi=1e-3) if len(laws) == 2 else math.nan
+    if args.plot:
+        from ..figures.stick import plot_stick_map
+        from ..io import save_figure
+
+        lo, hi = float(d.min()), float(d.max())
+        if hi <= lo:
+            lo, hi = lo / 3.0, hi * 3.0
+        axes = plot_stick_map(pair, G, diameter=np.geomspace(lo, hi, 120))
+        import matplotlib.pyplot as plt
+
+        try:
+            save_figure(axes[0].figure, args.plot, dpi=300)
+        finally:
+            plt.close(axes[0].figure)
+    if args.out is not None:
+        cols = [("diameter", "m", res["diameter"])]
+        for law in laws:
+            cols += [
+                (f"capture_velocity_{law}", "m/s", res[law]["capture_velocity"]),
+                (f"yield_velocity_{law}", "m/s", res[law]["yield_velocity"]),
+            ]
+        write_csv(
+            args.out,
+            cols,
+            comments=[f"pair: {pair.label}", f"work_of_adhesion = {G!r} J/m^2", "microimpact stick"],
+        )
+    if args.json:
+        write_json(
+            {
+                "pair": {
+                    "label": pair.label,
+                    "effective_modulus": pair.effective_modulus,
+                    "limiting_pressure": pair.limiting_pressure,
+                    "density": pair.density,
+                },
+                "work_of_adhesion": G,
+                "units": {"diameter": "m", "capture_velocity": "m/s", "yield_velocity": "m/s", "parting_diameter": "m"},
+                "diameter": res["diameter"],
+                "laws": {law: {k: res[law][k] for k in ("capture_velocity", "yield_velocity")} for law in laws},
+                "parting_diameter": part,
+            }
+        )
+    else:
+        print(
+            f"pair: {pair.label}; E* = {pair.effective_modulus:.6g} Pa, p_y = {pair.limiting_pressure:.6g} Pa, "
+            f"density {pair.density:.6g} kg/m^3; G = {G:g} J/m^2"
+        )
+        print("the particle sticks at and below V_s (V_y = 0: the contact yields at any speed)")
+        print()
+        print(format_table(res, laws))
+        if len(laws) == 2:
+            print()
+            print(
+                "the capture velocities part by more than 10 % below d = "
+                + (f"{part:.4g} m" if math.isfinite(part) else "(nowhere between 1 nm and 1 mm)")
+            )
+        written = [str(p) for p in (args.out, args.plot) if p is not None]
+        if written:
+            print(f"wrote {', '.join(written)}")
+    return 0

@@ -1,0 +1,169 @@
+"""Stick or bounce: capture velocities against particle size, and stick/bounce maps.
+
+A particle sticks when its restitution coefficient is 0. Two adhesive laws of Thornton & Ning
+(1998) are compared:
+
+``"additive"``
+    Their additive rule (eq. 78): the seed's plastic loss and the elastic adhesive loss add as
+    energies, ``e^2 = e_p^2 - (V_s/V)^2`` (:func:`microimpact.core.adhesion.restitution`), with the
+    undeformed sphere's sticking velocity ``V_s`` (eq. 54) and the seed's yield velocity.
+``"thornton_ning_1998_adhesive_plastic"``
+    Their whole law (:mod:`~microimpact.core.models.thornton_ning_1998_adhesive_plastic`): yield at
+    the adhesion-reduced limiting pressure and unloading on the flattened radius ``R_p`` with its
+    enhanced pull-off force.
+
+The pair's ``E*``, ``p_y`` and density are kept and its particle resized (a sphere on a flat).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ._validation import check_nonnegative, check_positive
+from .core import adhesion as _adh
+from .core.arrays import evaluate
+from .core.models import thornton_ning_1998_adhesive_plastic as _full
+from .core.models import thornton_ning_2016 as _seed
+
+__all__ = ["ADHESION_LAWS", "FULL_LAW", "capture_velocities", "parting_diameter", "stick_map"]
+
+#: The full law's model name.
+FULL_LAW = "thornton_ning_1998_adhesive_plastic"
+#: The adhesive laws compared, in plotting order.
+ADHESION_LAWS = ("additive", FULL_LAW)
+
+
+def _law(name):
+    if name not in ADHESION_LAWS:
+        raise ValueError(f"law must be one of {', '.join(ADHESION_LAWS)}; got {name!r}")
+    return name
+
+
+def _check_pair(pair):
+    if pair.density is None:
+        raise ValueError("a stick/bounce map needs a pair with a particle density (a sphere on a flat)")
+
+
+def _sizes(pair, diameter):
+    """``(R, m)`` arrays of the pair resized to each diameter [m]."""
+    R = 0.5 * np.asarray(diameter, dtype=float)
+    return R, 4.0 / 3.0 * math.pi * R**3 * pair.density
+
+
+def _one(law, E, R, m, p_y, G):
+    """``(capture velocity, yield velocity)`` [m/s] of one size."""
+    if law == "additive":
+        Vy = _seed.yield_point(E, R, m, p_y)[2]
+        return _adh.capture_velocity(Vy, _adh.sticking_velocity(G, E, R, m)), Vy
+    return _full.sticking_velocity(E, R, m, p_y, (G,)), _full.yield_velocity(E, R, m, p_y, G)
+
+
+def capture_velocities(pair, diameter, work_of_adhesion, laws=ADHESION_LAWS) -> dict:
+    """Capture (sticking) velocity and yield velocity of each law over particle diameters.
+
+    Parameters
+    ----------
+    pair : ContactPair
+        A sphere-on-flat pair (its ``E*``, ``p_y`` and density are kept).
+    diameter : array_like
+        Particle diameters [m], positive and finite.
+    work_of_adhesion : float
+        ``G`` [J/m^2], >= 0.
+    laws : sequence of str
+        Names from :data:`ADHESION_LAWS`.
+
+    Returns
+    -------
+    dict
+        ``diameter`` [m] (1-D), and for each law ``{law: {"capture_velocity": ..., "yield_velocity": ...}}``
+        [m/s]: the particle sticks at and below the capture velocity; the yield velocity of the full
+        law is reduced by adhesion (0 where the contact yields at any speed).
+    """
+    _check_pair(pair)
+    d = np.atleast_1d(check_positive("diameter", diameter)).ravel()
+    G = float(check_nonnegative("work_of_adhesion", work_of_adhesion))
+    laws = [_law(n) for n in laws]
+    E, p_y = pair.effective_modulus, pair.limiting_pressure
+    R, m = _sizes(pair, d)
+    out = {"diameter": d}
+    for law in laws:
+        pairs = [_one(law, E, float(r), float(mm), p_y, G) for r, mm in zip(R, m)]
+        out[law] = {
+            "capture_velocity": np.array([p[0] for p in pairs]),
+            "yield_velocity": np.array([p[1] for p in pairs]),
+        }
+    return out
+
+
+def parting_diameter(pair, work_of_adhesion, ratio=1.1, *, lo=1e-9, hi=1e-3) -> float:
+    """The largest diameter [m] below which the whole law's capture velocity exceeds the additive
+    rule's by more than ``ratio`` (bisection in ``log d`` to 1e-6); NaN if they never part so in
+    ``[lo, hi]``, ``hi`` if they part over all of it.
+
+    Where the sticking velocity is below the yield velocity the two laws capture at the same speed
+    (to the rounding of TN98's 14.18); they part once the contact yields before it can stick.
+    """
+    _check_pair(pair)
+    G = float(check_nonnegative("work_of_adhesion", work_of_adhesion))
+    E, p_y = pair.effective_modulus, pair.limiting_pressure
+
+    def parted(d):
+        R, m = _sizes(pair, d)
+        a = _one("additive", E, float(R), float(m), p_y, G)[0]
+        f = _one(FULL_LAW, E, float(R), float(m), p_y, G)[0]
+        return f > ratio * a
+
+    if not parted(lo):
+        return math.nan
+    if parted(hi):
+        return hi
+    a, b = math.log(lo), math.log(hi)
+    while b - a > 1e-6:
+        mid = 0.5 * (a + b)
+        a, b = (mid, b) if parted(math.exp(mid)) else (a, mid)
+    return math.exp(a)
+
+
+def stick_map(pair, work_of_adhesion, diameter, velocity, laws=ADHESION_LAWS) -> dict:
+    """Restitution over a grid of particle diameters and impact speeds, for each law.
+
+    Parameters
+    ----------
+    pair : ContactPair
+        A sphere-on-flat pair.
+    work_of_adhesion : float
+        ``G`` [J/m^2], >= 0.
+    diameter, velocity : array_like
+        1-D grids [m] and [m/s], positive and finite.
+    laws : sequence of str
+        Names from :data:`ADHESION_LAWS`.
+
+    Returns
+    -------
+    dict
+        ``diameter`` [m], ``velocity`` [m/s] and for each law ``{"restitution": (n_velocity,
+        n_diameter) array, "capture_velocity", "yield_velocity"}`` (the last two over ``diameter``).
+    """
+    _check_pair(pair)
+    d = np.atleast_1d(check_positive("diameter", diameter)).ravel()
+    V = np.atleast_1d(check_positive("velocity", velocity)).ravel()
+    G = float(check_nonnegative("work_of_adhesion", work_of_adhesion))
+    laws = [_law(n) for n in laws]
+    caps = capture_velocities(pair, d, G, laws)
+    R, m = _sizes(pair, d)
+    RR, VV = np.meshgrid(R, V)
+    MM = np.meshgrid(m, V)[0]
+    E = np.full_like(VV, pair.effective_modulus)
+    P = np.full_like(VV, pair.limiting_pressure)
+    out = {"diameter": d, "velocity": V}
+    for law in laws:
+        if law == "additive":
+            Vy = evaluate(_seed.yield_point, E, RR, MM, P, nout=3)[2]
+            Vs = evaluate(_adh.sticking_velocity, np.full_like(VV, G), E, RR, MM)[0]
+            e = evaluate(_adh.restitution, VV, Vy, Vs, nout=2)[0]
+        else:
+            e = evaluate(_full.restitution, VV, E, RR, MM, P, params=(G,))[0]
+        out[law] = {"restitution": np.asarray(e, dtype=float).reshape(VV.shape), **caps[law]}
+    return out

@@ -1,0 +1,189 @@
+"""Capture velocities and stick/bounce maps (:mod:`microimpact.stick`, ``pair.sticking_velocity``,
+the map figure): the numbers are the laws' own, checked against independent evaluations."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import microimpact as mi
+from microimpact import stick
+from microimpact.core import adhesion
+from microimpact.core.models import thornton_ning_1998_adhesive_plastic as ap
+from microimpact.core.models import thornton_ning_2016 as seed
+
+SILICON = mi.ContactPair.paper_case("silicon")
+E, RHO, PY = SILICON.effective_modulus, SILICON.density, SILICON.limiting_pressure
+
+
+def _rm(d):
+    R = 0.5 * d
+    return R, 4.0 / 3.0 * math.pi * R**3 * RHO
+
+
+def test_pair_sticking_velocity_is_the_model_function():
+    assert SILICON.sticking_velocity(work_of_adhesion=0.1) == ap.sticking_velocity(*SILICON._args, (0.1,))
+    d = np.array([[0.1e-6, 0.2e-6], [1e-6, 5e-6]])
+    out = SILICON.sticking_velocity(d, work_of_adhesion=1.0)
+    assert out.shape == d.shape
+    for x, v in zip(d.ravel(), out.ravel()):
+        R, m = _rm(x)
+        assert v == pytest.approx(ap.sticking_velocity(E, R, m, PY, (1.0,)), rel=1e-14)
+    assert isinstance(SILICON.sticking_velocity(1e-6, work_of_adhesion=1.0), float)
+
+
+def test_pair_sticking_velocity_is_where_e_leaves_zero():
+    """For every model with a sticking velocity, and the additive rule: e = 0 just below, > 0 just above."""
+    cases = [
+        ("thornton_ning_1998_adhesive_plastic", {"work_of_adhesion": 1.0}),
+        ("thornton_ning_1998_elastic_adhesive", {"work_of_adhesion": 1.0}),
+        ("jkr_elastic_adhesive", {"surface_energy": 0.5}),
+    ]
+    pair = SILICON.resized(radius=0.25e-6)
+    for name, params in cases:
+        Vs = pair.sticking_velocity(model=name, **params)
+        assert float(pair.impact(Vs * (1.0 - 1e-9), model=name, warn=False, **params).restitution) == 0.0
+        assert float(pair.impact(Vs * (1.0 + 1e-9), model=name, warn=False, **params).restitution) > 0.0
+    Vs = pair.sticking_velocity(model="additive", work_of_adhesion=1.0)
+    Vy, Vs0 = pair.yield_velocity, adhesion.sticking_velocity(1.0, *pair._args[:3])
+    assert adhesion.restitution(Vs * (1.0 - 1e-12), Vy, Vs0)[1] == 1.0
+    assert adhesion.restitution(Vs * (1.0 + 1e-12), Vy, Vs0)[1] == 0.0
+    assert Vs > Vy  # the additive rule's capture beyond yield: e_p(V) V = V_s
+
+
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        ({"model": "luding_adhesive"}, "model 'luding_adhesive' has no sticking velocity; models that have one: "),
+        ({"model": "additive"}, "the additive rule takes one parameter, work_of_adhesion"),
+        ({"model": "additive", "work_of_adhesion": -1.0}, "work_of_adhesion must be non-negative"),
+        ({"work_of_adhesion": -1.0}, "work_of_adhesion must be non-negative and finite, got -1.0"),
+        ({"diameter": [1e-6, -1.0], "work_of_adhesion": 1.0}, "diameter must be positive"),
+        ({"model": "nope"}, "model must be one of"),
+    ],
+)
+def test_pair_sticking_velocity_refuses(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        SILICON.sticking_velocity(**kwargs)
+
+
+def test_diameters_need_a_density():
+    pair = mi.ContactPair(E, 1e-6, 1e-15, PY)
+    assert pair.sticking_velocity(work_of_adhesion=0.1) > 0.0
+    with pytest.raises(ValueError, match="need a pair with a particle density"):
+        pair.sticking_velocity([1e-6], work_of_adhesion=0.1)
+
+
+def test_capture_velocities_and_parting():
+    d = np.geomspace(0.05e-6, 20e-6, 15)
+    res = stick.capture_velocities(SILICON, d, 1.0)
+    add, full = res["additive"], res[stick.FULL_LAW]
+    # the additive rule's yield velocity is the seed's (independent of size on a flat)
+    assert np.allclose(add["yield_velocity"], SILICON.yield_velocity, rtol=1e-13)
+    for x, va, vf, vyf in zip(d, add["capture_velocity"], full["capture_velocity"], full["yield_velocity"]):
+        R, m = _rm(x)
+        assert vf == ap.sticking_velocity(E, R, m, PY, (1.0,))
+        assert vyf == ap.yield_velocity(E, R, m, PY, 1.0)
+        if vf <= vyf:  # sticking before yield: both are TN98's eq. 54 (to the rounding of 14.18)
+            assert vf == pytest.approx(va, rel=2e-4)
+        assert vf >= va * (1.0 - 2e-4)  # the whole law never captures less
+    dp = stick.parting_diameter(SILICON, 1.0, 1.1)
+    R, m = _rm(dp * (1.0 - 1e-5))
+    lo = (
+        ap.sticking_velocity(E, R, m, PY, (1.0,)),
+        adhesion.capture_velocity(SILICON.yield_velocity, adhesion.sticking_velocity(1.0, E, R, m)),
+    )
+    R, m = _rm(dp * (1.0 + 1e-5))
+    hi = (
+        ap.sticking_velocity(E, R, m, PY, (1.0,)),
+        adhesion.capture_velocity(SILICON.yield_velocity, adhesion.sticking_velocity(1.0, E, R, m)),
+    )
+    assert lo[0] > 1.1 * lo[1] and hi[0] <= 1.1 * hi[1]
+    assert round(dp * 1e6, 2) == 1.66
+    assert math.isnan(stick.parting_diameter(SILICON, 1e-4, 1.1, lo=1e-6, hi=1e-4))
+
+
+def test_map_is_the_laws_restitution():
+    d = np.geomspace(0.1e-6, 10e-6, 7)
+    V = np.geomspace(0.5, 300.0, 6)
+    out = stick.stick_map(SILICON, 0.5, d, V)
+    for law in stick.ADHESION_LAWS:
+        assert out[law]["restitution"].shape == (V.size, d.size)
+    for j, x in enumerate(d):
+        R, m = _rm(x)
+        Vy = seed.yield_point(E, R, m, PY)[2]
+        for i, v in enumerate(V):
+            assert out[stick.FULL_LAW]["restitution"][i, j] == ap.outcome(v, E, R, m, PY, (0.5,))[4]
+            e_add = adhesion.restitution(v, Vy, adhesion.sticking_velocity(0.5, E, R, m))[0]
+            assert out["additive"]["restitution"][i, j] == pytest.approx(e_add, rel=1e-14, abs=1e-300)
+            # stuck exactly at and below the capture velocity
+            for law in stick.ADHESION_LAWS:
+                stuck = out[law]["restitution"][i, j] == 0.0
+                assert stuck == (v <= out[law]["capture_velocity"][j])
+
+
+def test_map_figure():
+    pytest.importorskip("matplotlib")
+    from microimpact.figures.stick import plot_stick_map
+
+    d = np.geomspace(0.1e-6, 10e-6, 9)
+    V = np.geomspace(0.5, 300.0, 8)
+    data = stick.stick_map(SILICON, 1.0, d, V)
+    axes = plot_stick_map(SILICON, 1.0, data=data)
+    assert len(axes) == 2
+    line = axes[1].get_lines()[0]  # the capture velocity of the whole law
+    assert np.array_equal(line.get_ydata(), data[stick.FULL_LAW]["capture_velocity"])
+    assert "part by > 10 % below d = 1.66" in axes[0].figure._suptitle.get_text()
+    import matplotlib.pyplot as plt
+
+    plt.close(axes[0].figure)
+
+
+def test_fit_work_of_adhesion_and_py_from_data_with_stuck_points():
+    """e(V) of the whole law with 1 % noise, some of 24 points stuck: G and p_y recovered together,
+    each inside its 95 % interval; the whole law ranks above the elastic adhesive law (no plasticity)."""
+    from microimpact.fitting import fit_restitution, rank_models
+
+    pair = SILICON.resized(radius=0.5e-6)
+    V = np.geomspace(2.0, 150.0, 24)
+    e = np.asarray(pair.impact(V, model=stick.FULL_LAW, work_of_adhesion=0.5, warn=False).restitution)
+    rng = np.random.default_rng(1)
+    e_noisy = np.where(e > 0.0, np.clip(e + rng.normal(0.0, 0.01, e.size), 0.0, None), 0.0)
+    assert int((e_noisy == 0.0).sum()) >= 4
+    fit = fit_restitution(
+        V,
+        e_noisy,
+        pair.replace(limiting_pressure=100e6),
+        params=("limiting_pressure", "work_of_adhesion"),
+        model=stick.FULL_LAW,
+        model_params={"work_of_adhesion": 0.2},
+        sigma=0.01,
+    )
+    for name, truth in (("limiting_pressure", PY), ("work_of_adhesion", 0.5)):
+        lo, hi = fit.conf_int[name]
+        assert lo < truth < hi, (name, lo, truth, hi)
+        assert abs(fit.params[name] / truth - 1.0) < 0.01
+    ranking = rank_models(
+        V,
+        e_noisy,
+        pair,
+        [
+            {
+                "model": stick.FULL_LAW,
+                "params": ("limiting_pressure", "work_of_adhesion"),
+                "model_params": {"work_of_adhesion": 0.2},
+                "label": "whole law",
+            },
+            {
+                "model": "thornton_ning_1998_elastic_adhesive",
+                "params": ("work_of_adhesion",),
+                "model_params": {"work_of_adhesion": 0.2},
+                "label": "elastic adhesive",
+            },
+        ],
+        sigma=0.01,
+        k_folds=2,
+    )
+    assert ranking.best == "whole law"
