@@ -241,7 +241,7 @@ def compare_models(pair=None, velocity=None, models=None, params=None, *, refere
     }
     if calibrated:
         note = (
-            f"{', '.join(calibrated)} calibrated to the seed's model (thornton_ning_2016) at "
+            f"{', '.join(calibrated)} calibrated to the seed's model ({_models.DEFAULT}) at "
             f"V = {ref:.6g} m/s (microimpact.calibrate)"
         )
     else:

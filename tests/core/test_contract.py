@@ -16,12 +16,25 @@ from microimpact.core import models
 from microimpact.core.arrays import evaluate
 from microimpact.core.quantities import OUTCOME_FIELDS
 
-# models written to the spec (a model file still in the old form, 3-tuples and DEFAULTS, has no BOUNDS)
-WITH_PARAMETERS = [n for n in models.available() if models.get(n).PARAMETERS and "BOUNDS" in vars(models.get(n).module)]
+WITH_PARAMETERS = [n for n in models.available() if models.get(n).PARAMETERS]
 values = st.one_of(
     st.sampled_from([0.0, 1.0, 2.0, -1.0, 0.5, 1e3, math.inf, -math.inf, math.nan]),
     st.floats(allow_nan=True, allow_infinity=True),
 )
+
+
+def test_every_model_file_is_written_to_the_spec():
+    """Every model with parameters declares them as :class:`~microimpact.core.models.Parameter` and
+    takes its two checks from :func:`~microimpact.core.models.checks` (no 3-tuples with ``DEFAULTS``
+    beside them, no hand-written second copy of the bounds)."""
+    old = [
+        n
+        for n in WITH_PARAMETERS
+        if "BOUNDS" not in vars(models.get(n).module)
+        or "DEFAULTS" in vars(models.get(n).module)
+        or not all(isinstance(p, models.Parameter) for p in vars(models.get(n).module)["PARAMETERS"])
+    ]
+    assert not old, f"model files not written to the spec: {', '.join(old)}"
 
 
 @pytest.mark.parametrize("name", WITH_PARAMETERS)

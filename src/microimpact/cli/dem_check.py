@@ -48,7 +48,7 @@ def register(sub) -> None:
 
 def _calibration(args, pair, V):
     from ..calibrate import Calibration, calibrate
-    from ..core.models import parameters
+    from ..models import parameters
 
     if args.param:
         known = parameters(args.model)

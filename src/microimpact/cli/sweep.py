@@ -18,7 +18,7 @@ import numpy as np
 
 from .. import models, quantities
 from .._validation import check_positive
-from ..materials import DEFAULT_K, PAPER_CASES, list_materials
+from ..materials import DEFAULT_K, PAPER_CASES, limiting_pressure, list_materials
 from ..pair import ContactPair
 from ..sweep import SWEEP_DIMENSIONS
 from ._common import (
@@ -124,10 +124,10 @@ def _base_pair(args, values):
         )
     pair = ContactPair.paper_case(args.case or "silicon")
     if Y is not None and "limiting_pressure" not in values:
-        pair = pair.replace(limiting_pressure=ContactPair._limiting_pressure(None, k, Y))
+        pair = pair.replace(limiting_pressure=limiting_pressure(Y, k))
     elif k is not None and "limiting_pressure" not in values:
         Y = PAPER_CASES[args.case or "silicon"]["yield_strength"]
-        pair = pair.replace(limiting_pressure=ContactPair._limiting_pressure(None, k, Y))
+        pair = pair.replace(limiting_pressure=limiting_pressure(Y, k))
     return pair
 
 
