@@ -236,19 +236,21 @@ class WholeLawTable:
         return D, outside
 
 
-#: Default grid of :func:`whole_law_table`: ``t = log10(V/V_y)`` from -1 to 3 (161 nodes),
-#: ``u = (V_s/V_y)^(3/5)`` from 0 to ``10^(3/5)`` (``V_s/V_y`` up to 10; 81 nodes).
-WHOLE_LAW_GRID = {"t_min": -1.0, "t_max": 3.0, "n_t": 161, "y_max": 10.0, "n_u": 81}
-
-
 def whole_law_table(*, t_min=-1.0, t_max=3.0, n_t=161, y_max=10.0, n_u=81) -> WholeLawTable:
     """The :class:`WholeLawTable` (built on first use from the model, then cached on disk).
 
     Building evaluates :func:`microimpact.core.adhesion.whole_law_correction` at every node
     (``n_t x n_u`` impacts of the whole law, in closed form; compiled, well under a second);
     the table is kept in the cache folder (:mod:`microimpact.core.cache`), named by its grid and
-    a hash of the sources that compute it. The default grid's error and range: see
-    ``docs/theory`` (section on the wall interaction) and ``tests/test_wall_adhesion.py``.
+    a hash of the sources that compute it.
+
+    The default grid (``V/V_y`` from 0.1 to 1000, ``V_s/V_y`` from 0 to 10, 161 x 81 nodes) against
+    the whole law, measured over 10^6 random points of that range: ``|de|`` at most 3.5e-3 where
+    ``e > 0.3`` and 1.05e-2 where ``e > 0.1``; next to the capture speed, where ``e`` rises from 0
+    like a square root, up to 3.7e-2; ``|d(e^2)|`` at most 2.6e-3; mean ``|de|`` 3e-5; the capture
+    speed within 1.4e-3 (relative) of the model's. Below ``V/V_y = 0.1`` it is exact (the law has
+    not yielded there, or the particle sticks). The test-suite holds these bounds
+    (``tests/test_wall_adhesion.py``).
 
     Parameters
     ----------
@@ -295,7 +297,9 @@ def _whole_law_table(t_min, t_max, n_t, y_max, n_u):
         with cache.locked(cache.cache_dir() / "tables", f"whole_law_table_{key}"):
             values = cache.load_array("whole_law_table", key)
             if values is None or values.shape != (n_u, n_t):
-                values = evaluate(_core.whole_law_correction, 10.0 ** t[None, :], u[:, None] ** (5.0 / 3.0))[0]
+                x = np.array([10.0 ** float(a) for a in t])  # Python's pow: the nodes do not depend on numpy's
+                y = np.array([float(b) ** (5.0 / 3.0) for b in u])
+                values = evaluate(_core.whole_law_correction, x[None, :], y[:, None])[0]
                 values = np.ascontiguousarray(values, dtype=float)
                 cache.store_array("whole_law_table", key, values)
     values.setflags(write=False)

@@ -56,9 +56,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._validation import check_nonnegative, check_positive
+from .adhesion import ADHESION_RULES, whole_law_table
 from .core import wall as _wall
 from .core.arrays import evaluate
-from .adhesion import ADHESION_RULES, whole_law_table
 from .core.tangential_laws import ALL_LAWS as LAWS
 from .io import check_memory
 from .materials import DEFAULT_K, Material, get_material

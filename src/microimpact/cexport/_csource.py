@@ -474,7 +474,7 @@ int microimpact_wall_interaction(const double v_in[3], const double n_in[3], con
 """
 
 
-def whole_law_table_c_source(table=None) -> str:
+def _table_c_source(table=None) -> str:
     """C99 text of the whole law's table and its lookup, ``microimpact_tn98_correction(x, y, outside)``.
 
     ``x = V/V_y``, ``y = V_s/V_y``; returns ``D`` (:class:`~microimpact.adhesion.WholeLawTable`),
@@ -538,7 +538,7 @@ def _whole_law_source(text):
     text = text.replace("#include <math.h>\n", "#include <math.h>\n#include <stddef.h>\n", 1)
     anchor = "int microimpact_wall_interaction_flagged("
     head, tail = text.split(anchor, 1)
-    return head + whole_law_table_c_source() + anchor + tail + _WHOLE_LAW_WRAPPER
+    return head + _table_c_source() + anchor + tail + _WHOLE_LAW_WRAPPER
 
 
 def write_c_source(path, pair=None, **kwargs):
