@@ -140,11 +140,13 @@ from . import quantities
 from ._optional import require
 from ._validation import is_number_text
 from .core.models import DEFAULT as _DEFAULT_MODEL
+from .core.models import Parameter, declare
 from .impact import outcome_arrays
 from .materials import DEFAULT_K, sphere_mass
 from .pair import ContactPair
 
 __all__ = [
+    "ADDITIVE_RULE",
     "FAR_ABOVE_ONE",
     "FREE_PARAMETERS",
     "INTERVALS",
@@ -412,8 +414,39 @@ def available_models() -> list[str]:
 _MODULES: dict = {}
 
 
+class _AdditiveRule:
+    """Thornton & Ning's (1998) additive rule as a candidate of :func:`fit_restitution` and
+    :func:`rank_models` (:data:`ADDITIVE_RULE`): the seed's ``e_p(V/V_y)`` (eq. 27) with the adhesive
+    loss ``e^2 = e_p^2 - (V_s/V)^2``, stuck where ``e_p V <= V_s``
+    (:func:`~microimpact.adhesion.adhesive_restitution`; ``V_s`` their eq. 54). It is a rule for
+    ``e``, not a model of the zoo (no force law, no contact times): it is fitted and ranked only.
+    Declared to the model contract (:func:`microimpact.core.models.declare`) for its parameter spec."""
+
+    NAME = "additive"
+    TITLE = "Thornton & Ning (1998) additive rule: e^2 = e_p^2 - (V_s/V)^2 (seed eq. 27, TN98 eq. 54)"
+    PARAMETERS = (
+        Parameter("work_of_adhesion", "J/m^2", "G >= 0, the work of adhesion (TN98's interface energy)", low=0.0),
+    )
+    STICKS = True
+    outcome = None  # e alone, by :func:`microimpact.adhesion.adhesive_restitution` (see _outcome_of)
+    force = None
+
+
+_ADDITIVE = declare(_AdditiveRule)
+
+
+#: The name under which :func:`fit_restitution` and :func:`rank_models` take Thornton & Ning's
+#: additive rule (``e^2 = e_p^2 - (V_s/V)^2``; free parameters ``limiting_pressure`` and
+#: ``work_of_adhesion`` like the whole law's), to rank it against the whole law on data with stuck
+#: points.
+ADDITIVE_RULE = _AdditiveRule.NAME
+
+
 def _model_module(name):
-    """The :class:`~microimpact.core.models.Model` declaration of ``name`` (ValueError naming it if unknown)."""
+    """The :class:`~microimpact.core.models.Model` declaration of ``name`` (ValueError naming it if
+    unknown); the additive rule's for :data:`ADDITIVE_RULE`."""
+    if name == ADDITIVE_RULE:
+        return _ADDITIVE
     if not isinstance(name, str):
         raise ValueError(f"model must be a model's name (one of {', '.join(available_models())}), got {name!r}")
     zoo = _zoo()
@@ -428,6 +461,8 @@ def _model_module(name):
 def _fast_restitution(name):
     """The face's ``e(V, V_y)`` of a model whose ``e`` depends on the pair only through ``V_y`` (the
     seed's eq. 27), else None (:func:`microimpact.models.face`)."""
+    if name == ADDITIVE_RULE:
+        return None
     from .models import face
 
     return face(name).restitution_of_yield_velocity
@@ -445,6 +480,13 @@ def _outcome_of(model_name, pair, params, V, fields=("restitution", "rebound_vel
     restitution alone of a model whose face gives ``e(V, V_y)`` (the seed's eq. 27) from that.
     """
     V = np.asarray(V, dtype=float)
+    if model_name == ADDITIVE_RULE:  # e alone: the rule has no contact times
+        from .adhesion import adhesive_restitution, sticking_velocity
+
+        Vs = sticking_velocity(float(params[0]), pair.effective_modulus, pair.effective_radius, pair.effective_mass)
+        e = adhesive_restitution(V, pair.yield_velocity, Vs)
+        out = {"restitution": e, "rebound_velocity": e * V, "contact_time": np.full(V.shape, math.nan)}
+        return {f: out[f] for f in fields}
     fast = _fast_restitution(model_name)
     if fields == ("restitution",) and fast is not None:
         return {"restitution": fast(V, pair.yield_velocity)}
@@ -1184,7 +1226,8 @@ def fit_restitution(
         ``"yield_velocity"``; the seed's data determine ``V_y`` only) and any of the
         model's own parameters.
     model : str
-        Name of the model (:func:`available_models`); default the seed.
+        Name of the model (:func:`available_models`), or :data:`ADDITIVE_RULE` (Thornton & Ning's
+        additive rule, ``e`` only: its predictions have no contact time); default the seed.
     model_params : dict, optional
         Values of the model's own parameters (start values of the free ones).
     loss : str
@@ -1695,7 +1738,9 @@ def rank_models(
     pair : ContactPair
         The known pair.
     models : sequence
-        Each a model name (free parameter ``limiting_pressure``), ``"name:a+b"`` (free
+        Each a model name (free parameter ``limiting_pressure``; :data:`ADDITIVE_RULE`,
+        ``"additive"``, is Thornton & Ning's additive rule, to rank against their whole law on
+        data with stuck points), ``"name:a+b"`` (free
         parameters ``a`` and ``b``), ``"name:none"`` (nothing fitted: the pair and
         model parameters as given), ``(name, free)`` or a dict with keys ``model``,
         ``params``, ``model_params``, ``label``.

@@ -438,3 +438,31 @@ def force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
 def signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
     """:func:`force` (the contact's end is the snap-off approach, not a zero of the force, with adhesion)."""
     return force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params)
+
+
+@jitable
+def rebound_energy_ratio(V, E, R, m, p_y, params):
+    """``W_r/K`` [-], signed: the work of the unloading curve from the maximum approach to its snap-off
+    (eqs. 73, 76, 77) over the impact energy ``K = m* V^2/2``.
+
+    Where it is positive it is ``e^2`` (:func:`restitution` is its square root: the same operations,
+    the same bits); where it is not, the particle sticks, and the value says how far it is from
+    bouncing. That is what the wall interaction's table of this law interpolates
+    (:func:`microimpact.core.adhesion.whole_law_correction`): a quantity smooth across the sticking
+    velocity, where ``e`` itself rises like a square root. NaN for ``V <= 0`` or bad parameters.
+    """
+    G = params[0]
+    if not (G >= 0.0 and G < math.inf and V > 0.0 and V < math.inf and p_y > 0.0):
+        return math.nan
+    if G == 0.0:
+        e = _seed.restitution_at(V, _seed.yield_point(E, R, m, p_y)[2])
+        return e * e
+    s, b0, by, bY, K, PY = yield_constants(E, R, p_y, G)
+    Kin = 0.5 * m * V * V
+    KY = math.inf if bY == math.inf else (bY - b0) * _wd(bY, b0, E, R, s)
+    if Kin <= KY:  # elastic adhesive: 1 - W/K, W the work of the tensile branch (as restitution)
+        bF = (0.5 * R * s) ** (1.0 / 3.0)
+        W = _jkr.work_integral(bF, E, R, s) - _jkr.work_integral(b0, E, R, s)
+        return 1.0 - W / Kin
+    bs = _plastic_turning_point(Kin - KY, E, R, p_y, s, bY, PY, K)
+    return _rebound_work(bs, E, R, p_y, s, bY, PY, K)[0] / Kin
