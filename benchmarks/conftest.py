@@ -25,6 +25,8 @@ are formed from those best times and printed as one table, and written as JSON w
 10. ``c_wall``: the exported C wall function per call in a C loop, against the loop only copying.
 11. ``warm_start``: what needs the oblique universal table, in a new process with the cache warm,
     against ``python -c "import numpy"`` run in turn with it.
+12. ``fit_models``: a fit of each model against the seed's fit on the same data, as the library
+    runs it (``e`` alone) and with ``e`` from the full outcome (before issue 25).
 
 No benchmark asserts a timing; accuracies (closed form against ODE, every path against the
 reference restitution) are asserted.
@@ -64,6 +66,7 @@ TARGETS = {
     "c_wall": "the exported C wall function <= 55 ns per call",
     "warm_start": "oblique --alumina, a first compliant wall_interaction, export --tangential mindlin: "
     "each <= 0.3 s in a new process with the cache warm",
+    "fit_models": "any model's fit <= 5x the seed's on the same data (ranking computes only e)",
 }
 
 TITLES = {
@@ -78,6 +81,7 @@ TITLES = {
     "startup": "start-up of a new process",
     "c_wall": "the exported C wall function, in a C loop",
     "warm_start": "warm start of what needs the oblique universal table",
+    "fit_models": "a fit of each model vs a fit of the seed (fit --models ranking)",
 }
 
 ORDER = list(TARGETS)
@@ -354,6 +358,35 @@ def _entry(key, rec: Record) -> dict | None:
         slowest = max(subjects, key=subjects.get)
         met = bool(subjects[slowest] <= 0.3)
         headline = f"slowest {_fmt_t(subjects[slowest])} ({slowest})"
+    elif key == "fit_models" and "thornton_ning_2016" in t and len(t) > 1:
+        from test_fit_models import BEFORE
+
+        seed = t["thornton_ning_2016"]
+        rows.append(("seed (thornton_ning_2016), p_y free", _fmt_t(seed)))
+        ratios, before = {}, {}
+        for variant, s in t.items():
+            if variant == "thornton_ning_2016" or variant.endswith(BEFORE):
+                continue
+            ratios[variant] = s / seed
+            b = t.get(variant + BEFORE)
+            if b is not None:
+                before[variant] = b / seed
+            was = f" (before: {before[variant]:.3g}x)" if variant in before else ""
+            rows.append((variant, f"{_fmt_t(s)} = {s / seed:.3g}x the seed{was}"))
+        m["ratios"] = ratios
+        m["ratios_before"] = before
+        if ratios:
+            worst = max(ratios, key=ratios.get)
+            over = sorted(k for k, r in ratios.items() if r > 5.0)
+            met = not over
+            headline = f"worst {ratios[worst]:.3g}x the seed ({worst})"
+            if "liggghts_thornton_ning" in ratios:
+                was = before.get("liggghts_thornton_ning")
+                headline += f"; LIGGGHTS law {ratios['liggghts_thornton_ning']:.3g}x" + (
+                    f" (was {was:.3g}x)" if was else ""
+                )
+            if over:
+                headline += f"; {len(over)} over 5x"
     elif key == "paper" and "end to end" in t:
         s = t["end to end"]
         met = bool(s < 20.0)

@@ -141,7 +141,7 @@ from ._optional import require
 from ._validation import is_number_text
 from .core.models import DEFAULT as _DEFAULT_MODEL
 from .core.models import Parameter, declare
-from .impact import outcome_arrays
+from .impact import outcome_arrays, restitution_arrays
 from .materials import DEFAULT_K, sphere_mass
 from .pair import ContactPair
 
@@ -477,7 +477,8 @@ def _outcome_of(model_name, pair, params, V, fields=("restitution", "rebound_vel
 
     The model's scalar ``outcome(V, E, R, m, p_y, params)`` over the array
     (:func:`microimpact.impact.outcome_arrays`: compiled loops for a ``@jitable`` outcome); the
-    restitution alone of a model whose face gives ``e(V, V_y)`` (the seed's eq. 27) from that.
+    restitution alone of a model whose face gives ``e(V, V_y)`` (the seed's eq. 27) from that, else
+    by the model's ``restitution_only`` hook where it has one (:func:`microimpact.impact.restitution_arrays`).
     """
     V = np.asarray(V, dtype=float)
     if model_name == ADDITIVE_RULE:  # e alone: the rule has no contact times
@@ -495,7 +496,10 @@ def _outcome_of(model_name, pair, params, V, fields=("restitution", "rebound_vel
         np.asarray(float(x))
         for x in (pair.effective_modulus, pair.effective_radius, pair.effective_mass, pair.limiting_pressure)
     )
-    out = outcome_arrays(module, V.ravel(), E, R, m, p_y, tuple(float(x) for x in params))
+    params = tuple(float(x) for x in params)
+    if fields == ("restitution",):  # what fitting and ranking compare: e alone (the model's hook)
+        return {"restitution": np.asarray(restitution_arrays(module, V.ravel(), E, R, m, p_y, params)).reshape(V.shape)}
+    out = outcome_arrays(module, V.ravel(), E, R, m, p_y, params)
     return {f: np.asarray(out[f], dtype=float).reshape(V.shape) for f in fields}
 
 

@@ -355,3 +355,15 @@ def outcome_arrays(model, V, E, R, m, p_y, params) -> dict:
     for name in ("elastic", "large_strain"):
         out[name] = out[name] == 1.0
     return out
+
+
+def restitution_arrays(model, V, E, R, m, p_y, params) -> np.ndarray:
+    """The field ``restitution`` of :func:`outcome_arrays` alone, bit for bit, as an ndarray [-].
+
+    Through the model's ``restitution_only`` hook where it declares one (a compiled, or for small
+    arrays Python, loop over that scalar function, as for the outcome), which skips what only
+    the other fields need (a contact time's quadrature); else the outcome's field.
+    """
+    if model.restitution_only is None:
+        return outcome_arrays(model, V, E, R, m, p_y, params)["restitution"]
+    return evaluate(model.restitution_only, V, E, R, m, p_y, params=tuple(params))[0]

@@ -39,6 +39,7 @@ BENCHMARKS = [
     "startup",
     "c_wall",
     "warm_start",
+    "fit_models",
 ]
 #: The file of the suite that holds each.
 FILES = {
@@ -53,6 +54,7 @@ FILES = {
     "startup": "test_startup.py",
     "c_wall": "test_c_wall.py",
     "warm_start": "test_warm_start.py",
+    "fit_models": "test_fit_models.py",
 }
 
 
@@ -195,7 +197,7 @@ def register(sub) -> None:
     size = p.add_mutually_exclusive_group()
     size.add_argument("--quick", action="store_true", help="sizes 100x smaller (about a minute)")
     size.add_argument("--tiny", action="store_true", help="smallest sizes, no paper run (a smoke test)")
-    p.add_argument("--only", default=None, metavar="N,N", help="comma-separated benchmark numbers (1-11); default all")
+    p.add_argument("--only", default=None, metavar="N,N", help="comma-separated benchmark numbers (1-12); default all")
     p.add_argument(
         "--json",
         default="microimpact-bench.json",

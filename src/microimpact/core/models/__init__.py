@@ -71,6 +71,13 @@ as users name it (``model=NAME``). It declares what it is with module-level name
 ``separation_approach_after(alpha_max, E, R, m, p_y, params)`` [``None``: ``separation_approach``]
     The same where it depends on the largest approach ``alpha_max`` [m] reached (a law that
     flattens the contact, whose unloading curve is set at the turning point).
+``restitution_only(V, E, R, m, p_y, params)`` [``None``: field ``restitution`` of ``outcome``]
+    Marked ``@jitable``; the restitution coefficient ``e`` [-] alone, bit for bit the field
+    ``restitution`` of :func:`outcome` (same arguments), for a law whose ``e`` does not need what
+    costs most in its outcome (a contact time by quadrature). Fitting and ranking compare only
+    ``e`` and call this (:func:`microimpact.impact.restitution_arrays`). Written from the model's
+    own functions that :func:`outcome` calls, never a second copy of a formula. (Not
+    ``restitution``: the seed's module has a function of that name, ``e`` of ``V/V_y``.)
 ``sticking_velocity(E, R, m, p_y, params)`` [``None``: none known]
     The speed [m/s] at and below which the particle sticks (``e = 0``), for a law with ``STICKS``
     (:meth:`ContactPair.sticking_velocity <microimpact.pair.ContactPair.sticking_velocity>`).
@@ -239,6 +246,7 @@ class Model:
     separation_approach: Callable | None = None
     separation_approach_after: Callable | None = None
     sticking_velocity: Callable | None = None
+    restitution_only: Callable | None = None
     module: Any = None
 
     def __getattr__(self, name):  # the model's own helpers (e.g. a calibration's inverse)
@@ -250,7 +258,14 @@ class Model:
         return f"<model {self.NAME}: {self.TITLE}>"
 
 
-_HOOKS = ("signed_force", "ends_at_zero_force", "separation_approach", "separation_approach_after", "sticking_velocity")
+_HOOKS = (
+    "signed_force",
+    "ends_at_zero_force",
+    "separation_approach",
+    "separation_approach_after",
+    "sticking_velocity",
+    "restitution_only",
+)
 
 
 def declare(module) -> Model:

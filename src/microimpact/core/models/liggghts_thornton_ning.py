@@ -210,6 +210,33 @@ def unloading_integral(c, h):
 
 
 @jitable
+def plastic_rebound(v):
+    """The plastic impact at ``v = V/V_y > 1`` (finite): ``(A, P^*/P_y, A^(3/2), D, e)`` with
+    ``A = alpha^*/alpha_y`` (seed eq. 22), ``D = x_p^(3/2) = A^(3/2) - P^*/P_y`` and the
+    restitution ``e`` from the work the LIGGGHTS unloading curve returns (module docstring)."""
+    A, Phat = seed.plastic_stage(v, v - 1.0)[:2]  # alpha*/alpha_y (seed eq. 22), P*/P_y
+    A15 = A * math.sqrt(A)
+    D = max(A15 - Phat, 0.0)  # x_p^(3/2)
+    W = 0.4 * A * A15 - D * A + 0.6 * D ** (5.0 / 3.0)  # returned work / (P_y alpha_y)
+    e = math.sqrt(max(W, 0.0) / 0.4) / v
+    return A, Phat, A15, D, e
+
+
+@jitable
+def restitution_only(V, E, R, m, p_y, params):
+    """Restitution ``e`` [-] alone of :func:`outcome` (its field ``restitution``, bit for bit),
+    without the contact times' quadrature: what fitting compares (the contract's hook).
+    Arguments as :func:`outcome`."""
+    Vy = seed.yield_point(E, R, m, p_y)[2]
+    v = seed.normalized_velocity(V, Vy)
+    if v <= 1.0:
+        return 1.0
+    if v == math.inf:
+        return 0.0
+    return plastic_rebound(v)[4]
+
+
+@jitable
 def outcome(V, E, R, m, p_y, params):
     """Outcome of one impact under the LIGGGHTS ``thornton_ning`` law (see the module docstring).
 
@@ -247,11 +274,7 @@ def outcome(V, E, R, m, p_y, params):
         e = 0.0
         max_approach = max_force = plastic = inf
     else:
-        A, Phat = seed.plastic_stage(v, v - 1.0)[:2]  # alpha*/alpha_y (seed eq. 22), P*/P_y
-        A15 = A * math.sqrt(A)
-        D = max(A15 - Phat, 0.0)  # x_p^(3/2)
-        W = 0.4 * A * A15 - D * A + 0.6 * D ** (5.0 / 3.0)  # returned work / (P_y alpha_y)
-        e = math.sqrt(max(W, 0.0) / 0.4) / v
+        A, Phat, A15, D, e = plastic_rebound(v)
         max_approach = a_y * A
         max_force = P_y * Phat
         plastic = a_y * D ** (2.0 / 3.0)

@@ -335,6 +335,10 @@ def restitution(V, E, R, m, p_y, params):
     return 0.0 if Wr <= 0.0 else math.sqrt(Wr / Kin)
 
 
+#: The contract's hook (:mod:`microimpact.core.models`): fitting and ranking compare ``e`` alone.
+restitution_only = restitution
+
+
 @jitable
 def sticking_velocity(E, R, m, p_y, params):
     """Sticking (capture) velocity [m/s]: ``e = 0`` at and below it, ``e > 0`` above.
