@@ -11,8 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import quad
 
-from microimpact.core import adhesion
-from microimpact.core import models
+from microimpact.core import adhesion, models
 from microimpact.core.models import _jkr
 from microimpact.core.models import dmt_elastic_adhesive as dmt
 from microimpact.core.quantities import OUTCOME_FIELDS
