@@ -20,6 +20,7 @@ from ._validation import check_nonnegative, check_positive
 from .core import adhesion as _core
 from .core.adhesion import STICKING_CONSTANT  # noqa: F401  (its old home; the core's is the one)
 from .core.arrays import evaluate
+from .core.models import thornton_ning_1998_adhesive_plastic as _whole_law
 
 __all__ = [
     "work_of_adhesion",
@@ -32,7 +33,7 @@ __all__ = [
 ]
 
 #: The whole adhesive elastic-plastic law of Thornton & Ning (1998), by its model name.
-WHOLE_LAW = "thornton_ning_1998_adhesive_plastic"
+WHOLE_LAW = _whole_law.NAME
 #: What ``adhesion=`` of :func:`~microimpact.wall.wall_interaction` and the C export accept:
 #: the additive rule (:func:`adhesive_restitution`, the default) or the whole law (through
 #: :func:`whole_law_table`).
