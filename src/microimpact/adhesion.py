@@ -32,7 +32,8 @@ __all__ = [
     "whole_law_table",
 ]
 
-#: The whole adhesive elastic-plastic law of Thornton & Ning (1998), by its model name.
+#: The whole adhesive elastic-plastic law of Thornton & Ning (1998), by its model name
+#: (:mod:`~microimpact.core.models.thornton_ning_1998_adhesive_plastic`).
 WHOLE_LAW = _whole_law.NAME
 #: What ``adhesion=`` of :func:`~microimpact.wall.wall_interaction` and the C export accept:
 #: the additive rule (:func:`adhesive_restitution`, the default) or the whole law (through
