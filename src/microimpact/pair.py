@@ -912,7 +912,7 @@ class ContactPair:
                 LargeStrainWarning,
                 stacklevel=2,
             )
-        limit = getattr(mod, "ADHESION_LIMIT", None)
+        limit = mod.ADHESION_LIMIT
         if limit is not None:
             mu, outside = self._adhesion_range(mod, limit, p, _adhesion.EQUILIBRIUM_SEPARATION)
             res.__dict__["tabor_parameter"] = mu
@@ -966,12 +966,10 @@ class ContactPair:
         ('JKR', 8.09, True)
         """
         mod = models.get(model)
-        limit = getattr(mod, "ADHESION_LIMIT", None)
+        limit = mod.ADHESION_LIMIT
         if limit is None:
             raise ValueError(f"model {model!r} has no adhesion limit (it is not a JKR or DMT adhesive law)")
         p = models.resolve_params(mod, params)
-        if hasattr(mod, "validate"):
-            p = mod.validate(p)
         z0 = _adhesion.EQUILIBRIUM_SEPARATION if equilibrium_separation is None else equilibrium_separation
         z0 = float(check_positive("equilibrium_separation", z0, scalar=True))
         if not math.isfinite(z0):

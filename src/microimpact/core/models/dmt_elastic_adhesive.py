@@ -51,23 +51,17 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
-from ._common import as_floats, dem_outcome, nan_outcome
+from . import Parameter, checks
+from ._common import dem_outcome, in_bounds, nan_outcome
 from ._jkr import GW, GX
 
 NAME = "dmt_elastic_adhesive"
 TITLE = "DMT elastic adhesion: Hertz minus 4 pi gamma R while in contact (LAMMPS granular dmt)"
-PARAMETERS = (("surface_energy", "J/m^2", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)"),)
-DEFAULTS = (math.nan,)
+LABEL = "DMT adhesive"
 #: The particle never sticks (the law is conservative: ``e = 1``).
 STICKS = False
-
-
-def validate(params):
-    """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
-    (g,) = as_floats(PARAMETERS, params)
-    if not (g >= 0.0 and math.isfinite(g)):
-        raise ValueError(f"surface_energy must be non-negative and finite, got {g!r}")
-    return (g,)
+PARAMETERS = (Parameter("surface_energy", "J/m^2", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)", low=0.0),)
+BOUNDS, validate = checks(NAME, PARAMETERS)
 
 
 @jitable
@@ -132,11 +126,9 @@ def loading_time(bm, K, k, Fc, m):
 @jitable
 def outcome(V, E, R, m, p_y, params):
     """Outcome of one impact (see the module docstring; ``p_y`` unused)."""
-    if len(params) != 1:
+    if not in_bounds(params, BOUNDS) or not (V >= 0.0 and V < math.inf):
         return nan_outcome(V)
     gamma = params[0]
-    if not (gamma >= 0.0 and gamma < math.inf and V >= 0.0 and V < math.inf):
-        return nan_outcome(V)
     k = 4.0 / 3.0 * E * math.sqrt(R)
     Fc = pulloff_force(R, gamma)
     if V == 0.0:
