@@ -189,28 +189,58 @@ def test_c_export_of_a_law_equals_wall_interaction(tmp_path, law):
     assert np.max(np.abs(got[:, 4:7] - ref.spin) / wscale) < 1e-12
 
 
-def test_wall_interaction_runs_each_law_through_its_table():
-    """wall_interaction(tangential=law) is oblique_impact's table path of the law (the same impact in 3-D)."""
+def _wall_alumina(angles, **kw):
     from microimpact.wall import wall_interaction
 
-    ang = np.array([2.0, 8.0, 20.0, 45.0])
-    rad = np.radians(ang)
+    rad = np.radians(angles)
     vel = np.stack([3.9 * np.sin(rad), 0 * rad, -3.9 * np.cos(rad)], 1)
-    for law in ("lammps_mindlin", "lammps_mindlin_force", "lammps_mindlin_rescale", "di_renzo_di_maio"):
-        w = wall_interaction(
-            vel,
-            [0, 0, 1],
-            5e-3,
-            4000.0,
-            effective_modulus=PAIR.effective_modulus,
-            limiting_pressure=np.inf,
-            friction=0.092,
-            tangential=law,
-            poisson_ratio=0.23,
-        )
-        o = ob.oblique_impact(PAIR, 3.9, ang, 0.092, poisson_ratio=0.23, tangential=law)
-        np.testing.assert_allclose(w.velocity[:, 0] / vel[:, 0], o.tangential_restitution, rtol=0, atol=1e-12)
-        np.testing.assert_allclose(-w.spin[:, 1], o.rebound_spin, rtol=1e-10)
+    w = wall_interaction(
+        vel,
+        [0, 0, 1],
+        2 * CASE["radius"],
+        CASE["density"],
+        effective_modulus=PAIR.effective_modulus,
+        limiting_pressure=np.inf,
+        friction=CASE["friction"],
+        **kw,
+    )
+    return w, vel
+
+
+WALL_ANGLES = np.array([2.0, 8.0, 20.0, 45.0, 80.0])
+
+
+@pytest.mark.parametrize("law", [m for m in ob.TANGENTIAL_MODELS if m != "liggghts_history"])
+def test_wall_interaction_takes_each_law_by_name_as_oblique_impact_does(law):
+    """wall_interaction(tangential=law) is oblique_impact's table path of the same law (the same impact
+    in 3-D: e_t to 1e-12, spin to 1e-10), for every name oblique_impact knows; the default is "rigid"
+    bit for bit."""
+    kw = {} if law == "rigid" else {"poisson_ratio": CASE["poisson_ratio"]}
+    w, vel = _wall_alumina(WALL_ANGLES, tangential=law, **kw)
+    o = ob.oblique_impact(PAIR, 3.9, WALL_ANGLES, CASE["friction"], poisson_ratio=0.23, tangential=law)
+    np.testing.assert_allclose(w.velocity[:, 0] / vel[:, 0], o.tangential_restitution, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(-w.spin[:, 1], o.rebound_spin, rtol=1e-10)
+    np.testing.assert_allclose(w.velocity[:, 2] / -vel[:, 2], o.normal_restitution, rtol=1e-14)
+    if law == "rigid":
+        d, _ = _wall_alumina(WALL_ANGLES)
+        assert np.array_equal(d.velocity, w.velocity) and np.array_equal(d.spin, w.spin)
+        assert np.array_equal(d.rolling, w.rolling)
+
+
+def test_wall_interaction_liggghts_history_takes_the_arm_as_r():
+    """wall_interaction's liggghts_history is LIGGGHTS's spring with the arm R (the lammps_mindlin table):
+    against oblique_impact's exact arm R - delta/2 it is off by at most delta_max/R in e_t and
+    delta_max/R x V/R in spin (1.9e-3 and 0.8 rad/s measured for the alumina case)."""
+    w, vel = _wall_alumina(WALL_ANGLES, tangential="liggghts_history", poisson_ratio=0.23)
+    lm, _ = _wall_alumina(WALL_ANGLES, tangential="lammps_mindlin", poisson_ratio=0.23)
+    assert np.array_equal(w.velocity, lm.velocity) and np.array_equal(w.spin, lm.spin)
+    o = ob.oblique_impact(PAIR, 3.9, WALL_ANGLES, CASE["friction"], poisson_ratio=0.23, tangential="liggghts_history")
+    eps = float(ob.elastic_max_approach(3.9, PAIR.effective_modulus, PAIR.effective_radius, PAIR.effective_mass))
+    eps /= CASE["radius"]
+    d_et = np.abs(w.velocity[:, 0] / vel[:, 0] - o.tangential_restitution)
+    d_spin = np.abs(-w.spin[:, 1] - o.rebound_spin)
+    assert d_et.max() < eps and d_spin.max() < eps * 3.9 / CASE["radius"]
+    assert d_et.max() > 0.1 * eps  # the arm does matter: the test would see a wrong arm
 
 
 def test_cli_oblique_several_laws(tmp_path, capsys):
