@@ -136,13 +136,11 @@ def test_tangential_table_is_compare_tangential(capsys):
     laws = ["mindlin", "lammps_mindlin", "stronge", "rigid"]
     assert main(["compare", "--tangential", ",".join(laws), "--alumina", "--angles", "5,20,45"]) == 0
     out = capsys.readouterr().out
-    assert "kappa = 4G*/E* = 0.870056" in out
+    assert "kappa = 4G*/E* = 0.875415" in out  # alumina on glass, both materials' G*
     rows = [line.split() for line in out.splitlines() if line.split() and line.split()[0] in laws]
     assert [r[0] for r in rows] == [n for n in laws for _ in range(3)]
     c = ob.ALUMINA_CASE
-    ds = compare_tangential(
-        ob.alumina_pair(), c["velocity"], [5.0, 20.0, 45.0], c["friction"], laws, poisson_ratio=0.23
-    )
+    ds = compare_tangential(ob.alumina_pair(), c["velocity"], [5.0, 20.0, 45.0], c["friction"], laws)
     for i, law in enumerate(laws):
         block = rows[3 * i : 3 * i + 3]
         assert [float(r[2]) for r in block] == pytest.approx(ds["tangential_restitution"].values[i], abs=6e-6)

@@ -269,7 +269,7 @@ def run_tangential(args) -> int:
     if args.alumina:
         refuse_together(args, ("alumina",), tuple(PAIR_OPTIONS))
         pair = ob.alumina_pair()
-        nu, V, mu = ob.ALUMINA_CASE["poisson_ratio"], ob.ALUMINA_CASE["velocity"], ob.ALUMINA_CASE["friction"]
+        nu, V, mu = None, ob.ALUMINA_CASE["velocity"], ob.ALUMINA_CASE["friction"]  # kappa: alumina and glass
     else:
         pair = pair_from_args(args)
         nu, V, mu = None, None, 0.3

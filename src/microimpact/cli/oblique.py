@@ -19,11 +19,16 @@ def register(sub) -> None:
         description="Rebound of a sphere hitting a flat obliquely at speed V: the seed's normal restitution, and "
         "the tangential outcome of the compliant model (Mindlin no-slip tangential spring with a Coulomb limit, "
         "along the seed's normal history) and of the rigid-body Coulomb model, for each impact angle. "
-        "--alumina uses the published alumina case (Chung & Ooi 2011 Test 4; Kharaz et al. 2001).",
+        "--alumina uses the published alumina case: the sphere of Kharaz et al. (2001) on their glass anvil "
+        "(microimpact.oblique.alumina_pair).",
     )
     p.add_argument("velocity", metavar="V", nargs="?", help="resultant impact speed [m/s] (default 3.9 with --alumina)")
     add_pair_arguments(p)
-    p.add_argument("--alumina", action="store_true", help="the alumina-on-rigid-flat case (E, nu, rho, r, mu, V)")
+    p.add_argument(
+        "--alumina",
+        action="store_true",
+        help="the alumina sphere on the glass anvil (E, nu, rho, r, mu, V; glass E, nu)",
+    )
     p.add_argument(
         "--angles",
         default="0:85:18",
@@ -92,8 +97,8 @@ def run(args) -> int:
     if args.alumina:
         # the published case fixes the pair: a pair option beside it would be ignored
         refuse_together(args, ("alumina",), tuple(PAIR_OPTIONS))
-        pair = ob.alumina_pair()
-        nu = ob.ALUMINA_CASE["poisson_ratio"]
+        pair = ob.alumina_pair()  # on glass: kappa from both materials
+        nu = None
         V = ob.ALUMINA_CASE["velocity"]
         mu = ob.ALUMINA_CASE["friction"]
     else:

@@ -66,8 +66,7 @@ def oblique_data(
     """
     case = ob.ALUMINA_CASE
     if pair is None:
-        pair = ob.alumina_pair()
-        poisson_ratio = case["poisson_ratio"] if poisson_ratio is None else poisson_ratio
+        pair = ob.alumina_pair()  # on glass: kappa from both materials unless poisson_ratio is given
     velocity = case["velocity"] if velocity is None else velocity
     friction = case["friction"] if friction is None else friction
     angle = np.linspace(0.5, 89.5, 179) if angle is None else np.atleast_1d(np.asarray(angle, dtype=float))
@@ -229,8 +228,7 @@ def universal_data(kappa=None, *, x=(1.0, 0.1, 0.01), psi=None) -> dict:
         ``impulse_ratio`` [-] (``|J_t|/(mu J_n)``).
     """
     if kappa is None:
-        nu = ob.ALUMINA_CASE["poisson_ratio"]
-        kappa = tg.stiffness_ratio_same_poisson(nu)
+        kappa = ob.stiffness_ratio_of(ob.alumina_pair())
     psi = np.linspace(0.0, 8.0, 321) if psi is None else np.atleast_1d(np.asarray(psi, dtype=float))
 
     cols = {k: [] for k in ("model", "x", "psi_1", "psi_2", "impulse_ratio")}
