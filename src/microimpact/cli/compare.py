@@ -17,6 +17,7 @@ from ._common import (
     parse_float,
     parse_model_params,
     parse_models,
+    parse_tangential,
     parse_values,
 )
 
@@ -249,7 +250,6 @@ def run_tangential(args) -> int:
     """``compare --tangential``: :func:`microimpact.compare.compare_tangential` as a table, JSON, file, figure."""
     from .. import oblique as ob
     from ._common import PAIR_OPTIONS, refuse_together
-    from .oblique import _models
 
     given = [d for d in _NORMAL_ONLY if getattr(args, d) not in (None, False, [])]
     if given:
@@ -257,7 +257,7 @@ def run_tangential(args) -> int:
             f"--{given[0].replace('_', '-')} and --tangential cannot be used together "
             f"(--{given[0].replace('_', '-')} would be ignored)"
         )
-    laws = _models(args.tangential, ob.TANGENTIAL_MODELS)
+    laws = parse_tangential(args.tangential, ob.TANGENTIAL_MODELS)
     if len(args.velocities) > 1:
         raise ValueError(
             f"--tangential takes one resultant speed V, got {len(args.velocities)}: {' '.join(args.velocities)}"
