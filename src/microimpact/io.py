@@ -66,6 +66,7 @@ __all__ = [
     "check_output_path",
     "check_input_file",
     "csv_header",
+    "csv_rows",
     "write_csv",
     "write_table",
     "read_table",
@@ -605,16 +606,37 @@ def _fmt_cell(x) -> str:
     return '"' + s.replace('"', '""') + '"' if ("," in s or '"' in s) else s
 
 
-def _csv_rows(columns, n):
-    cols = [np.atleast_1d(np.asarray(c)) for _, _, c in columns]
+def csv_rows(arrays):
+    """The rows of the project's CSV layout, one string each (no line end), from columns of equal length.
+
+    Floats in their shortest exact form (Python's ``repr``: they read back bit for bit), ``nan``,
+    ``inf`` and ``-inf`` as such, booleans 0/1, integers as written; text quoted when it holds a
+    comma or a quote. The rows of :func:`write_csv` and of :func:`microimpact.sweep.sweep_to_csv`.
+
+    Parameters
+    ----------
+    arrays : sequence of array_like
+        The columns, 1-D, all of one length.
+
+    Yields
+    ------
+    str
+        One row.
+    """
+    cols = [np.atleast_1d(np.asarray(c)) for c in arrays]
     if all(c.dtype.kind in "biuf" for c in cols):
         # numbers only: Python floats' repr is the shortest exact form ("nan", "inf" as _fmt_cell writes them)
         lists = [(c.astype(np.int64) if c.dtype.kind == "b" else c).tolist() for c in cols]
         for row in zip(*lists):
             yield ",".join(map(repr, row))
         return
+    n = len(cols[0]) if cols else 0
     for i in range(n):
         yield ",".join(_fmt_cell(c[i].item() if hasattr(c[i], "item") else c[i]) for c in cols)
+
+
+def _csv_rows(columns, n):
+    return csv_rows([c for _, _, c in columns])
 
 
 def write_csv(path, columns, comments=(), *, progress=False):

@@ -664,7 +664,8 @@ def sweep_to_csv(ds, path, *, progress=False, rows_per_block=None):
     """
     import pathlib
 
-    pd = require("pandas", "CSV output of sweeps")
+    from .io import csv_rows
+
     path = pathlib.Path(path)
     dims = list(ds.dims)
     variables = list(ds.data_vars)
@@ -672,25 +673,36 @@ def sweep_to_csv(ds, path, *, progress=False, rows_per_block=None):
     header = _csv_header(ds, columns)
     slabs = list(_slabs(ds, dims, rows_per_block))
     with atomic_write(path) as fh:
+        fh.write(",".join(header) + "\n")
         if not dims:
             sub = ds.compute()
-            df = pd.DataFrame({c: [_csv_value(sub[c].values)] for c in columns})
-            df.columns = header
-            df.to_csv(fh, index=False)
+            fh.write(next(csv_rows([_csv_value(sub[c].values) for c in columns])) + "\n")
             return path
         with progress_bar(len(slabs), "sweep to CSV", unit="block", disable=not progress) as bar:
-            for k, (outer, inner) in enumerate(slabs):
+            for outer, inner in slabs:
                 part = ds.isel(outer).compute()  # one block of the first dimension at a time
                 for sel in inner:
-                    sub = part.isel(sel).reset_coords(drop=True)
-                    df = sub.to_dataframe(dim_order=dims).reset_index()[columns]
-                    for c in variables:
-                        if df[c].dtype == bool:
-                            df[c] = df[c].astype(np.int8)
-                    df.columns = header
-                    df.to_csv(fh, index=False, header=(k == 0 and sel is inner[0]))
+                    fh.writelines(row + "\n" for row in csv_rows(_piece_columns(part.isel(sel), dims, variables)))
                 bar.update(1)
     return path
+
+
+def _piece_columns(sub, dims, variables):
+    """The CSV columns of one computed piece of a sweep: each swept input and each variable broadcast
+    over the piece's points, raveled in row-major order (the last dimension fastest)."""
+    shape = tuple(sub.sizes[d] for d in dims)
+    cols = []
+    for i, d in enumerate(dims):
+        coord = np.asarray(sub[d].values) if d in sub.coords else np.arange(shape[i])
+        index = [np.newaxis] * len(dims)
+        index[i] = slice(None)
+        cols.append(np.broadcast_to(coord[tuple(index)], shape).ravel())
+    for c in variables:
+        var = sub[c]
+        values = np.asarray(var.transpose(*[d for d in dims if d in var.dims]).values)
+        index = tuple(slice(None) if d in var.dims else np.newaxis for d in dims)
+        cols.append(np.broadcast_to(values[index], shape).ravel())
+    return cols
 
 
 def _row_major_pieces(shape, max_points):

@@ -5,6 +5,7 @@ base pair, bad chunk specifications): each raises ValueError naming the paramete
 """
 
 import runpy
+import signal
 import sys
 
 import numpy as np
@@ -18,8 +19,15 @@ def test_python_dash_m_runs_the_command(monkeypatch, capsys):
     import microimpact
 
     monkeypatch.setattr(sys, "argv", ["microimpact", "--version"])
-    with pytest.raises(SystemExit) as exc:
-        runpy.run_module("microimpact", run_name="__main__")
+    handlers = {sig: signal.getsignal(sig) for sig in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        with pytest.raises(SystemExit) as exc:
+            runpy.run_module("microimpact", run_name="__main__")
+        # the entry point leaves the exiting process deaf to SIGINT/SIGTERM (cli.console_main)
+        assert all(signal.getsignal(sig) == signal.SIG_IGN for sig in handlers)
+    finally:
+        for sig, handler in handlers.items():
+            signal.signal(sig, handler)
     assert exc.value.code == 0
     assert capsys.readouterr().out.strip() == f"microimpact {microimpact.__version__}"
 

@@ -107,10 +107,7 @@ def test_closed_form_equals_ode(R, G, p_y, speeds):
         _agree(V, E_SI, R, m, p_y, G)
 
 
-@pytest.mark.skip(
-    reason="ODE cases of this box ran for minutes each (up to 8e5 m/s); to be bounded, see test_closed_form_equals_ode"
-)
-@settings(max_examples=25, **PROFILE)
+@settings(max_examples=12, **PROFILE)
 @given(
     over=st.floats(-2.0, 2.0),
     g=st.floats(-3.0, 0.5),
@@ -125,7 +122,8 @@ def test_closed_form_equals_ode_wide(over, g, Eexp, pexp, r, rho):
     E, G, p_y = 10.0**Eexp, 10.0**g, min(10.0**pexp, 0.2 * 10.0**Eexp)
     Vs = ap.sticking_velocity(E, R, m, p_y, (G,))
     Vy = ap.yield_velocity(E, R, m, p_y, G)
-    V = max(1.01 * Vs, max(Vs, Vy) * 10.0**over)
+    # speeds bounded at 1 km/s (the box reached 8e5 m/s, where one ODE ran for minutes)
+    V = max(1.01 * Vs, min(max(Vs, Vy) * 10.0**over, 1e3))
     _agree(V, E, R, m, p_y, G)
 
 

@@ -24,7 +24,6 @@ Any other exception is a bug: its traceback is printed, so it stays visible.
 from __future__ import annotations
 
 import argparse
-import atexit
 import contextlib
 import importlib
 import os
@@ -212,15 +211,17 @@ def _main(argv):
 
 
 def console_main() -> int:
-    """The ``microimpact`` command (and ``python -m microimpact``): :func:`main`, then exit.
+    """The ``microimpact`` command (and ``python -m microimpact``): :func:`main`; returns its exit status.
 
-    Once :func:`main` has returned, the work is done and every output in place (or cleaned up
-    after an interrupt): the process then ignores SIGINT and SIGTERM, flushes its streams, runs
-    its ``atexit`` functions and ends at once. Python's own finalization, skipped so, puts the
-    default handlers back first and then frees every module: a signal in that window (up to a
-    tenth of a second after an export) killed a finished run with a bare -15 and no line. Nor does
-    the process wait for worker threads of a chunked sweep that may still hold queued blocks
-    (dask's pool finishes its queue at exit), which could keep a SIGTERM'd run alive.
+    The process's entry point: once :func:`main` has returned, the work is done and every output
+    in place (or cleaned up after an interrupt), and from then on the process ignores SIGINT and
+    SIGTERM while it exits. Python's finalization puts the default handler back for every signal
+    it handled (not for an ignored one) and then frees every module: a signal in that window (up
+    to a tenth of a second after an export) killed a finished run with a bare -15 and no line.
+    After an interrupt the process ends at once: it does not wait for worker threads of a chunked
+    sweep that may still hold queued blocks (dask's pool finishes its queue at exit), which could
+    keep a SIGTERM'd run alive. (Called in a running program, it leaves SIGINT and SIGTERM
+    ignored: use :func:`main` there.)
     """
     rc = main()
     for sig in (signal.SIGINT, signal.SIGTERM):
@@ -228,22 +229,14 @@ def console_main() -> int:
             signal.signal(sig, signal.SIG_IGN)
         except (ValueError, OSError):  # pragma: no cover - not the main thread
             pass
-    for stream in (sys.stdout, sys.stderr):
-        try:
-            if stream is not None:
+    if rc in (128 + signal.SIGINT, 128 + signal.SIGTERM):
+        for stream in (sys.stdout, sys.stderr):
+            try:
                 stream.flush()
-        except BrokenPipeError:  # e.g. piped into head: stop quietly
-            pass
-        except (OSError, ValueError) as exc:  # the last of standard output did not reach its file
-            if stream is sys.stdout and rc == 0:
-                reason = getattr(exc, "strerror", None) or str(exc)
-                with contextlib.suppress(OSError, ValueError):
-                    print(f"microimpact: error: <standard output>: {reason}", file=sys.stderr, flush=True)
-                rc = 2
-    run_exit = getattr(atexit, "_run_exitfuncs", None)
-    if run_exit is not None:
-        run_exit()
-    os._exit(int(rc or 0))
+            except (OSError, ValueError):
+                pass
+        os._exit(rc)
+    return rc
 
 
 if __name__ == "__main__":  # pragma: no cover
