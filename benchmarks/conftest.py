@@ -341,6 +341,11 @@ def _entry(key, rec: Record) -> dict | None:
         compliant = next((s for k, s in t.items() if "mindlin" in k), None)
         if compliant:
             headline += f"; compliant {compliant * 1e9:.3g} ns"
+        additive = t.get("adhesion G = 0.1 J/m^2: additive rule")
+        whole = t.get("adhesion G = 0.1 J/m^2: whole law's table")
+        if additive and whole:
+            headline += f"; whole adhesive law {whole / additive:.3g}x the additive rule"
+            rows.append(("ratio (whole law's table / additive rule)", f"{whole / additive:.3g}x"))
     elif key == "warm_start" and len(t) > 1:
         base = t.get("python -c 'import numpy'")
         subjects = {k: s for k, s in t.items() if k != "python -c 'import numpy'"}

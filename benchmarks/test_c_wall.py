@@ -66,14 +66,21 @@ int main(int argc, char **argv)
 """
 
 
-@pytest.mark.parametrize("tangential", ["rigid", "mindlin"])
-def test_c_wall_function(tmp_path, record, size, pair, tangential):
+@pytest.mark.parametrize(
+    "tangential, adhesion",
+    [("rigid", None), ("mindlin", None), ("rigid", "additive"), ("rigid", "thornton_ning_1998_adhesive_plastic")],
+)
+def test_c_wall_function(tmp_path, record, size, pair, tangential, adhesion):
+    """Rigid and compliant without adhesion; then with adhesion (G = 0.1 J/m^2) the additive rule and
+    the whole law's table side by side (the lookup's cost is their ratio)."""
     from microimpact.cexport import generate_c_source
 
     cc = next((shutil.which(c) for c in ("cc", "gcc", "clang") if shutil.which(c)), None)
     if cc is None:
         pytest.skip("no C compiler on this machine")
     extra = {} if tangential == "rigid" else {"tangential": "mindlin", "poisson_ratio": 0.3}
+    if adhesion is not None:
+        extra.update(adhesion=adhesion, work_of_adhesion=0.1)
     (tmp_path / "microimpact_wall.c").write_text(generate_c_source(pair, friction=0.3, **extra))
     (tmp_path / "driver.c").write_text(_DRIVER)
     exe = tmp_path / "driver"
@@ -81,6 +88,10 @@ def test_c_wall_function(tmp_path, record, size, pair, tangential):
     reps = max(1, size["wall"] // 4096 // 5)
     out = subprocess.run([str(exe), str(reps)], check=True, capture_output=True, text=True).stdout.split()
     per_call, per_copy = float(out[0]), float(out[1])
+    if adhesion is not None:
+        name = "additive rule" if adhesion == "additive" else "whole law's table"
+        record.time(KEY, f"adhesion G = 0.1 J/m^2: {name}", per_call)
+        return
     record.time(KEY, f"microimpact_wall_interaction ({tangential}, friction 0.3, spin)", per_call)
     if tangential == "rigid":
         record.time(KEY, "the same loop copying inputs to outputs", per_copy)

@@ -206,7 +206,7 @@ def test_unsupported_lines_raise():
         (
             ("bogus", 10.0),
             {},
-            "model must be one of linear_spring_dashpot, hertz_viscoelastic, hertz_tsuji, luding_hysteretic; got 'bogus'",
+            "model must be one of thornton_ning_2016, .*; got 'bogus'",
         ),
         (("linear_spring_dashpot", -1.0), {}, "velocity must be positive and finite, got -1.0"),
         (("linear_spring_dashpot", True), {}, "velocity must be a number or an array of numbers, not a bool"),
@@ -228,6 +228,11 @@ def test_unsupported_lines_raise():
         ),
         (("luding_hysteretic", 50.0), {"unloading_ratio": 3.0}, "unloading_ratio applies to plasticity=True only"),
         (("luding_hysteretic", 50.0), {"plasticity": 1}, "plasticity must be True or False, got 1"),
+        (
+            ("linear_spring_dashpot", 10.0),
+            {"plasticity": True},
+            "model 'linear_spring_dashpot' takes no calibration option 'plasticity'; its options: limit_force",
+        ),
     ],
 )
 def test_bad_input(args, kwargs, match):

@@ -30,9 +30,9 @@ import warnings
 import numpy as np
 
 from . import calibrate as _calibrate
+from . import models as _models
 from ._optional import require
 from ._validation import check_velocity
-from .core import models as _models
 from .core import quantities
 from .pair import ContactPair, LargeStrainWarning
 
@@ -86,7 +86,7 @@ def default_models(params=None) -> list[str]:
     out = []
     for name in _models.available():
         needs = [p for p, (_, _, d) in _models.parameters(name).items() if math.isnan(d)]
-        if not needs or name in _calibrate.DEM_MODELS or name in params:
+        if not needs or _models.face(name).own_calibration or name in params:
             out.append(name)
     return out
 
@@ -94,7 +94,7 @@ def default_models(params=None) -> list[str]:
 def _needs_calibration(name, given) -> bool:
     """True when model ``name`` lacks a parameter with no default and can be calibrated."""
     missing = [p for p, (_, _, d) in _models.parameters(name).items() if math.isnan(d) and p not in given]
-    return bool(missing) and name in _calibrate.DEM_MODELS
+    return bool(missing) and _models.face(name).own_calibration
 
 
 def compare_models(pair=None, velocity=None, models=None, params=None, *, reference_velocity=None):
@@ -187,15 +187,18 @@ def compare_models(pair=None, velocity=None, models=None, params=None, *, refere
                 f"model {n!r} has no parameter {unknown[0]!r}; its parameters: {', '.join(known) or 'none'}"
             )
         if n in calibrated:
-            other = sorted(set(p) - {"limit_force"})
+            face = _models.face(n)
+            chosen = set(p) & set(face.options)  # a parameter that is also a calibration option (limit_force)
+            other = sorted(set(p) - chosen)
             if other:
                 need = [q for q, (_, _, d) in _models.parameters(n).items() if math.isnan(d)]
+                also = f"only {', '.join(sorted(face.options))} may" if face.options else "nothing may"
                 raise ValueError(
                     f"model {n!r}: give all of {', '.join(need)} or none of them (then calibrated to the seed; "
-                    f"only limit_force may be chosen with a calibration), got {other[0]!r} alone"
+                    f"{also} be chosen with a calibration), got {other[0]!r} alone"
                 )
-            options = {"limit_force": int(p["limit_force"])} if "limit_force" in p else {}
-            cal = _calibrate.calibrate(pair, n, ref, plasticity=(n == "luding_hysteretic"), **options)
+            options = {**face.COMPARE_OPTIONS, **{k: p[k] for k in chosen}}
+            cal = _calibrate.calibrate(pair, n, ref, **options)
             p = cal.as_dict()
         mod = _models.get(n)
         used[n] = dict(zip([q[0] for q in mod.PARAMETERS], _models.resolve_params(mod, p)))
@@ -238,7 +241,7 @@ def compare_models(pair=None, velocity=None, models=None, params=None, *, refere
     }
     if calibrated:
         note = (
-            f"{', '.join(calibrated)} calibrated to the seed's model (thornton_ning_2016) at "
+            f"{', '.join(calibrated)} calibrated to the seed's model ({_models.DEFAULT}) at "
             f"V = {ref:.6g} m/s (microimpact.calibrate)"
         )
     else:
@@ -289,12 +292,11 @@ def dem_input_lines(ds, pair=None, params=None) -> dict:
             continue
         given = dict(params.get(n, {}))
         if bool(cal_flag):
-            options = {"limit_force": int(given["limit_force"])} if "limit_force" in given else {}
+            face = _models.face(n)
+            options = {**face.COMPARE_OPTIONS, **{k: given[k] for k in face.options if k in given}}
             with warnings.catch_warnings():  # compare_models warned already
                 warnings.simplefilter("ignore", _calibrate.CalibrationWarning)
-                cal = _calibrate.calibrate(
-                    pair, n, float(ds.attrs["reference_velocity"]), plasticity=(n == "luding_hysteretic"), **options
-                )
+                cal = _calibrate.calibrate(pair, n, float(ds.attrs["reference_velocity"]), **options)
         else:
             cal = _calibrate.Calibration.of(pair, n, given)
         texts = {}

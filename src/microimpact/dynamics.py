@@ -52,7 +52,7 @@ __all__ = [
     "contact_times",
     "STAGE_NAMES",
     "GENERIC_STAGE_NAMES",
-    "SEED_STAGE_MODELS",
+    "stage_names",
     "HISTORY_COLUMNS",
     "HISTORY_SCALARS",
     "impact_history",
@@ -359,8 +359,31 @@ STAGE_NAMES = {
 }
 #: Stage codes of a history of any other model (loading to the maximum approach, then unloading).
 GENERIC_STAGE_NAMES = {0: STAGE_NAMES[0], 1: "loading", 3: "unloading"}
-#: Models whose histories have the seed's stages (Hertz loading, plastic loading, elastic unloading).
-SEED_STAGE_MODELS = ("thornton_ning_2016", "liggghts_thornton_ning")
+
+
+def stage_names(model=None) -> dict:
+    """``{stage code: name}`` of a history of ``model`` (a name; default the seed's): code 0, no
+    contact, and the model's own ``STAGES`` (:mod:`microimpact.core.models`)."""
+    from .core import models as _models
+
+    return {0: STAGE_NAMES[0], **_models.get(_seed.NAME if model is None else model).STAGES}
+
+
+def __getattr__(name):
+    if name == "SEED_STAGE_MODELS":  # deprecated: each model declares its STAGES
+        import warnings
+
+        from .core import models as _models
+
+        warnings.warn(
+            "microimpact.dynamics.SEED_STAGE_MODELS is deprecated; use microimpact.dynamics.stage_names(model) "
+            "(each model declares its STAGES in microimpact.core.models)",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return tuple(n for n in _models.available() if _models.get(n).STAGES == _seed.STAGES)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 #: Columns of a history: name -> (unit, description), from the one table of quantities.
 HISTORY_COLUMNS: dict[str, tuple[str, str]] = quantities.table(quantities.HISTORY_FIELDS)
@@ -709,7 +732,7 @@ class ImpactHistory:
             ]
         for name, (unit, desc) in HISTORY_SCALARS.items():
             comments.append(f"{name} = {getattr(self, name):.17g} {unit}  ({desc})")
-        stages = STAGE_NAMES if self.model in SEED_STAGE_MODELS else GENERIC_STAGE_NAMES
+        stages = stage_names(self.model)
         comments.append("stage: " + "; ".join(f"{k} = {v}" for k, v in stages.items()))
         columns = [(name, unit, getattr(self, name)) for name, (unit, _) in HISTORY_COLUMNS.items()]
         stage = columns[-1]
@@ -960,14 +983,14 @@ def _model_run(mod, V, E, R, m, p_y, params, T, rtol, atol, method):
     def rhs2(t, y):
         return [y[1], -f(y[0] * X, y[1] * V, amax, E, R, m, p_y, params) * c]
 
-    if hasattr(mod, "separation_approach_after"):  # where the contact breaks depends on alpha_max
+    if mod.separation_approach_after is not None:  # where the contact breaks depends on alpha_max
         sep = mod.separation_approach_after(amax, E, R, m, p_y, params) / X
-    elif hasattr(mod, "separation_approach"):
+    elif mod.separation_approach is not None:
         sep = mod.separation_approach(E, R, m, p_y, params) / X
     else:
         sep = 0.0
     events = [_event(lambda t, y: y[0] - sep, -1)]
-    if mod.ends_at_zero_force(params):
+    if mod.ends_at_zero_force is not None and mod.ends_at_zero_force(params):
         g = mod.signed_force
 
         def zero_force(t, y):

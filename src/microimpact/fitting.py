@@ -45,7 +45,7 @@ Measured values above 1 and stuck particles
 Near ``V_y`` the true ``e`` is 1, so measurement scatter gives values above 1.
 Every finite ``e_i >= 0`` is accepted and fitted as measured (no clipping: clipping
 or dropping such points biases ``p_y``). ``e_i = 0`` ("stuck") is accepted only by
-a model that can stick (its module sets ``STICKS = True``); the seed never gives
+a model that can stick (its declaration has ``STICKS = True``: the adhesive models); the seed never gives
 ``e = 0`` at a finite speed. A :class:`FitWarning` names the points that lie *far*
 above 1: ``e_i - 1 > 3 s_i``, with ``s_i = sigma_i`` when absolute uncertainties
 are given, else the robust residual scatter ``s = 1.4826 MAD`` of the residuals at
@@ -139,11 +139,14 @@ import numpy as np
 from . import quantities
 from ._optional import require
 from ._validation import is_number_text
-from .impact import outcome_arrays, restitution_coefficient
+from .core.models import DEFAULT as _DEFAULT_MODEL
+from .core.models import Parameter, declare
+from .impact import outcome_arrays
 from .materials import DEFAULT_K, sphere_mass
 from .pair import ContactPair
 
 __all__ = [
+    "ADDITIVE_RULE",
     "FAR_ABOVE_ONE",
     "FREE_PARAMETERS",
     "INTERVALS",
@@ -166,7 +169,7 @@ __all__ = [
 ]
 
 #: The seed's model (Thornton & Ning form, seed eqs. 22-28): the default ``model=``.
-SEED_MODEL = "thornton_ning_2016"
+SEED_MODEL = _DEFAULT_MODEL
 
 #: Pair parameters that :func:`fit_restitution` can leave free, with the exponent ``c``
 #: of ``V_y ~ theta^c`` (eq. 28: ``V_y ~ p_y^(5/2) E*^(-2) rho^(-1/2)``), the SI unit,
@@ -403,7 +406,7 @@ def _zoo():
 
 
 def available_models() -> list[str]:
-    """Names accepted as ``model=``: the seed first, then the models of :mod:`microimpact.core.models`."""
+    """Names accepted as ``model=``: the models of :func:`microimpact.models.available`, the seed first."""
     names = [n for n in _zoo().available() if n != SEED_MODEL]
     return [SEED_MODEL, *names]
 
@@ -411,10 +414,39 @@ def available_models() -> list[str]:
 _MODULES: dict = {}
 
 
+class _AdditiveRule:
+    """Thornton & Ning's (1998) additive rule as a candidate of :func:`fit_restitution` and
+    :func:`rank_models` (:data:`ADDITIVE_RULE`): the seed's ``e_p(V/V_y)`` (eq. 27) with the adhesive
+    loss ``e^2 = e_p^2 - (V_s/V)^2``, stuck where ``e_p V <= V_s``
+    (:func:`~microimpact.adhesion.adhesive_restitution`; ``V_s`` their eq. 54). It is a rule for
+    ``e``, not a model of the zoo (no force law, no contact times): it is fitted and ranked only.
+    Declared to the model contract (:func:`microimpact.core.models.declare`) for its parameter spec."""
+
+    NAME = "additive"
+    TITLE = "Thornton & Ning (1998) additive rule: e^2 = e_p^2 - (V_s/V)^2 (seed eq. 27, TN98 eq. 54)"
+    PARAMETERS = (
+        Parameter("work_of_adhesion", "J/m^2", "G >= 0, the work of adhesion (TN98's interface energy)", low=0.0),
+    )
+    STICKS = True
+    outcome = None  # e alone, by :func:`microimpact.adhesion.adhesive_restitution` (see _outcome_of)
+    force = None
+
+
+_ADDITIVE = declare(_AdditiveRule)
+
+
+#: The name under which :func:`fit_restitution` and :func:`rank_models` take Thornton & Ning's
+#: additive rule (``e^2 = e_p^2 - (V_s/V)^2``; free parameters ``limiting_pressure`` and
+#: ``work_of_adhesion`` like the whole law's), to rank it against the whole law on data with stuck
+#: points.
+ADDITIVE_RULE = _AdditiveRule.NAME
+
+
 def _model_module(name):
-    """The zoo module of ``name``; None for the seed (evaluated by its array formula)."""
-    if name == SEED_MODEL:
-        return None
+    """The :class:`~microimpact.core.models.Model` declaration of ``name`` (ValueError naming it if
+    unknown); the additive rule's for :data:`ADDITIVE_RULE`."""
+    if name == ADDITIVE_RULE:
+        return _ADDITIVE
     if not isinstance(name, str):
         raise ValueError(f"model must be a model's name (one of {', '.join(available_models())}), got {name!r}")
     zoo = _zoo()
@@ -426,24 +458,38 @@ def _model_module(name):
     return _MODULES[key]
 
 
+def _fast_restitution(name):
+    """The face's ``e(V, V_y)`` of a model whose ``e`` depends on the pair only through ``V_y`` (the
+    seed's eq. 27), else None (:func:`microimpact.models.face`)."""
+    if name == ADDITIVE_RULE:
+        return None
+    from .models import face
+
+    return face(name).restitution_of_yield_velocity
+
+
 def _model_sticks(name) -> bool:
-    module = _model_module(name)
-    return bool(getattr(module, "STICKS", False)) if module is not None else False
+    return _model_module(name).STICKS
 
 
 def _outcome_of(model_name, pair, params, V, fields=("restitution", "rebound_velocity", "contact_time")):
     """Outcome ``fields`` of model ``model_name`` for ``pair`` and model ``params`` at speeds ``V`` [m/s].
 
-    The seed through :meth:`ContactPair.impact` (seed eqs. 5-33); a zoo model through its
-    scalar ``outcome(V, E, R, m, p_y, params)`` over the array (:func:`microimpact.core.arrays.evaluate`,
-    as :func:`microimpact.impact.outcome_arrays` does: compiled loops for a ``@jitable`` outcome).
+    The model's scalar ``outcome(V, E, R, m, p_y, params)`` over the array
+    (:func:`microimpact.impact.outcome_arrays`: compiled loops for a ``@jitable`` outcome); the
+    restitution alone of a model whose face gives ``e(V, V_y)`` (the seed's eq. 27) from that.
     """
     V = np.asarray(V, dtype=float)
-    if model_name == SEED_MODEL:
-        if fields == ("restitution",):
-            return {"restitution": restitution_coefficient(V, pair.yield_velocity)}
-        res = pair.impact(V, warn=False)
-        return {f: np.asarray(getattr(res, f), dtype=float) for f in fields}
+    if model_name == ADDITIVE_RULE:  # e alone: the rule has no contact times
+        from .adhesion import adhesive_restitution, sticking_velocity
+
+        Vs = sticking_velocity(float(params[0]), pair.effective_modulus, pair.effective_radius, pair.effective_mass)
+        e = adhesive_restitution(V, pair.yield_velocity, Vs)
+        out = {"restitution": e, "rebound_velocity": e * V, "contact_time": np.full(V.shape, math.nan)}
+        return {f: out[f] for f in fields}
+    fast = _fast_restitution(model_name)
+    if fields == ("restitution",) and fast is not None:
+        return {"restitution": fast(V, pair.yield_velocity)}
     module = _model_module(model_name)
     E, R, m, p_y = (
         np.asarray(float(x))
@@ -552,10 +598,10 @@ class _Model:
         module = _model_module(model)
         self.model = model
         self.pair = pair
-        spec = tuple(module.PARAMETERS) if module is not None else ()
+        spec = tuple(module.PARAMETERS)
         self.own = tuple(p[0] for p in spec)
         self.own_units = {p[0]: p[1] for p in spec}
-        values = dict(zip(self.own, (float(d) for d in module.DEFAULTS))) if module is not None else {}
+        values = dict(zip(self.own, (float(d) for d in module.DEFAULTS)))
         for k, v in (model_params or {}).items():
             if k not in self.own:
                 have = ", ".join(self.own) or "none"
@@ -662,7 +708,7 @@ class _Model:
         evaluations get it from :class:`_YieldOnly` instead of building a
         :class:`ContactPair` each time (0.3 ms of validation per pair).
         """
-        if self.model == SEED_MODEL and self.name is not None:
+        if self.name is not None and not self.own and _fast_restitution(self.model) is not None:
             u0 = float(np.atleast_1d(u)[0])
             return _restitution_of(self.model, _YieldOnly(self.ref_vy * math.exp(self.exponent * u0)), (), V)
         pair, params = self.split(u)
@@ -1180,7 +1226,8 @@ def fit_restitution(
         ``"yield_velocity"``; the seed's data determine ``V_y`` only) and any of the
         model's own parameters.
     model : str
-        Name of the model (:func:`available_models`); default the seed.
+        Name of the model (:func:`available_models`), or :data:`ADDITIVE_RULE` (Thornton & Ning's
+        additive rule, ``e`` only: its predictions have no contact time); default the seed.
     model_params : dict, optional
         Values of the model's own parameters (start values of the free ones).
     loss : str
@@ -1317,11 +1364,12 @@ def _fit(
     sub = _start_subset(V)
     Vs, es, ws = V[sub], e[sub], w[sub]
     if mdl.name is not None:
-        vy_grid = np.geomspace(Vs.min() * 1e-3, Vs.max() * 2.0, 600 if model == SEED_MODEL else 60)
-        if model == SEED_MODEL:
+        fast = _fast_restitution(model) if not mdl.own else None
+        vy_grid = np.geomspace(Vs.min() * 1e-3, Vs.max() * 2.0, 600 if fast is not None else 60)
+        if fast is not None:
             lad = np.concatenate(
                 [
-                    np.sum(np.abs((es - restitution_coefficient(Vs[None, :], blk[:, None])) * ws), axis=1)
+                    np.sum(np.abs((es - fast(Vs[None, :], blk[:, None])) * ws), axis=1)
                     for blk in np.array_split(vy_grid, 10)  # blocks of 60 x 2048: about 1 MB each
                 ]
             )
@@ -1690,7 +1738,9 @@ def rank_models(
     pair : ContactPair
         The known pair.
     models : sequence
-        Each a model name (free parameter ``limiting_pressure``), ``"name:a+b"`` (free
+        Each a model name (free parameter ``limiting_pressure``; :data:`ADDITIVE_RULE`,
+        ``"additive"``, is Thornton & Ning's additive rule, to rank against their whole law on
+        data with stuck points), ``"name:a+b"`` (free
         parameters ``a`` and ``b``), ``"name:none"`` (nothing fitted: the pair and
         model parameters as given), ``(name, free)`` or a dict with keys ``model``,
         ``params``, ``model_params``, ``label``.

@@ -33,6 +33,7 @@ __all__ = [
     "effective_radius",
     "effective_mass",
     "sphere_mass",
+    "limiting_pressure",
 ]
 
 
@@ -390,6 +391,35 @@ def sphere_mass(radius, density):
     from .core.wall import sphere_mass as _mass
 
     return evaluate(_mass, radius, density)[0]
+
+
+def limiting_pressure(yield_strength, k=None) -> float:
+    """Limiting contact pressure ``p_y = k Y`` [Pa] (seed, Section 3.1, after Hardy et al. 1971).
+
+    Parameters
+    ----------
+    yield_strength : float
+        Yield strength ``Y`` [Pa] of the softer body, positive and finite.
+    k : float, optional
+        ``p_y / Y`` [-], positive; default :data:`DEFAULT_K` (the seed takes 2.1-2.3).
+
+    Returns
+    -------
+    float
+        ``p_y`` [Pa].
+
+    Raises
+    ------
+    ValueError
+        Naming ``k`` or ``yield_strength`` when it is not a positive finite number.
+
+    Examples
+    --------
+    >>> round(limiting_pressure(74e6, 2.11) / 1e6, 2)  # the seed's silicon case: 156 MPa
+    156.14
+    """
+    k = DEFAULT_K if k is None else check_positive("k", k, scalar=True)
+    return k * check_positive("yield_strength", yield_strength, scalar=True)
 
 
 #: The seed paper's two validation cases (Section 3.1): ammonium fluorescein

@@ -28,13 +28,15 @@ from ._validation import (
 )
 from .core import models, quantities
 from .core.constants import LARGE_STRAIN_RATIO
+from .core.models import thornton_ning_1998_adhesive_plastic as _whole_law
 from .core.models import thornton_ning_2016 as _seed
 from .core.quantities import FLAG_FIELDS, OUTCOME_FIELDS
 from .core.wall import sphere_mass as _sphere_mass
 
 if TYPE_CHECKING:  # the history machinery loads only when a history is asked for
     from .dynamics import ImpactHistory
-from .materials import DEFAULT_K, PAPER_CASES, Material, effective_modulus, get_material, sphere_mass
+from .materials import PAPER_CASES, Material, effective_modulus, get_material, sphere_mass
+from .materials import limiting_pressure as _k_times_yield
 
 __all__ = [
     "ContactPair",
@@ -305,7 +307,8 @@ class ContactPair:
             if yield_strength is not None or k is not None:
                 raise ValueError("limiting_pressure was given together with k/yield_strength; give one or the other")
             return limiting_pressure
-        k = DEFAULT_K if k is None else check_positive("k", k, scalar=True)
+        if k is not None:
+            check_positive("k", k, scalar=True)
         if yield_strength is None:
             known = [m.yield_strength for m in (particle, surface) if m is not None and m.yield_strength]
             if not known:
@@ -314,7 +317,7 @@ class ContactPair:
                     "(p_y = k * Y), or a material with a yield strength"
                 )
             yield_strength = min(known)  # the softer body yields first
-        return k * check_positive("yield_strength", yield_strength, scalar=True)
+        return _k_times_yield(yield_strength, k)
 
     @classmethod
     def sphere_on_flat(
@@ -953,7 +956,7 @@ class ContactPair:
             data = dynamics.integrate_model(mod.NAME, velocity, *self._args, params, n=n, times=times)
         return dynamics.ImpactHistory.from_dict(data, method=method)
 
-    def sticking_velocity(self, diameter=None, *, model: str = "thornton_ning_1998_adhesive_plastic", **params):
+    def sticking_velocity(self, diameter=None, *, model: str = _whole_law.NAME, **params):
         """The capture (sticking) velocity [m/s]: the particle sticks (``e = 0``) at and below it.
 
         Parameters
@@ -1009,9 +1012,9 @@ class ContactPair:
 
         else:
             mod = models.get(model)
-            fn = getattr(mod, "sticking_velocity", None)
+            fn = mod.sticking_velocity
             if fn is None:
-                names = [n for n in models.available() if hasattr(models.get(n), "sticking_velocity")]
+                names = [n for n in models.available() if models.get(n).sticking_velocity is not None]
                 raise ValueError(
                     f"model {model!r} has no sticking velocity; models that have one: {', '.join(names)}, additive"
                 )

@@ -29,8 +29,8 @@ from .core.models import thornton_ning_2016 as _seed
 
 __all__ = ["ADHESION_LAWS", "FULL_LAW", "capture_velocities", "parting_diameter", "stick_map"]
 
-#: The full law's model name.
-FULL_LAW = "thornton_ning_1998_adhesive_plastic"
+#: The full law's model name (:mod:`~microimpact.core.models.thornton_ning_1998_adhesive_plastic`).
+FULL_LAW = _full.NAME
 #: The adhesive laws compared, in plotting order.
 ADHESION_LAWS = ("additive", FULL_LAW)
 

@@ -1,7 +1,9 @@
 """Bounce or stick at a wall, for whole particle arrays: the wall interaction CFD codes call.
 
 * **Normal direction**: the seed's elastic-plastic restitution with Thornton & Ning's (1998)
-  adhesion loss (:mod:`microimpact.adhesion`).
+  adhesion loss (:mod:`microimpact.adhesion`): their additive rule (``adhesion="additive"``, the
+  default) or their whole adhesive elastic-plastic law (``adhesion="thornton_ning_1998_adhesive_plastic"``)
+  through the table of its universal curve (:func:`~microimpact.adhesion.whole_law_table`).
 * **Tangential direction**: the rigid-body impulse model with Coulomb friction
   (Walton 1993; Brach 1988) for a solid sphere (moment of inertia
   ``I = 2/5 m r^2``): the tangential impulse that would stop the slip of the
@@ -55,6 +57,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._validation import check_nonnegative, check_positive
+from .adhesion import ADHESION_RULES, whole_law_table
 from .core import wall as _wall
 from .core.arrays import evaluate
 from .core.tangential_laws import ALL_LAWS as LAWS
@@ -92,7 +95,16 @@ class WallInteraction:
     rolling : ndarray of bool (N,)
         True where the tangential impulse stopped the slip (within the Coulomb limit).
     yield_velocity, sticking_velocity : ndarray (N,)
-        ``V_y`` (eq. 28) and ``V_s`` (Thornton & Ning) [m/s] of each particle.
+        ``V_y`` (eq. 28) and ``V_s`` (Thornton & Ning) [m/s] of each particle. With the whole law,
+        still these two (its groups are ``V/V_y`` and ``V_s/V_y``); its own capture speed is
+        above ``V_s`` (:func:`~microimpact.stick.capture_velocities`).
+    outside_table : ndarray of bool (N,)
+        ``adhesion="thornton_ning_1998_adhesive_plastic"`` only (all False otherwise): True where
+        ``V/V_y`` or ``V_s/V_y`` lies beyond the whole law's table
+        (:class:`~microimpact.adhesion.WholeLawTable`: ``V/V_y > 1000`` or ``V_s/V_y > 10``); the
+        table's edge was used there (flagged, not refused).
+    adhesion : str
+        The adhesion rule used (``"additive"`` or the whole law's name).
     """
 
     velocity: np.ndarray
@@ -104,6 +116,8 @@ class WallInteraction:
     rolling: np.ndarray
     yield_velocity: np.ndarray
     sticking_velocity: np.ndarray
+    outside_table: np.ndarray | None = None
+    adhesion: str = "additive"
     _single: bool = field(default=False, repr=False)
 
     @property
@@ -164,6 +178,9 @@ def _materials(material, n):
 
 # Peak bytes per particle of wall_interaction (result table, regime, flags, temporaries).
 _BYTES_PER_PARTICLE = 8 * (11 + 1 + 6 + 3) + 3
+# and with the whole adhesive law: its prepass (V, slip, V_y, r, m, V_s, x, y) and the table
+# lookup's temporaries (t, u, ft, fu, i, j, a, b, four corner values, D), at most 21 columns at once.
+_BYTES_WHOLE_LAW = 8 * 21 + 2
 
 
 def wall_interaction(
@@ -183,6 +200,7 @@ def wall_interaction(
     tangential="rigid",
     poisson_ratio=None,
     effective_shear_modulus=None,
+    adhesion="additive",
 ) -> WallInteraction:
     """Outgoing velocities, spins and stick flags of particles hitting a wall.
 
@@ -243,6 +261,13 @@ def wall_interaction(
         ``kappa = 2(1 - nu)/(2 - nu)``; default from the materials.
     effective_shear_modulus : float, optional
         Compliant laws only: ``G*`` [Pa], giving ``kappa = 4 G*/E*``.
+    adhesion : str, optional
+        The normal restitution with adhesion: ``"additive"`` (default; Thornton & Ning's additive
+        rule, :func:`~microimpact.adhesion.adhesive_restitution`: the results are those of the
+        releases before the option, bit for bit) or ``"thornton_ning_1998_adhesive_plastic"``
+        (their whole law: ``e^2 = e_p^2 - (V_s/V)^2 + D(V/V_y, V_s/V_y)`` with ``D`` interpolated in
+        :func:`~microimpact.adhesion.whole_law_table`; the particle sticks where that is not
+        positive; points beyond the table are flagged in ``outside_table``).
 
     Returns
     -------
@@ -259,12 +284,15 @@ def wall_interaction(
     """
     if tangential not in ("rigid", "mindlin", *LAWS):
         raise ValueError(f"tangential must be 'rigid', 'mindlin' or one of {LAWS}, got {tangential!r}")
+    if not isinstance(adhesion, str) or adhesion not in ADHESION_RULES:
+        raise ValueError(f"adhesion must be one of {ADHESION_RULES}, got {adhesion!r}")
     single = np.ndim(velocity) == 1
     v = _vectors("velocity", velocity)
     N = v.shape[0]
     # Refused before anything of size N is made: the (N, 11) result table, the per-particle inputs
     # made here (modulus, p_y, yield strength) and the compliant prepass (3 columns), 8 bytes each.
-    check_memory(N * _BYTES_PER_PARTICLE, f"wall_interaction of {N} particles", "pass the particles in blocks")
+    per = _BYTES_PER_PARTICLE + (0 if adhesion == "additive" else _BYTES_WHOLE_LAW)
+    check_memory(N * per, f"wall_interaction of {N} particles", "pass the particles in blocks")
     nrm = _vectors("normal", normal)
     if nrm.shape[0] not in (1, N):
         raise ValueError(f"normal must be one vector or one per particle ({N}), got {nrm.shape[0]}")
@@ -326,8 +354,13 @@ def wall_interaction(
         F = _compliant_impulse_ratio(
             slip, V0, Vy0, mu, E, mats, wall_mat, poisson_ratio, effective_shear_modulus, tangential
         )
+    if adhesion == "additive":
+        D = np.array(math.nan)
+        outside = np.zeros(N, dtype=bool)
+    else:
+        D, outside = _whole_law_correction(vT, nT, wT, d, rho, E, p_y, G)
     table = np.empty((N, len(_wall.WALL_FIELDS)))
-    out = evaluate(_wall.wall_impact, *vT, *nT, *wT, d, rho, E, p_y, G, mu, F, nout=table.shape[1], out=table.T)
+    out = evaluate(_wall.wall_impact, *vT, *nT, *wT, d, rho, E, p_y, G, mu, F, D, nout=table.shape[1], out=table.T)
     o = dict(zip(_wall.WALL_FIELDS, out))
     regime = o["regime"].copy()  # one pass over the strided column, then contiguous
     if np.isnan(regime).any():
@@ -349,8 +382,25 @@ def wall_interaction(
         rolling=rolling[0] if single else rolling,
         yield_velocity=Vy[0] if single else Vy,
         sticking_velocity=Vs[0] if single else Vs,
+        outside_table=outside[0] if single else outside,
+        adhesion=adhesion,
         _single=single,
     )
+
+
+def _whole_law_correction(vT, nT, wT, d, rho, E, p_y, G):
+    """``(D, outside)`` per particle: the whole law's table at ``(V/V_y, V_s/V_y)`` (0 and False
+    where the particle does not approach the wall)."""
+    from .core import adhesion as _adh
+
+    V, _, Vy = evaluate(_wall.approach_and_slip, *vT, *nT, *wT, d, rho, E, p_y, nout=3)
+    Vs = evaluate(_adh.sticking_velocity, G, E, 0.5 * d, evaluate(_wall.sphere_mass, 0.5 * d, rho)[0])[0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x = np.where(Vy < math.inf, V / Vy, 0.0)
+        y = np.where(Vy < math.inf, Vs / Vy, 0.0)
+    D, outside = whole_law_table()(x, y)
+    approaching = V > 0.0
+    return np.where(approaching, D, 0.0), outside & approaching
 
 
 def _compliant_impulse_ratio(ut_mag, V, Vy, mu, E, mats, wall_mat, poisson_ratio, effective_shear_modulus, law):

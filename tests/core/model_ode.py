@@ -42,9 +42,9 @@ def _run(model, V, E, R, m, p_y, params, ts, rtol):
     def rhs2(t, y):
         return [y[1], -f(y[0] * xs, y[1] * V, amax, E, R, m, p_y, params) * c]
 
-    if hasattr(model, "separation_approach_after"):  # where the contact breaks depends on alpha_max
+    if getattr(model, "separation_approach_after", None) is not None:  # depends on alpha_max
         sep = model.separation_approach_after(amax, E, R, m, p_y, params) / xs
-    elif hasattr(model, "separation_approach"):
+    elif getattr(model, "separation_approach", None) is not None:
         sep = model.separation_approach(E, R, m, p_y, params) / xs
     else:
         sep = 0.0

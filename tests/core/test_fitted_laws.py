@@ -41,9 +41,10 @@ def _switch_speed(mod, law, E, R, m, params):
 
 @pytest.mark.parametrize("mod", [jg, ke], ids=lambda m: m.NAME)
 def test_contract(mod):
-    assert mod.NAME in models.available() and models.get(mod.NAME) is mod
-    assert len(mod.DEFAULTS) == len(mod.PARAMETERS)
-    assert math.isnan(mod.DEFAULTS[0])  # the yield strength has no default
+    assert mod.NAME in models.available() and models.get(mod.NAME).module is mod
+    law = models.get(mod.NAME)
+    assert len(law.DEFAULTS) == len(law.PARAMETERS) == len(mod.BOUNDS)
+    assert math.isnan(law.DEFAULTS[0])  # the yield strength has no default
     assert models.parameters(mod.NAME)["poisson_ratio"][2] == 0.3
 
 
@@ -51,11 +52,11 @@ def test_contract(mod):
     "mod, params, match",
     [
         (jg, (-1.0, 0.3, 0.0), "yield_strength must be positive and finite, got -1.0"),
-        (jg, (1e8, 0.6, 0.0), r"poisson_ratio must be in \(-1, 0.5\], got 0.6"),
+        (jg, (1e8, 0.6, 0.0), r"poisson_ratio must lie in \(-1, 0.5\], got 0.6"),
         (jg, (1e8, 0.3, 0.5), "identical_spheres must be 0 or 1, got 0.5"),
         (jg, (1e8, 0.3), "params must hold 3 values"),
         (ke, (math.inf, 0.3), "yield_strength must be positive and finite, got inf"),
-        (ke, (1e8, -1.0), r"poisson_ratio must be in \(-1, 0.5\], got -1.0"),
+        (ke, (1e8, -1.0), r"poisson_ratio must lie in \(-1, 0.5\], got -1.0"),
         (ke, (1e8, True), "poisson_ratio must be a number, not a bool"),
     ],
 )

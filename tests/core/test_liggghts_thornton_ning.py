@@ -108,7 +108,7 @@ def integrate_force_law(V, E, R, m, p_y, rtol=1e-13):
 
 def test_registered():
     assert "liggghts_thornton_ning" in available()
-    assert M.NAME == "liggghts_thornton_ning" and M.PARAMETERS == () and M.DEFAULTS == ()
+    assert M.NAME == "liggghts_thornton_ning" and M.PARAMETERS == () and get(M.NAME).DEFAULTS == ()
     assert len(M.outcome(50.0, E_SI, R_SI, M_SI, PY_SI, ())) == len(OUTCOME_FIELDS)
 
 

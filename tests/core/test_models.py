@@ -45,12 +45,13 @@ def _sphere(r_exp, rho):
 @pytest.mark.parametrize("mod", NEW, ids=lambda m: m.NAME)
 def test_contract(mod):
     assert mod.NAME in models.available()
-    assert models.get(mod.NAME) is mod
+    assert models.get(mod.NAME).module is mod
     assert mod.NAME == mod.__name__.rsplit(".", 1)[1]
     assert isinstance(mod.TITLE, str) and mod.TITLE
-    assert all(len(p) == 3 and all(isinstance(s, str) for s in p) for p in mod.PARAMETERS)
-    assert len(mod.DEFAULTS) == len(mod.PARAMETERS)
-    out = mod.outcome(10.0, E_SI, R_SI, M_SI, PY_SI, tuple(1e-9 if math.isnan(d) else d for d in mod.DEFAULTS))
+    decl = models.get(mod.NAME)
+    assert all(isinstance(p, models.Parameter) and all(isinstance(s, str) for s in p[:3]) for p in mod.PARAMETERS)
+    assert [repr(d) for d in decl.DEFAULTS] == [repr(p.default) for p in mod.PARAMETERS]
+    out = mod.outcome(10.0, E_SI, R_SI, M_SI, PY_SI, tuple(1e-9 if math.isnan(d) else d for d in decl.DEFAULTS))
     assert len(out) == len(OUTCOME_FIELDS)
 
 
@@ -107,7 +108,7 @@ def _agree(mod, V, E, R, m, params, tol=1e-8):
     # the end state: the ODE's event sits within its absolute tolerance of the end approach
     end = (
         mod.separation_approach(E, R, m, PY_SI, params)
-        if hasattr(mod, "separation_approach")
+        if getattr(mod, "separation_approach", None) is not None
         else o["plastic_approach"]
     )
     assert abs(end - r["plastic_approach"]) < 1e-7 * o["max_approach"]

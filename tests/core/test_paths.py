@@ -180,7 +180,7 @@ def test_c_wall_function_matches_the_core_bitwise(tmp_path, G, mu):
             wo,
             ctypes.byref(e),
         )
-        ref = dict(zip(wall.WALL_FIELDS, wall.wall_impact(*v, *n, *w, d, rho, E, p_y, G, mu, math.nan)))
+        ref = dict(zip(wall.WALL_FIELDS, wall.wall_impact(*v, *n, *w, d, rho, E, p_y, G, mu, math.nan, math.nan)))
         assert list(vo) == [ref["vx"], ref["vy"], ref["vz"]]
         assert list(wo) == [ref["wx"], ref["wy"], ref["wz"]]
         assert e.value == ref["restitution"]

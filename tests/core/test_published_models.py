@@ -52,11 +52,12 @@ def _agree(mod, V, E, R, m, params, tol=1e-8):
 @pytest.mark.parametrize("mod", PUBLISHED, ids=lambda m: m.NAME)
 def test_contract(mod):
     assert mod.NAME in models.available()
-    assert models.get(mod.NAME) is mod
+    assert models.get(mod.NAME).module is mod
     assert mod.NAME == mod.__name__.rsplit(".", 1)[1]
     assert isinstance(mod.TITLE, str) and mod.TITLE
-    assert len(mod.DEFAULTS) == len(mod.PARAMETERS)
-    out = mod.outcome(10.0, E_SI, R_SI, M_SI, PY_SI, tuple(1e-3 if math.isnan(d) else d for d in mod.DEFAULTS))
+    defaults = models.get(mod.NAME).DEFAULTS
+    assert len(defaults) == len(mod.PARAMETERS)
+    out = mod.outcome(10.0, E_SI, R_SI, M_SI, PY_SI, tuple(1e-3 if math.isnan(d) else d for d in defaults))
     assert len(out) == len(OUTCOME_FIELDS)
 
 

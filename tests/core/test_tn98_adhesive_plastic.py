@@ -34,7 +34,7 @@ def _sphere(r_exp, rho):
 
 
 def test_contract():
-    assert ap.NAME in models.available() and models.get(ap.NAME) is ap
+    assert ap.NAME in models.available() and models.get(ap.NAME).module is ap
     assert ap.STICKS is True
     assert len(ap.outcome(10.0, E_SI, R_SI, M_SI, PY_SI, (0.1,))) == len(OUTCOME_FIELDS)
     with pytest.raises(ValueError, match="work_of_adhesion must be non-negative and finite, got -0.1"):

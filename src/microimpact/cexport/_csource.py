@@ -199,6 +199,7 @@ def generate_c_source(
     poisson_ratio=None,
     effective_shear_modulus=None,
     comment=None,
+    adhesion="additive",
 ) -> str:
     """A self-contained C99 source computing :func:`wall_interaction` for one particle.
 
@@ -258,6 +259,16 @@ def generate_c_source(
     comment : str, optional
         A line added to the header comment (made safe: one line, printable ASCII, no
         comment delimiters), e.g. which end of a confidence band the parameters are.
+    adhesion : str, optional
+        As ``adhesion=`` of :func:`~microimpact.wall.wall_interaction`: ``"additive"`` (default;
+        the source is the same, byte for byte, as before the option existed) or
+        ``"thornton_ning_1998_adhesive_plastic"``: Thornton & Ning's whole law through the table
+        of :func:`~microimpact.adhesion.whole_law_table` (161 x 81 constants, about 300 kB of
+        source), ``e^2 = e_p^2 - (V_s/V)^2 + D(V/V_y, V_s/V_y)``, as the Python function computes
+        it. The file then also defines
+        ``microimpact_wall_interaction_flagged(..., int *outside_table)``, the same function with one
+        more output: 1 where ``V/V_y > 1000`` or ``V_s/V_y > 10``, beyond the table (its edge is
+        used; flagged, not refused), else 0 (NULL: not wanted).
 
     Returns
     -------
@@ -274,7 +285,10 @@ def generate_c_source(
         too (it would be ignored).
     """
     from .. import __version__
+    from ..adhesion import ADHESION_RULES
 
+    if not isinstance(adhesion, str) or adhesion not in ADHESION_RULES:
+        raise ValueError(f"adhesion must be one of {ADHESION_RULES}, got {adhesion!r}")
     E = effective_modulus if effective_modulus is not None else (pair.effective_modulus if pair else None)
     p_y = limiting_pressure if limiting_pressure is not None else (pair.limiting_pressure if pair else None)
     if E is None or p_y is None:
@@ -290,6 +304,8 @@ def generate_c_source(
     desc = f"{label}E* = {E:.6g} Pa, p_y = {p_y:.6g} Pa, G = {G:.6g} J/m^2, mu = {mu:.6g}"
     if kappa is not None:
         desc += f"; tangential: {tangential}, kappa = 4 G* / E* = {kappa:.6g}"
+    if adhesion != "additive":
+        desc += f"; adhesion: {adhesion}"
     if comment is not None:
         desc += "\n *\n * " + comment_text(comment)
     text = _C_TEMPLATE.format(
@@ -301,7 +317,8 @@ def generate_c_source(
         mu=_c_double(mu),
         stick=repr(STICKING_CONSTANT),
     )
-    return text if kappa is None else _mindlin_source(text, kappa, tangential)
+    text = text if kappa is None else _mindlin_source(text, kappa, tangential)
+    return text if adhesion == "additive" else _whole_law_source(text)
 
 
 def _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus):
@@ -399,6 +416,131 @@ def _mindlin_source(text, kappa, law="mindlin"):
     return head + table + anchor + tail
 
 
+#: The additive rule's lines and the whole law's replacements (each must occur once).
+_WHOLE_LAW_EDITS = (
+    (
+        " *   normal:     the elastic-plastic restitution e_p(V/V_y) of Aerosol Sci. Tech. 50(4):321 (2016),\n"
+        " *               eqs. 22, 27, 28, with the adhesive loss of Thornton & Ning (1998):\n"
+        " *               e^2 = e_p^2 - (V_s/V)^2, stick when e_p V <= V_s,\n",
+        " *   normal:     the whole adhesive elastic-plastic law of Thornton & Ning (1998), Powder Technol.\n"
+        " *               99:154 (JKR loading, yield at the adhesion-reduced limiting pressure, plastic loading,\n"
+        " *               unloading on the flattened radius R_p; microimpact's thornton_ning_1998_adhesive_plastic),\n"
+        " *               through its universal curve: e^2 = e_p^2 - (V_s/V)^2 + D(V/V_y, V_s/V_y), stick when\n"
+        " *               e^2 <= 0, e_p(V/V_y) the seed's restitution (Aerosol Sci. Tech. 50(4):321 (2016),\n"
+        " *               eqs. 22, 27, 28), D from the table below (bilinear),\n",
+    ),
+    (
+        "    double len, r, m, V_y, V_s, vn, V, e_p, e, ratio, jn,",
+        "    double len, r, m, V_y, V_s, vn, V, e_p, e, e2, ratio, jn,",
+    ),
+    (
+        "int microimpact_wall_interaction(const double v_in[3], const double n_in[3], const double omega_in[3],\n"
+        "                                 double diameter, double density, const microimpact_wall_params *params,\n"
+        "                                 double v_out[3], double omega_out[3], double *e_n)\n",
+        "int microimpact_wall_interaction_flagged(const double v_in[3], const double n_in[3], const double omega_in[3],\n"
+        "                                         double diameter, double density, const microimpact_wall_params *params,\n"
+        "                                         double v_out[3], double omega_out[3], double *e_n, int *outside_table)\n",
+    ),
+    (
+        "    /* normal: seed restitution with the adhesive loss */\n"
+        "    e_p = microimpact_restitution(V, V_y);\n"
+        "    stuck = (V_s > 0.0) && (e_p * V <= V_s);\n",
+        "    /* normal: the whole law, e^2 = e_p^2 - (V_s/V)^2 + D (core.adhesion.corrected_restitution) */\n"
+        "    e_p = microimpact_restitution(V, V_y);\n"
+        "    ratio = V > 0.0 ? V_s / V : 0.0;\n"
+        "    e2 = e_p * e_p - ratio * ratio\n"
+        "         + microimpact_tn98_correction(isinf(V_y) ? 0.0 : V / V_y, isinf(V_y) ? 0.0 : V_s / V_y, outside_table);\n"
+        "    stuck = !(e2 > 0.0);\n",
+    ),
+    (
+        "    ratio = V > 0.0 ? V_s / V : 0.0;\n    e = sqrt(fmax(e_p * e_p - ratio * ratio, 0.0));\n",
+        "    e = sqrt(e2);\n",
+    ),
+    (
+        "    int i, stuck;\n\n    for (i = 0; i < 3; i++) w[i] = omega_in ? omega_in[i] : 0.0;\n",
+        "    int i, stuck;\n\n    if (outside_table) *outside_table = 0;\n"
+        "    for (i = 0; i < 3; i++) w[i] = omega_in ? omega_in[i] : 0.0;\n",
+    ),
+)
+
+_WHOLE_LAW_WRAPPER = """
+int microimpact_wall_interaction(const double v_in[3], const double n_in[3], const double omega_in[3],
+                                 double diameter, double density, const microimpact_wall_params *params,
+                                 double v_out[3], double omega_out[3], double *e_n)
+{
+    return microimpact_wall_interaction_flagged(v_in, n_in, omega_in, diameter, density, params,
+                                                v_out, omega_out, e_n, NULL);
+}
+"""
+
+
+def _table_c_source(table=None) -> str:
+    """C99 text of the whole law's table and its lookup, ``microimpact_tn98_correction(x, y, outside)``.
+
+    ``x = V/V_y``, ``y = V_s/V_y``; returns ``D`` (:class:`~microimpact.adhesion.WholeLawTable`),
+    the same operations as its ``__call__``, in the same order; sets ``*outside`` (if not NULL) to 1
+    beyond the last node in ``t`` or ``u``, else leaves it.
+    """
+    from ..adhesion import whole_law_table
+
+    tab = whole_law_table() if table is None else table
+    nu, nt = tab.values.shape
+    rows = ",\n".join("    {" + ", ".join(repr(float(v)) for v in row) + "}" for row in tab.values)
+    return f"""
+/*
+ * The whole adhesive law's correction D(V/V_y, V_s/V_y) to e^2 (generated by microimpact.cexport from
+ * microimpact.adhesion.whole_law_table): nodes uniform in t = log10(V/V_y), {nt} from {float(tab.t[0])!r} to
+ * {float(tab.t[-1])!r}, and in u = (V_s/V_y)^(3/5), {nu} from 0 to {float(tab.u[-1])!r} (V_s/V_y up to
+ * {tab.y_max:.6g}). Below the first t node the value there is used (exact: the law has not yielded, or
+ * sticks); beyond the last t or u node the edge is used and *outside is set to 1.
+ */
+#define MICROIMPACT_TN98_NT {nt}
+#define MICROIMPACT_TN98_NU {nu}
+#define MICROIMPACT_TN98_T_MIN {float(tab.t[0])!r}
+#define MICROIMPACT_TN98_T_MAX {float(tab.t[-1])!r}
+#define MICROIMPACT_TN98_U_MAX {float(tab.u[-1])!r}
+#define MICROIMPACT_TN98_T_SCALE {tab.t_scale!r}
+#define MICROIMPACT_TN98_U_SCALE {tab.u_scale!r}
+static const double microimpact_tn98_table[MICROIMPACT_TN98_NU][MICROIMPACT_TN98_NT] = {{
+{rows}
+}};
+
+double microimpact_tn98_correction(double x, double y, int *outside)
+{{
+    double t, u, ft, fu, a, b;
+    int i, j;
+    const double *v0, *v1;
+    t = x > 0.0 ? log10(x) : MICROIMPACT_TN98_T_MIN;
+    u = pow(y, 0.6);
+    if (outside && ((t > MICROIMPACT_TN98_T_MAX) || (u > MICROIMPACT_TN98_U_MAX))) *outside = 1;
+    ft = fmin(fmax((t - MICROIMPACT_TN98_T_MIN) * MICROIMPACT_TN98_T_SCALE, 0.0), MICROIMPACT_TN98_NT - 1.0);
+    fu = fmin(fmax(u * MICROIMPACT_TN98_U_SCALE, 0.0), MICROIMPACT_TN98_NU - 1.0);
+    i = (int)ft;
+    if (i > MICROIMPACT_TN98_NT - 2) i = MICROIMPACT_TN98_NT - 2;
+    j = (int)fu;
+    if (j > MICROIMPACT_TN98_NU - 2) j = MICROIMPACT_TN98_NU - 2;
+    a = ft - i;
+    b = fu - j;
+    v0 = microimpact_tn98_table[j];
+    v1 = microimpact_tn98_table[j + 1];
+    return (1.0 - b) * ((1.0 - a) * v0[i] + a * v0[i + 1]) + b * ((1.0 - a) * v1[i] + a * v1[i + 1]);
+}}
+
+"""
+
+
+def _whole_law_source(text):
+    """The additive source ``text`` (rigid or compliant) turned into the whole law's."""
+    for old, new in _WHOLE_LAW_EDITS:
+        if text.count(old) != 1:  # pragma: no cover - the template changed
+            raise RuntimeError("the C template no longer has the additive rule's block")
+        text = text.replace(old, new)
+    text = text.replace("#include <math.h>\n", "#include <math.h>\n#include <stddef.h>\n", 1)
+    anchor = "int microimpact_wall_interaction_flagged("
+    head, tail = text.split(anchor, 1)
+    return head + _table_c_source() + anchor + tail + _WHOLE_LAW_WRAPPER
+
+
 def write_c_source(path, pair=None, **kwargs):
     """Write the C99 source of :func:`generate_c_source` to a file.
 
@@ -412,7 +554,7 @@ def write_c_source(path, pair=None, **kwargs):
     **kwargs
         ``effective_modulus`` [Pa], ``limiting_pressure`` [Pa], ``work_of_adhesion``
         ``G`` [J/m^2], ``friction`` ``mu`` [-], ``tangential``, ``poisson_ratio``,
-        ``effective_shear_modulus`` [Pa] and ``comment``, as for :func:`generate_c_source`.
+        ``effective_shear_modulus`` [Pa], ``comment`` and ``adhesion``, as for :func:`generate_c_source`.
 
     Returns
     -------

@@ -11,7 +11,7 @@ import numpy as np
 
 from .._validation import check_positive, parse_number
 from ..io import check_figure_path, check_input_file, check_memory, check_output_path
-from ..materials import DEFAULT_K, PAPER_CASES, list_materials, sphere_mass
+from ..materials import DEFAULT_K, PAPER_CASES, limiting_pressure, list_materials, sphere_mass
 from ..pair import ContactPair
 
 __all__ = [
@@ -265,7 +265,7 @@ def pair_from_args(args) -> ContactPair:
     elif args.yield_strength is not None or args.k is not None:
         Y = args.yield_strength if args.yield_strength is not None else PAPER_CASES[case]["yield_strength"]
         k = args.k if args.k is not None else DEFAULT_K
-        changes["limiting_pressure"] = ContactPair._limiting_pressure(None, k, Y)
+        changes["limiting_pressure"] = limiting_pressure(Y, k)
         changed.append(f"p_y = {k:g} x {Y:.6g} Pa")
     if changed:
         changes["label"] = f"{pair.label}, with {', '.join(changed)}"
@@ -274,7 +274,7 @@ def pair_from_args(args) -> ContactPair:
 
 def add_model_arguments(parser: argparse.ArgumentParser, *, many: bool = True, default: str | None = None) -> None:
     """``--model NAME[,NAME...]`` and ``--param MODEL:NAME=VALUE`` (repeatable)."""
-    from ..core.models import available
+    from ..models import DEFAULT, available
 
     g = parser.add_argument_group("impact models", f"Models: {', '.join(available())}.")
     g.add_argument(
@@ -282,15 +282,15 @@ def add_model_arguments(parser: argparse.ArgumentParser, *, many: bool = True, d
         metavar="NAME[,NAME...]" if many else "NAME",
         default=default,
         help=("impact model(s), comma-separated" if many else "impact model")
-        + f" (default: {default or 'the seed, thornton_ning_2016'})",
+        + f" (default: {default or 'the seed, ' + DEFAULT})",
     )
     g.add_argument(
         "--param",
         action="append",
         default=[],
         metavar="MODEL:NAME=VALUE",
-        help="a model parameter, e.g. linear_spring_dashpot:restitution=0.7 (repeat for more; "
-        "MODEL: may be left out when one model is named)",
+        help="a model parameter, e.g. MODEL:restitution=0.7 (`microimpact impact --model list 1` lists each "
+        "model's; repeat for more; MODEL: may be left out when one model is named)",
     )
 
 
@@ -298,7 +298,7 @@ def parse_models(text) -> list[str] | None:
     """The names of ``--model a,b`` (checked), or None when the option was not given."""
     if text is None:
         return None
-    from ..core.models import get
+    from ..models import get
 
     names = [t.strip() for t in str(text).split(",") if t.strip()]
     if not names:
@@ -316,7 +316,7 @@ def parse_models(text) -> list[str] | None:
 
 def parse_model_params(texts, names) -> dict:
     """``{model: {parameter: value}}`` from ``--param MODEL:NAME=VALUE`` options, for the models ``names``."""
-    from ..core.models import parameters
+    from ..models import parameters
 
     out: dict = {}
     for text in texts or []:

@@ -202,7 +202,10 @@ def run(args) -> int:
             print("* contact radius above 0.3 R*: outside the seed's small-strain range")
         if lines is not None:
             if not lines:
-                print("\nno DEM law compared: no input lines (--model with linear_spring_dashpot, ...)")
+                from .. import models
+
+                dem = ", ".join(models.dem_models())
+                print(f"\nno DEM law compared: no input lines (--model with one of {dem})")
             for name, texts in lines.items():
                 for code, text in texts.items():
                     print(f"\n# ---- {name}: {'LAMMPS' if code == 'lammps' else 'LIGGGHTS-PUBLIC'} input lines")

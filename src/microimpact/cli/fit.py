@@ -63,7 +63,7 @@ def register(sub) -> None:
         default=[],
         metavar="MODEL:NAME=VALUE",
         help="with --models: a model parameter's value (its start value where NAME is fitted), as in compare, "
-        "e.g. --param linear_spring_dashpot:restitution=0.7 (repeat for more)",
+        "e.g. --param MODEL:restitution=0.7 (repeat for more)",
     )
     p.add_argument("--folds", default="5", metavar="K", help="folds of the cross-validation with --models (default 5)")
     p.add_argument(
@@ -226,7 +226,7 @@ class _cli_words:
         import re
 
         if kind is not None and issubclass(kind, ValueError) and "model_params=" in str(exc):
-            from ..core.models import parameters
+            from ..models import parameters
 
             def option(m):
                 name = m.group(1)

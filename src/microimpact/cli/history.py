@@ -100,7 +100,7 @@ def run(args) -> int:
     if not V > 0:
         raise ValueError(f"velocity must be positive for a history (no contact at 0), got {V!r}")
     n = _count(args.n)
-    from ..core import models
+    from .. import models
 
     names = parse_models(args.model) or [models.DEFAULT]  # ValueError naming the models when unknown
     if len(names) != 1:

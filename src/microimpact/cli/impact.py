@@ -8,9 +8,8 @@ import warnings
 
 import numpy as np
 
-from .. import quantities
+from .. import models, quantities
 from .._validation import check_velocity
-from ..core import models
 from ..io import write_json
 from ..pair import RESULT_FIELDS, LargeStrainWarning
 from ._common import add_pair_arguments, pair_from_args, parse_values

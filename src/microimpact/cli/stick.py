@@ -16,12 +16,14 @@ DEFAULT_DIAMETERS = "5e-8,1e-7,2e-7,5e-7,1e-6,2e-6,5e-6,1e-5,2e-5"
 
 
 def register(sub) -> None:
+    from ..stick import ADHESION_LAWS, FULL_LAW
+
     p = sub.add_parser(
         "stick",
         help="capture (sticking) velocity against particle diameter: additive rule and Thornton & Ning's whole law",
         description="The impact speed at and below which a particle sticks, over particle diameters, for "
         "Thornton & Ning's (1998) additive rule (the seed's plastic loss plus the elastic adhesive one) and "
-        "their whole adhesive elastic-plastic law (thornton_ning_1998_adhesive_plastic), with each law's "
+        f"their whole adhesive elastic-plastic law ({FULL_LAW}), with each law's "
         "yield velocity. The pair's E*, p_y and density are kept and the particle resized. Diameters [m]: "
         "numbers, comma lists or ranges start:stop:count.",
     )
@@ -35,9 +37,9 @@ def register(sub) -> None:
     )
     p.add_argument(
         "--law",
-        default="additive,thornton_ning_1998_adhesive_plastic",
+        default=",".join(ADHESION_LAWS),
         metavar="NAME[,NAME]",
-        help="additive and/or thornton_ning_1998_adhesive_plastic (default: both)",
+        help=f"{' and/or '.join(ADHESION_LAWS)} (default: both)",
     )
     add_pair_arguments(p)
     o = p.add_argument_group("output")

@@ -16,9 +16,9 @@ import sys
 
 import numpy as np
 
-from .. import quantities
+from .. import models, quantities
 from .._validation import check_positive
-from ..materials import DEFAULT_K, PAPER_CASES, list_materials
+from ..materials import DEFAULT_K, PAPER_CASES, limiting_pressure, list_materials
 from ..pair import ContactPair
 from ..sweep import SWEEP_DIMENSIONS
 from ._common import (
@@ -124,10 +124,10 @@ def _base_pair(args, values):
         )
     pair = ContactPair.paper_case(args.case or "silicon")
     if Y is not None and "limiting_pressure" not in values:
-        pair = pair.replace(limiting_pressure=ContactPair._limiting_pressure(None, k, Y))
+        pair = pair.replace(limiting_pressure=limiting_pressure(Y, k))
     elif k is not None and "limiting_pressure" not in values:
         Y = PAPER_CASES[args.case or "silicon"]["yield_strength"]
-        pair = pair.replace(limiting_pressure=ContactPair._limiting_pressure(None, k, Y))
+        pair = pair.replace(limiting_pressure=limiting_pressure(Y, k))
     return pair
 
 
@@ -176,7 +176,7 @@ def run(args) -> int:
         # velocity always becomes a dimension; other inputs only when two or more values are given
         values[dest] = v if (v.size > 1 or dest == "velocity") else float(v[0])
     names = parse_models(args.model)
-    params = parse_model_params(args.param, names or ["thornton_ning_2016"])
+    params = parse_model_params(args.param, names or [models.DEFAULT])
     npoints = int(np.prod([np.size(v) for v in values.values()])) * len(names or [0])
     if kind == ".csv":  # about 20 numbers of about 22 characters per row
         _check_disk(out, npoints * 520)

@@ -100,7 +100,7 @@ QUANTITIES: dict[str, Quantity] = dict(
             1e6,
             "{:.4g}",
         ),
-        _q("energy_loss", "1", "fraction of kinetic energy lost, 1 - e^2", "29", "1-e^2", "$1 - e^2$", fmt="{:.4f}"),
+        _q("energy_loss", "1", "fraction of kinetic energy lost, 1 - e^2", "29", "1-e^2", "$1-e^2$", fmt="{:.4f}"),
         _q(
             "max_contact_radius",
             "m",
@@ -202,7 +202,7 @@ QUANTITIES: dict[str, Quantity] = dict(
         _q("normalized_force", "1", "normalised force P/P_y", "13-15", "P/P_y", "$P/P_y$"),
         # derived quantities of the figures and reports
         _q("plastic_frequency", "rad/s", "angular frequency of the plastic stage omega", "18-23", "omega", r"$\omega$"),
-        _q("plastic_ratio", "1", "plastic share alpha_p / alpha*", "", "alpha_p/alpha*", r"$\alpha_p/\alpha^*$"),
+        _q("plastic_ratio", "1", "plastic share alpha_p/alpha*", "", "alpha_p/alpha*", r"$\alpha_p/\alpha^*$"),
         _q("deresiewicz_time", "s", "Deresiewicz's elastic contact time", "30", "t_D", "$t_D$", **_NS),
         _q("ning_loading_time", "s", "Ning's high-speed loading time", "31", "t_N", "$t_N$", **_NS),
         _q("calibrated", "1", "1 where the model was calibrated to the reference, else 0", check="flag"),
@@ -289,22 +289,23 @@ def header(name: str) -> str:
 def axis_label(name: str, text: str = "") -> str:
     """A figure axis label: ``text`` (default the description), the TeX symbol, the display unit in brackets.
 
-    ``Maximum approach, $\\alpha^*$ (nm)``; the unit's powers in TeX (``kg m$^{-3}$``).
+    ``Maximum approach, $\\alpha^*$ (nm)``; the unit's powers in TeX (``kg m$^{-3}$``), a dimensionless
+    quantity ``(–)``, text none.
     """
     q = QUANTITIES[name]
-    words = text or q.description.split(",")[0]
+    words = text or q.description.split(",")[0].split(" (")[0]
     if not text and q.symbol and words.endswith(" " + q.symbol):  # "impact speed V" -> "impact speed"
         words = words[: -len(q.symbol) - 1]
     unit = q.shown_unit
-    tail = f" ({tex_unit(unit)})" if unit not in ("", "1") else ""
+    tail = {"": "", "1": " (–)"}.get(unit, f" ({tex_unit(unit)})")
     sym = f", {q.tex}" if q.tex else ""
     return f"{words[0].upper()}{words[1:]}{sym}{tail}"
 
 
 def tex_unit(unit: str) -> str:
-    """A UDUNITS unit in matplotlib text: ``"kg/m^3"`` -> ``"kg m$^{-3}$"``, ``"um"`` -> ``"$\\mu$m"``."""
+    """A UDUNITS unit in matplotlib text: ``"kg/m^3"`` -> ``"kg m$^{-3}$"``, ``"uN"`` -> ``"µN"``."""
     if unit.startswith("u"):
-        unit = r"$\mu$" + unit[1:]
+        unit = "µ" + unit[1:]
     if "/" in unit:
         num, den = unit.split("/", 1)
         base, _, power = den.partition("^")

@@ -6,6 +6,8 @@ path (:func:`~microimpact.core.arrays.evaluate`) runs this function, and the C e
 
 * **Normal**: the seed's elastic-plastic restitution (eq. 27, yield point eqs. 5, 7, 28) with
   Thornton & Ning's (1998) adhesive loss (:mod:`microimpact.core.adhesion`); ``R* = r``, ``m* = m``.
+  Either the additive rule (``D`` NaN) or, given the whole law's correction ``D`` interpolated from
+  its table (:func:`~microimpact.core.adhesion.corrected_restitution`), Thornton & Ning's whole law.
 * **Tangential**: the rigid-body impulse with Coulomb friction for a solid sphere (``I = 2/5 m r^2``;
   Walton 1993; Brach 1988): the impulse that stops the slip of the contact point, ``2/7 m |u_t|``,
   if it lies within ``mu J_n`` (rolling), else ``mu J_n`` against the slip (sliding). Or, given a
@@ -107,14 +109,15 @@ def approach_and_slip(vx, vy, vz, nx, ny, nz, wx, wy, wz, d, rho, E, p_y):
 
 
 @jitable
-def wall_impact(vx, vy, vz, nx, ny, nz, wx, wy, wz, d, rho, E, p_y, G, mu, F):
+def wall_impact(vx, vy, vz, nx, ny, nz, wx, wy, wz, d, rho, E, p_y, G, mu, F, D):
     """Outcome of one particle hitting the wall, in the order of :data:`WALL_FIELDS`.
 
     ``v`` [m/s] and ``omega`` [rad/s] the incoming velocity and spin, ``n`` the wall normal (out of
     the wall; any length > 0), ``d`` [m] and ``rho`` [kg/m^3] the sphere's, ``E = E*`` [Pa],
     ``p_y`` [Pa] (``inf``: never yields), ``G`` [J/m^2] the work of adhesion, ``mu`` the friction
     coefficient, ``F`` the compliant impulse ratio (negative where a law's impulse adds to the slip) or NaN
-    for the rigid-body impulse (module docstring). ``regime`` is :data:`NONE`, :data:`ROLLING`, :data:`SLIDING` or :data:`STUCK`. A
+    for the rigid-body impulse (module docstring), ``D`` the whole adhesive law's correction to ``e^2``
+    (:func:`~microimpact.core.adhesion.whole_law_correction`) or NaN for the additive rule. ``regime`` is :data:`NONE`, :data:`ROLLING`, :data:`SLIDING` or :data:`STUCK`. A
     zero normal gives NaN everywhere (the caller refuses it).
     """
     if nx == 0.0 and ny == 0.0 and nz == 0.0:
@@ -129,7 +132,10 @@ def wall_impact(vx, vy, vz, nx, ny, nz, wx, wy, wz, d, rho, E, p_y, G, mu, F):
     if not vn < 0.0:  # moving away (or along): no impact
         return vx, vy, vz, wx, wy, wz, 1.0, 0.0, NONE, Vy, Vs
     V = -vn
-    e, stuck = adhesion.restitution(V, Vy, Vs)
+    if math.isnan(D):  # the additive rule
+        e, stuck = adhesion.restitution(V, Vy, Vs)
+    else:  # the whole law, through its table
+        e, stuck = adhesion.corrected_restitution(V, Vy, Vs, D)
     if stuck == 1.0:
         return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, V, STUCK, Vy, Vs
     jn = (1.0 + e) * V  # normal impulse / m

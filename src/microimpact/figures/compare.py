@@ -16,7 +16,7 @@ import numpy as np
 from .. import quantities
 from . import style as _style
 
-__all__ = ["comparison_data", "plot_comparison", "COMPARISON_COLUMNS", "MODEL_LABELS", "MODEL_STYLES"]
+__all__ = ["comparison_data", "plot_comparison", "COMPARISON_COLUMNS", "model_label", "model_style"]
 
 #: Columns of :func:`comparison_data`: name -> unit (from :data:`~microimpact.core.quantities.QUANTITIES`;
 #: the contact time in its display unit, ns).
@@ -29,29 +29,39 @@ COMPARISON_COLUMNS = {
     }.items()
 }
 
-#: Short legend labels of the models.
-MODEL_LABELS = {
-    "thornton_ning_2016": "seed (Thornton-Ning 2016)",
-    "liggghts_thornton_ning": "LIGGGHTS thornton_ning",
-    "linear_spring_dashpot": "linear spring-dashpot",
-    "hertz_viscoelastic": "Hertz viscoelastic",
-    "hertz_tsuji": "Hertz-Tsuji damping",
-    "luding_hysteretic": "Luding hysteretic",
-    "jkr_elastic_adhesive": "JKR adhesive",
-}
+
+def model_label(name: str) -> str:
+    """Legend label of model ``name``: its declared ``LABEL`` (:mod:`microimpact.core.models`)."""
+    from .. import models
+
+    return models.get(name).LABEL
 
 
-#: Colour and line style of each model (Okabe-Ito colours; the seed's black and solid), so that a
-#: model looks the same in every comparison; models not listed take :func:`~.style.series_style`.
-MODEL_STYLES = {
-    "thornton_ning_2016": {"color": "#000000", "linestyle": "-", "linewidth": 1.6},
-    "liggghts_thornton_ning": {"color": "#009E73", "linestyle": ":", "linewidth": 1.5},
-    "hertz_tsuji": {"color": "#D55E00", "linestyle": "--"},
-    "hertz_viscoelastic": {"color": "#0072B2", "linestyle": "-."},
-    "linear_spring_dashpot": {"color": "#56B4E9", "linestyle": (0, (5, 1.5, 1, 1.5, 1, 1.5))},
-    "luding_hysteretic": {"color": "#CC79A7", "linestyle": (0, (8, 2))},
-    "jkr_elastic_adhesive": {"color": "#E69F00", "linestyle": (0, (3, 1, 1, 1))},
-}
+def model_style(name: str, i: int) -> dict:
+    """Line style of model ``name``, the ``i``-th line of a figure: its face's ``STYLE``
+    (:func:`microimpact.models.face`; the seed's black and solid, Okabe-Ito colours), so that a
+    model looks the same in every comparison, else :func:`~.style.series_style` ``(i)``."""
+    from .. import models
+
+    return models.face(name).STYLE or _style.series_style(i)
+
+
+def __getattr__(name):
+    if name in ("MODEL_LABELS", "MODEL_STYLES"):  # deprecated: each model declares them
+        import warnings
+
+        from .. import models
+
+        new = "model_label(name)" if name == "MODEL_LABELS" else "model_style(name, i)"
+        warnings.warn(
+            f"microimpact.figures.compare.{name} is deprecated; use microimpact.figures.compare.{new}",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        if name == "MODEL_LABELS":
+            return {n: models.get(n).LABEL for n in models.available()}
+        return {n: models.face(n).STYLE for n in models.available() if models.face(n).STYLE}
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def _dataset(comparison, **kwargs):
@@ -145,8 +155,8 @@ def plot_comparison(comparison=None, ax=None, *, legend=True, **kwargs):
             fig = axes[0].figure
         handles = []
         for i, name in enumerate(names):
-            st = MODEL_STYLES.get(name) or _style.series_style(i)
-            label = MODEL_LABELS.get(name, name) + (" (cal.)" if calibrated[i] else "")
+            st = model_style(name, i)
+            label = model_label(name) + (" (cal.)" if calibrated[i] else "")
             if V.size <= 12:  # a few speeds: mark them
                 st = {**st, "marker": _style.MARKERS[i % len(_style.MARKERS)], "markersize": 3.5}
             for a, (var, scale, _) in zip(axes, panels):

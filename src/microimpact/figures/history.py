@@ -19,7 +19,6 @@ __all__ = ["plot_history", "STAGE_COLORS"]
 
 #: Light fills of the three stages (Okabe & Ito colours: sky blue, orange, bluish green).
 STAGE_COLORS = {1: "#56B4E9", 2: "#E69F00", 3: "#009E73"}
-_STAGE_LABELS = {1: "1: Hertz loading", 2: "2: plastic loading", 3: "3: elastic unloading"}
 
 _PREFIXES = [
     (1e-15, "f"),
@@ -108,7 +107,7 @@ def plot_history(history, ax=None, *, show_stages=True, show_hertz=False, title=
     plt = require("matplotlib.pyplot", "plotting")
     from matplotlib.patches import Patch
 
-    from ..dynamics import GENERIC_STAGE_NAMES, SEED_STAGE_MODELS, hertz_force_along
+    from ..dynamics import hertz_force_along, stage_names
 
     t = np.asarray(_get(history, "time"), dtype=float)
     order = np.argsort(t, kind="stable")
@@ -123,8 +122,11 @@ def plot_history(history, ax=None, *, show_stages=True, show_hertz=False, title=
     Vr = float(_get(history, "rebound_velocity"))
     a_p = float(_get(history, "plastic_approach"))
     model = history.get("model") if isinstance(history, dict) else getattr(history, "model", None)
-    seed_stages = model is None or model in SEED_STAGE_MODELS
-    labels = _STAGE_LABELS if seed_stages else GENERIC_STAGE_NAMES  # other laws: loading, unloading
+    stages = stage_names(model)
+    seed_stages = 2 in stages  # a second loading stage: the seed's three, numbered
+    labels = (
+        {k: f"{k}: {v.split(' (')[0]}" for k, v in stages.items() if k} if seed_stages else stages
+    )  # other laws: loading, unloading
     plastic = seed_stages and t1 < tL
 
     kws = {"color": "black", "linewidth": 1.3}

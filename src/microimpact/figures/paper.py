@@ -35,6 +35,7 @@ import math
 import numpy as np
 
 from .. import contact, quantities
+from ..core.constants import LARGE_STRAIN_RATIO
 from ..pair import ContactPair
 from . import style as _style
 
@@ -105,6 +106,13 @@ ENERGY_LOSS_PARAMETERS: dict[str, tuple[str, str, str, float]] = {
 }
 
 _V_LABEL = quantities.axis_label("velocity", "impact velocity")
+
+
+def _scale(name):
+    """SI value times this is the value in the quantity's display unit (nm, µN, ns; QUANTITIES)."""
+    return quantities.QUANTITIES[name].scale
+
+
 _VMAX = 120.0  # the seed's velocity range [m/s]
 
 
@@ -312,7 +320,7 @@ def plot_restitution(pairs=None, data=None, ax=None, *, velocity=None, table=Non
                 label=r"$a^*/R^* > 0.3$ (outside small strain)",
             )
         ax.set_xlabel(_V_LABEL)
-        ax.set_ylabel(r"Coefficient of restitution, $e$ (–)")
+        ax.set_ylabel(quantities.axis_label("restitution"))
         ax.legend(loc="lower left")
     return ax
 
@@ -460,7 +468,7 @@ def plot_energy_loss(parameter, values, ax=None, *, pair=None, velocity=None, ta
         ax.set_xlim(0.0, max(_VMAX, float(V.max())) if velocity is None else float(V.max()))
         ax.set_ylim(0.0, 1.0)
         ax.set_xlabel(_V_LABEL)
-        ax.set_ylabel(r"Fraction of energy lost, $1-e^2$ (–)")
+        ax.set_ylabel(quantities.axis_label("energy_loss", "fraction of energy lost"))
         if legend_loc == "above":
             ax.legend(
                 loc="lower center",
@@ -560,14 +568,14 @@ def plot_force_displacement(velocities=(30.0, 50.0, 70.0), ax=None, *, pair=None
     with _style.style():
         ax = _style.new_axes(ax)
         branch = np.asarray(table["branch"])
-        a = np.asarray(table["approach_m"], float) * 1e9
-        P = np.asarray(table["force_N"], float) * 1e6
+        a = np.asarray(table["approach_m"], float) * _scale("approach")
+        P = np.asarray(table["force_N"], float) * _scale("force")
         for i, (V, m) in enumerate(_groups(table, "velocity_m_s")):
             c = _style.COLORS[i % len(_style.COLORS)]
             lo, un = m & (branch == "loading"), m & (branch == "unloading")
             ax.plot(a[lo], P[lo], color=c, linestyle="-", label=f"V = {V:g} m/s", **kws)
             ax.plot(a[un], P[un], color=c, linestyle="--", **kws)
-            a_p = float(np.asarray(table["plastic_approach_m"], float)[m][0]) * 1e9
+            a_p = float(np.asarray(table["plastic_approach_m"], float)[m][0]) * _scale("plastic_approach")
             ax.plot([a_p], [0.0], marker="v", markersize=4, color=c, clip_on=False, zorder=5)
             ax.annotate(
                 f"{a_p:.1f}",
@@ -587,9 +595,11 @@ def plot_force_displacement(velocities=(30.0, 50.0, 70.0), ax=None, *, pair=None
         ax.set_xlim(0.0, float(a.max()) * 1.05)
         ax.set_ylim(0.0, float(P.max()) * 1.08)
         # a*/R* > 0.3 <=> alpha > 0.09 R*
-        _style.shade_large_strain(ax, 0.09 * pair.effective_radius * 1e9, label=True, text_xy=(0.985, 0.06))
-        ax.set_xlabel(r"Approach, $\alpha$ (nm)")
-        ax.set_ylabel(r"Contact force, $P$ (µN)")
+        _style.shade_large_strain(
+            ax, LARGE_STRAIN_RATIO**2 * pair.effective_radius * _scale("approach"), label=True, text_xy=(0.985, 0.06)
+        )
+        ax.set_xlabel(quantities.axis_label("approach"))
+        ax.set_ylabel(quantities.axis_label("force", "contact force"))
         ax.legend(loc="upper left")
     return ax
 
@@ -656,7 +666,7 @@ def plot_approach(pair=None, ax=None, *, velocity=None, table=None):
         c0, c1 = _style.COLORS[0], _style.COLORS[2]
         (l0,) = ax.plot(
             V,
-            np.asarray(table["max_approach_m"], float) * 1e9,
+            np.asarray(table["max_approach_m"], float) * _scale("max_approach"),
             color=c0,
             linestyle="-",
             label=r"maximum approach $\alpha^*$",
@@ -679,8 +689,8 @@ def plot_approach(pair=None, ax=None, *, velocity=None, table=None):
         if ls.any():
             _style.shade_large_strain(ax, float(V[ls].min()), text_xy=(0.985, 0.06))
         ax.set_xlabel(_V_LABEL)
-        ax.set_ylabel(r"Maximum approach, $\alpha^*$ (nm)")
-        right.set_ylabel(r"Plastic share, $\alpha_p/\alpha^*$ (–)", color=c1)
+        ax.set_ylabel(quantities.axis_label("max_approach"))
+        right.set_ylabel(quantities.axis_label("plastic_ratio"), color=c1)
         ax.legend(handles=[l0, l1], loc="upper left")
         ax.right_ax = right
     return ax
@@ -771,7 +781,7 @@ def plot_contact_times(pair=None, ax=None, *, velocity=None, table=None):
             lw = 1.6 if col == "ning_loading_time_s" else None
             ax.plot(
                 V,
-                np.asarray(table[col], float) * 1e9,
+                np.asarray(table[col], float) * _scale("contact_time"),
                 color=color,
                 linestyle=ls,
                 label=label,
@@ -790,7 +800,7 @@ def plot_contact_times(pair=None, ax=None, *, velocity=None, table=None):
                 fontsize=6.5,
                 color="0.35",
             )
-        ymax = float(np.nanmax(np.asarray(table["contact_time_s"], float))) * 1e9
+        ymax = float(np.nanmax(np.asarray(table["contact_time_s"], float))) * _scale("contact_time")
         ax.set_ylim(0.0, ymax * 1.4)
         ls = np.asarray(table["large_strain"]).astype(bool)
         if ls.any():
@@ -887,15 +897,15 @@ def plot_force_time(velocity=70.0, ax=None, *, pair=None, table=None):
     }
     with _style.style():
         ax = _style.new_axes(ax)
-        t = np.asarray(table["time_s"], float) * 1e9
-        P = np.asarray(table["force_N"], float) * 1e6
+        t = np.asarray(table["time_s"], float) * _scale("time")
+        P = np.asarray(table["force_N"], float) * _scale("force")
         for name, m in _groups(table, "series"):
             label, color, ls = labels.get(name, (name, "0.5", ":"))
             ax.plot(t[m], P[m], color=color, linestyle=ls, label=label)
         ax.set_xlim(0.0, float(t.max()) * 1.02)
         ax.set_ylim(0.0, float(P.max()) * 1.35)
-        ax.set_xlabel(r"Time, $t$ (ns)")
-        ax.set_ylabel(r"Contact force, $P$ (µN)")
+        ax.set_xlabel(quantities.axis_label("time", "time"))
+        ax.set_ylabel(quantities.axis_label("force", "contact force"))
         ax.legend(loc="upper right")
     return ax
 
@@ -959,12 +969,16 @@ def plot_dynamics(velocity=50.0, ax=None, *, pair=None, table=None):
             axes = np.asarray(ax, dtype=object).ravel()
             if axes.size != 3:
                 raise ValueError(f"ax must be three Axes (velocity, force, approach), got {axes.size}")
-        t = np.asarray(table["time_s"], float) * 1e9
+        t = np.asarray(table["time_s"], float) * _scale("time")
         stage = np.asarray(table["stage"], int)
         series = [
-            ("approach_velocity_m_s", 1.0, r"Velocity, $\dot\alpha$ (m/s)"),
-            ("force_N", 1e6, r"Force, $P$ (µN)"),
-            ("approach_m", 1e9, r"Approach, $\alpha$ (nm)"),
+            (
+                "approach_velocity_m_s",
+                _scale("approach_velocity"),
+                quantities.axis_label("approach_velocity", "velocity"),
+            ),
+            ("force_N", _scale("force"), quantities.axis_label("force", "force")),
+            ("approach_m", _scale("approach"), quantities.axis_label("approach")),
         ]
         stage_style = {
             1: ("stage 1: Hertz loading", _style.COLORS[2], "-"),
@@ -986,6 +1000,6 @@ def plot_dynamics(velocity=50.0, ax=None, *, pair=None, table=None):
         axes[0].axhline(0.0, color="0.6", linewidth=0.5, zorder=0)
         axes[1].set_ylim(bottom=0.0)
         axes[2].set_ylim(bottom=0.0)
-        axes[-1].set_xlabel(r"Time, $t$ (ns)")
+        axes[-1].set_xlabel(quantities.axis_label("time", "time"))
         axes[0].legend(loc="lower left")
     return np.asarray(axes, dtype=object)

@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 
+from ..stick import FULL_LAW
 from . import style as _style
 
 __all__ = ["plot_stick_map", "LAW_LABELS"]
@@ -19,7 +20,7 @@ __all__ = ["plot_stick_map", "LAW_LABELS"]
 #: Panel titles of the adhesive laws.
 LAW_LABELS = {
     "additive": "additive rule (TN98 eq. 78)",
-    "thornton_ning_1998_adhesive_plastic": "whole law (TN98, $R_p$ unloading)",
+    FULL_LAW: "whole law (TN98, $R_p$ unloading)",
 }
 
 

@@ -1,24 +1,84 @@
-"""Impact models: one file each, found by name.
+"""Impact models: one file each, found by name; the contract every model declares, with its defaults.
 
-A model module in this package defines (the contract every path relies on):
+A model is one module of this package (or of a package added with :func:`register_path`), named
+as users name it (``model=NAME``). It declares what it is with module-level names; everything but
+``NAME``, ``TITLE``, ``outcome`` and ``force`` has a default, supplied here (the way a
+``scipy.stats`` distribution inherits what it does not override), so a small model is small:
+
+.. code-block:: python
+
+    import math
+    from microimpact.core.models import Parameter, checks, in_bounds, jitable, pack
+
+    NAME = "my_law"                                   # the file's name
+    TITLE = "One line: the law and its source"
+    PARAMETERS = (Parameter("restitution", "1", "e in (0, 1]", low=0.0, high=1.0, low_open=True),)
+    BOUNDS, validate = checks(NAME, PARAMETERS)       # the compiled and the Python check
+
+    @jitable
+    def outcome(V, E, R, m, p_y, params):
+        if not in_bounds(params, BOUNDS):
+            return nan_outcome(V)
+        ...
+        return pack(V, Vy, v, elastic, e, e * V, a_max, a_p, P_max, R_p, a_c, R, t1, t2, t_L, t_U)
+
+    @jitable
+    def force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
+        ...
+
+**Required**
 
 ``NAME``
     The module's name, the string users pass as ``model=``.
 ``TITLE``
     One line: the law and its source.
-``PARAMETERS``
-    Tuple of ``(name, unit, description)`` for the model's own parameters beyond the pair's
-    ``E*``, ``R*``, ``m*`` and ``p_y``, in the order :func:`outcome` reads them from ``params``.
-``DEFAULTS``
-    Tuple of floats, one per parameter (``nan`` where the user must give a value).
 ``outcome(V, E, R, m, p_y, params)``
-    Marked ``@jitable``; plain floats in, a tuple of floats out in the order of
-    :data:`microimpact.core.quantities.OUTCOME_FIELDS` (``nan`` where the model does not define a
-    field; flags as 1.0/0.0).
+    Marked ``@jitable``; plain floats in (speed [m/s], ``E*`` [Pa], ``R*`` [m], ``m*`` [kg], ``p_y``
+    [Pa], the model's parameters as a tuple of floats), the tuple of
+    :data:`~microimpact.core.quantities.OUTCOME_FIELDS` out, built by :func:`pack` (or
+    :func:`dem_outcome`, :func:`nan_outcome`): NaN where the model does not define a field, flags
+    as 1.0/0.0. Invalid ``params`` give :func:`nan_outcome` (never an exception).
 ``force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params)``
-    Marked ``@jitable``; the model's own normal force law [N] at approach ``alpha`` [m], approach rate
-    ``alpha_dot`` [m/s] and largest approach so far ``alpha_max`` [m], which the numerical integration
-    of Newton's equation uses as the independent check of :func:`outcome`.
+    Marked ``@jitable``; the normal force [N] at approach ``alpha`` [m], approach rate ``alpha_dot``
+    [m/s] and largest approach so far ``alpha_max`` [m]: the law whose integration
+    (:func:`microimpact.pair.ContactPair.history`) checks :func:`outcome` independently.
+
+**Optional** (default in brackets)
+
+``PARAMETERS`` [``()``]
+    The model's own parameters beyond the pair's ``E*``, ``R*``, ``m*``, ``p_y``, in the order
+    ``params`` holds them: :class:`Parameter` (name, unit, description, default, bounds). A plain
+    ``(name, unit, description)`` tuple with a ``DEFAULTS`` tuple beside it is still read.
+``BOUNDS``, ``validate`` [from ``PARAMETERS``]
+    The compiled check (:func:`in_bounds` reads ``BOUNDS``) and the Python check (ValueError naming
+    the parameter and its value) are both generated from ``PARAMETERS`` by :func:`checks`; a model
+    writes its own ``validate`` only for a rule bounds cannot state.
+``STICKS`` [``False``]
+    True when the model can give ``e = 0`` (a stuck particle) at a finite speed: fitting accepts
+    stuck data points only for such a model.
+``STAGES`` [:data:`GENERIC_STAGES`]
+    ``{stage code: name}`` of a history: 1 loading, 2 a second loading stage, 3 unloading (0, no
+    contact, is everyone's).
+``LABEL`` [``NAME``]
+    Short name for legends and tables.
+``signed_force`` [``None``: ``force``]
+    The force law before clipping at zero (negative: attractive), where the contact may end at zero force.
+``ends_at_zero_force(params)`` [``None``: never]
+    True when the contact ends where ``signed_force`` vanishes (else where the approach falls to
+    ``separation_approach``).
+``separation_approach(E, R, m, p_y, params)`` [``None``: 0]
+    Approach [m] at which the contact breaks on unloading (negative for adhesive laws).
+``separation_approach_after(alpha_max, E, R, m, p_y, params)`` [``None``: ``separation_approach``]
+    The same where it depends on the largest approach ``alpha_max`` [m] reached (a law that
+    flattens the contact, whose unloading curve is set at the turning point).
+``sticking_velocity(E, R, m, p_y, params)`` [``None``: none known]
+    The speed [m/s] at and below which the particle sticks (``e = 0``), for a law with ``STICKS``
+    (:meth:`ContactPair.sticking_velocity <microimpact.pair.ContactPair.sticking_velocity>`).
+
+:func:`get` returns the :class:`Model` declaration of a name: the module's names with these
+defaults filled in. The generic machinery (arrays, histories, fitting, calibration, sweeps) asks
+the declaration and never a model's name; everything else a user touches about a model (its
+calibration, DEM input lines, plot style) is its face, :mod:`microimpact.models`.
 """
 
 from __future__ import annotations
@@ -26,34 +86,287 @@ from __future__ import annotations
 import importlib
 import math
 import pkgutil
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any, NamedTuple
 
-__all__ = ["available", "get", "parameters", "resolve_params", "DEFAULT"]
+from .._jit import jitable
+from ._common import dem_outcome, in_bounds, nan_outcome, pack
+
+__all__ = [
+    "available",
+    "get",
+    "parameters",
+    "resolve_params",
+    "register_path",
+    "unregister_path",
+    "DEFAULT",
+    "GENERIC_STAGES",
+    "Parameter",
+    "Model",
+    "declare",
+    "checks",
+    "bounds",
+    "in_bounds",
+    "pack",
+    "dem_outcome",
+    "nan_outcome",
+    "jitable",
+]
 
 #: The seed's model (Aerosol Sci. Tech. 50(4), 2016), used when no model is named.
 DEFAULT = "thornton_ning_2016"
 
+#: Stage names of a history of a law without stages of its own: loading to the maximum approach,
+#: then unloading (codes 1 and 3; 0 is "no contact").
+GENERIC_STAGES = {1: "loading", 3: "unloading"}
 
+
+class Parameter(NamedTuple):
+    """One parameter of a model: what it is, its default and the interval it must lie in.
+
+    ``low`` is a number or the name of an earlier parameter (``unloading_stiffness >=
+    loading_stiffness``); ``low_open``/``high_open`` make the bound strict; every value must be
+    finite unless ``high`` is finite (``(0, 1]``). ``flag``: a 0/1 switch. ``default`` NaN: the user
+    must give a value. The first three fields are the old ``(name, unit, description)`` triple.
+    """
+
+    name: str
+    unit: str
+    description: str
+    default: float = math.nan
+    low: Any = -math.inf
+    high: float = math.inf
+    low_open: bool = False
+    high_open: bool = False
+    flag: bool = False
+
+    def check(self, value: float, values: dict) -> None:
+        """ValueError naming this parameter and ``value`` when it is out of bounds (``values``: the
+        parameters before it, by name)."""
+        name = self.name
+        if self.flag:
+            if value not in (0.0, 1.0):
+                raise ValueError(f"{name} must be 0 or 1, got {value!r}")
+            return
+        if isinstance(self.low, str):
+            ref = values[self.low]
+            ok = (value > ref if self.low_open else value >= ref) and math.isfinite(value)
+            if not ok:
+                raise ValueError(
+                    f"{name} must be finite and {'>' if self.low_open else '>='} {self.low} ({ref!r}), got {value!r}"
+                )
+            return
+        lo_ok = value > self.low if self.low_open else value >= self.low
+        hi_ok = value < self.high if self.high_open else value <= self.high
+        if lo_ok and hi_ok and math.isfinite(value):
+            return
+        if self.high == math.inf and self.low == 0.0:
+            raise ValueError(
+                f"{name} must be {'positive' if self.low_open else 'non-negative'} and finite, got {value!r}"
+            )
+        if self.high == math.inf:
+            raise ValueError(f"{name} must be finite and {'>' if self.low_open else '>='} {self.low!r}, got {value!r}")
+        lo = "(" if self.low_open else "["
+        hi = ")" if self.high_open else "]"
+        raise ValueError(f"{name} must lie in {lo}{self.low:g}, {self.high:g}{hi}, got {value!r}")
+
+
+def bounds(params_spec) -> tuple:
+    """The table :func:`in_bounds` reads, one row of six floats per parameter:
+    ``(low, high, low_open, high_open, index of the parameter low refers to or -1, flag)``."""
+    names = [p.name for p in params_spec]
+    rows = []
+    for p in params_spec:
+        ref = -1.0
+        low = p.low
+        if isinstance(low, str):
+            ref = float(names.index(low))
+            low = -math.inf
+        rows.append((float(low), float(p.high), float(p.low_open), float(p.high_open), ref, 1.0 if p.flag else 0.0))
+    return tuple(rows)
+
+
+def _validator(name: str, params_spec) -> Callable:
+    def validate(params):
+        """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
+        n = len(params_spec)
+        if n == 0 and len(params):
+            raise ValueError(f"model {name!r} takes no parameters, got {params!r}")
+        if len(params) != n:
+            names = ", ".join(p.name for p in params_spec)
+            raise ValueError(f"params must hold {n} value{'s' if n != 1 else ''} ({names}), got {params!r}")
+        out = {}
+        for p, x in zip(params_spec, params):
+            if isinstance(x, bool):
+                raise ValueError(f"{p.name} must be a number, not a bool, got {x!r}")
+            out[p.name] = float(x)
+        for p in params_spec:
+            p.check(out[p.name], out)
+        return tuple(out.values())
+
+    validate.__qualname__ = validate.__name__ = "validate"
+    return validate
+
+
+def checks(name: str, params_spec) -> tuple:
+    """``(BOUNDS, validate)`` of a model from its ``PARAMETERS``: the table the compiled check
+    :func:`in_bounds` reads and the Python check, one source for both."""
+    return bounds(params_spec), _validator(name, params_spec)
+
+
+@dataclass(frozen=True, eq=False)
+class Model:
+    """A model's declaration: its module's names with the contract's defaults filled in.
+
+    Attribute names are the module's (``NAME``, ``PARAMETERS``, ``outcome``, ...); ``module`` is
+    the module itself, whose other functions are reached through it (and, for one release,
+    through this object).
+    """
+
+    NAME: str
+    TITLE: str
+    PARAMETERS: tuple
+    DEFAULTS: tuple
+    outcome: Callable
+    force: Callable
+    validate: Callable
+    STICKS: bool = False
+    STAGES: dict = field(default_factory=lambda: dict(GENERIC_STAGES))
+    LABEL: str = ""
+    signed_force: Callable | None = None
+    ends_at_zero_force: Callable | None = None
+    separation_approach: Callable | None = None
+    separation_approach_after: Callable | None = None
+    sticking_velocity: Callable | None = None
+    module: Any = None
+
+    def __getattr__(self, name):  # the model's own helpers (e.g. a calibration's inverse)
+        if name.startswith("__"):
+            raise AttributeError(name)
+        return getattr(object.__getattribute__(self, "module"), name)
+
+    def __repr__(self):
+        return f"<model {self.NAME}: {self.TITLE}>"
+
+
+_HOOKS = ("signed_force", "ends_at_zero_force", "separation_approach", "separation_approach_after", "sticking_velocity")
+
+
+def declare(module) -> Model:
+    """The :class:`Model` of ``module`` (or of any object with a model's names): the one place
+    where the contract's defaults meet what the model declares."""
+    ns = vars(module) if hasattr(module, "__dict__") else {}
+    missing = [k for k in ("NAME", "TITLE", "outcome", "force") if k not in ns]
+    if missing:
+        raise ValueError(f"model {ns.get('NAME', module)!r} does not define {', '.join(missing)}")
+    name = ns["NAME"]
+    spec = []
+    old_defaults = ns.get("DEFAULTS")
+    for i, p in enumerate(ns.get("PARAMETERS", ())):
+        if not isinstance(p, Parameter):  # the old (name, unit, description) triple, DEFAULTS beside it
+            p = Parameter(*p[:3], default=float(old_defaults[i]) if old_defaults is not None else math.nan)
+        spec.append(p)
+    spec = tuple(spec)
+    defaults = tuple(float(d) for d in old_defaults) if old_defaults is not None else tuple(p.default for p in spec)
+    hooks = {h: ns.get(h) for h in _HOOKS}
+    if hooks["signed_force"] is None:
+        hooks["signed_force"] = ns["force"]
+    return Model(
+        NAME=name,
+        TITLE=ns["TITLE"],
+        PARAMETERS=spec,
+        DEFAULTS=defaults,
+        outcome=ns["outcome"],
+        force=ns["force"],
+        validate=ns.get("validate") or _validator(name, spec),
+        STICKS=bool(ns.get("STICKS", False)),
+        STAGES=dict(ns.get("STAGES", GENERIC_STAGES)),
+        LABEL=ns.get("LABEL") or name,
+        module=module,
+        **hooks,
+    )
+
+
+# ----------------------------------------------------------------------------- the registry
+#: Packages searched for model files, in order: this one, then those of :func:`register_path`.
+_PACKAGES: list = [__name__]
 _NAMES: list = []
-_MODULES: dict = {}
+_WHERE: dict = {}
+_MODELS: dict = {}
+
+
+def register_path(package: str) -> None:
+    """Add the importable package ``package`` (a dotted name) to the packages searched for models.
+
+    Each public module of it (``package/my_law.py``) is a model named after its file, following
+    the contract of this module; it then appears in :func:`available` and works wherever a model
+    name is taken (``pair.impact(V, model="my_law")``, histories, sweeps, comparisons, fits,
+    calibration). Its face (calibration, DEM lines, style; :mod:`microimpact.models`) is read from
+    ``package.faces.my_law`` if that module exists, else the defaults apply. A name that an
+    earlier package already has is refused (ValueError).
+    """
+    if not isinstance(package, str) or not package:
+        raise ValueError(f"package must be an importable package name, got {package!r}")
+    try:
+        pkg = importlib.import_module(package)
+    except ImportError as exc:
+        raise ValueError(f"package {package!r} cannot be imported: {exc}") from None
+    if not hasattr(pkg, "__path__"):
+        raise ValueError(f"package must be a package (a folder with __init__.py), got the module {package!r}")
+    if package in _PACKAGES:
+        return
+    names = _scan(package)
+    clash = sorted(set(names) & set(available()))
+    if clash:
+        raise ValueError(f"package {package!r} has a model named {clash[0]!r}, which exists already")
+    _PACKAGES.append(package)
+    _reset()
+
+
+def unregister_path(package: str) -> None:
+    """Undo :func:`register_path` (its models leave :func:`available`)."""
+    if package in _PACKAGES[1:]:
+        _PACKAGES.remove(package)
+        _reset()
+
+
+def _reset():
+    _NAMES.clear()
+    _WHERE.clear()
+    _MODELS.clear()
+
+
+def _scan(package: str) -> list:
+    path = importlib.import_module(package).__path__
+    return [m.name for m in pkgutil.iter_modules(path) if not m.name.startswith("_") and m.name != "faces"]
 
 
 def available() -> list[str]:
     """Names of the models, the seed's first, then alphabetical (the files, read once per process)."""
     if not _NAMES:
-        names = sorted(m.name for m in pkgutil.iter_modules(__path__) if not m.name.startswith("_"))
-        _NAMES.extend(sorted(names, key=lambda n: n != DEFAULT))
+        for package in _PACKAGES:
+            for name in _scan(package):
+                _WHERE.setdefault(name, package)
+        _NAMES.extend(sorted(_WHERE, key=lambda n: (n != DEFAULT, n)))
     return list(_NAMES)
 
 
-def get(name: str = DEFAULT):
-    """The module of model ``name`` (see :func:`available`); ValueError naming it if unknown."""
-    found = _MODULES.get(name) if isinstance(name, str) else None
+def package_of(name: str) -> str:
+    """The package that holds model ``name`` (ValueError if unknown)."""
+    get(name)
+    return _WHERE.get(name, __name__)
+
+
+def get(name: str = DEFAULT) -> Model:
+    """The :class:`Model` declaration of model ``name`` (see :func:`available`); ValueError naming it if unknown."""
+    found = _MODELS.get(name) if isinstance(name, str) else None
     if found is not None:
         return found
     names = available()
     if not isinstance(name, str) or name not in names:
         raise ValueError(f"model must be one of {', '.join(names)}; got {name!r}")
-    found = _MODULES[name] = importlib.import_module(f"{__name__}.{name}")
+    found = _MODELS[name] = declare(importlib.import_module(f"{_WHERE[name]}.{name}"))
     return found
 
 
@@ -89,3 +402,6 @@ def resolve_params(module, given: dict) -> tuple:
             raise ValueError(f"{name} must be finite, got {value!r}")
         out.append(value)
     return tuple(module.validate(tuple(out)))
+
+
+_ = jitable  # re-exported for model files outside the core: ``from microimpact.core.models import jitable``

@@ -11,7 +11,7 @@ import math
 from .._jit import jitable
 from ..constants import LARGE_STRAIN_RATIO  # noqa: F401  (re-exported for the model files)
 
-__all__ = ["LARGE_STRAIN_RATIO", "NAN", "pack", "nan_outcome", "dem_outcome", "as_floats", "check_flag"]
+__all__ = ["LARGE_STRAIN_RATIO", "NAN", "pack", "nan_outcome", "dem_outcome", "in_bounds", "as_floats", "check_flag"]
 
 NAN = math.nan
 
@@ -23,37 +23,39 @@ def pack(
     v,
     elastic,
     e,
+    rebound,
     max_approach,
     plastic_approach,
     max_force,
     unloading_radius,
+    contact_radius,
     R,
     t1,
     t2,
     tL,
     tU,
 ):
-    """One outcome tuple in :data:`~microimpact.core.quantities.OUTCOME_FIELDS` order.
+    """One outcome tuple in :data:`~microimpact.core.quantities.OUTCOME_FIELDS` order: the one place
+    every model's :func:`outcome` returns through.
 
-    ``rebound_velocity = e V``, ``energy_loss = 1 - e^2``, ``max_contact_radius = (R* alpha*)^(1/2)``
-    (Hertz geometry, seed eq. 3), ``large_strain`` and ``contact_time = t_L + t_U`` are derived here,
-    so every model computes them the same way.
+    Derived here, so that every model computes them the same way: ``energy_loss = 1 - e^2`` (seed
+    eq. 29), ``large_strain`` (``contact_radius / R* >``
+    :data:`~microimpact.core.constants.LARGE_STRAIN_RATIO`, as 1.0/0.0) and ``contact_time = t_L + t_U``.
     """
-    a_max = math.sqrt(R * max_approach)
-    large = 1.0 if a_max / R > LARGE_STRAIN_RATIO else 0.0
+    large = 1.0 if contact_radius / R > LARGE_STRAIN_RATIO else 0.0
     return (
         V,
         Vy,
         v,
         elastic,
         e,
-        e * V,
+        rebound,
         max_approach,
         plastic_approach,
         max_force,
         unloading_radius,
         1.0 - e * e,
-        a_max,
+        contact_radius,
         large,
         t1,
         t2,
@@ -76,7 +78,32 @@ def dem_outcome(V, e, max_approach, plastic_approach, max_force, R, tL, tU):
     ``unloading_radius`` and the stage times of the seed (``t1``, ``t2``) are NaN; ``elastic`` is
     1.0 where no energy is lost (``e == 1``)."""
     n = math.nan
-    return pack(V, n, n, 1.0 if e == 1.0 else 0.0, e, max_approach, plastic_approach, max_force, n, R, n, n, tL, tU)
+    a_c = math.sqrt(R * max_approach)  # Hertz geometry (seed eq. 3), for comparison
+    return pack(
+        V, n, n, 1.0 if e == 1.0 else 0.0, e, e * V, max_approach, plastic_approach, max_force, n, a_c, R, n, n, tL, tU
+    )
+
+
+@jitable
+def in_bounds(params, bounds):
+    """The compiled check of a model's ``params`` against its ``BOUNDS`` (made by
+    :func:`microimpact.core.models.checks` from ``PARAMETERS``): right length, each value in its
+    interval, flags 0 or 1. False rather than an exception, so that ``outcome`` returns NaN."""
+    if len(params) != len(bounds):
+        return False
+    for i in range(len(bounds)):
+        b = bounds[i]
+        x = params[i]
+        if b[5] == 1.0:
+            if not (x == 0.0 or x == 1.0):
+                return False
+            continue
+        lo = b[0] if b[4] < 0.0 else params[int(b[4])]
+        if not (x > lo if b[2] == 1.0 else x >= lo):
+            return False
+        if not (x < b[1] if (b[3] == 1.0 or b[1] == math.inf) else x <= b[1]):
+            return False
+    return True
 
 
 def no_parameters(name, params):
@@ -93,7 +120,8 @@ def as_floats(parameters, params) -> list:
         names = ", ".join(p[0] for p in parameters)
         raise ValueError(f"params must hold {n} value{'s' if n != 1 else ''} ({names}), got {params!r}")
     out = []
-    for (name, _, _), x in zip(parameters, params):
+    for p, x in zip(parameters, params):
+        name = p[0]
         if isinstance(x, bool):
             raise ValueError(f"{name} must be a number, not a bool, got {x!r}")
         out.append(float(x))

@@ -460,7 +460,10 @@ def _time_upper(law, lo, hi, astar, E, R, m, Y, nu, twin):
             x = astar - s * s
             dW += _step_work(law, x, prev, E, R, Y, nu, twin)
             prev = x
-            part += GW[i] * 2.0 * s / math.sqrt(2.0 * dW / m)
+            if dW > 0.0:
+                part += GW[i] * 2.0 * s / math.sqrt(2.0 * dW / m)
+            else:  # s^2 below the rounding of alpha*: the integrand's limit, 2 (2 P(alpha*)/m*)^(-1/2)
+                part += GW[i] * 2.0 / math.sqrt(2.0 * loading_force(law, astar, E, R, Y, nu, twin) / m)
         total += 0.5 * (b - a) * part
         a = b
     return total

@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from .._jit import jitable
-from ..constants import LARGE_STRAIN_RATIO
+from ._common import pack
 
 __all__ = [
     "GX",
@@ -108,15 +108,13 @@ def hertz_impact(V, E, R, m):
     """The 18-tuple outcome of an adhesive model with zero adhesion: Hertz (contact from zero approach)."""
     n = math.nan
     if V == 0.0:
-        return (V, n, n, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, n, 0.0, 0.0, 0.0, n, n, math.inf, math.inf, math.inf)
+        return pack(V, n, n, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, n, 0.0, R, n, n, math.inf, math.inf)
     K = 0.5 * m * V * V
     am = (15.0 * K / (8.0 * E * math.sqrt(R))) ** 0.4
     bm = math.sqrt(math.sqrt(R * am))
     t = time_to_top(0.0, bm, E, R, m, 0.0)
     pm = 4.0 / 3.0 * E * math.sqrt(R) * am**1.5
-    a_c = math.sqrt(R * am)
-    big = 1.0 if a_c / R > LARGE_STRAIN_RATIO else 0.0
-    return (V, n, n, 1.0, 1.0, V, am, 0.0, pm, n, 0.0, a_c, big, n, n, t, t, 2.0 * t)
+    return pack(V, n, n, 1.0, 1.0, V, am, 0.0, pm, n, math.sqrt(R * am), R, n, n, t, t)
 
 
 @jitable
@@ -152,9 +150,7 @@ def impact(V, E, R, m, s, b0, bF):
     else:
         e = math.sqrt(1.0 - W / K)
         t_un = t_load + time_tensile(bF, b0, K - W, E, R, m, s)
-    a_c = bm * bm
-    big = 1.0 if a_c / R > LARGE_STRAIN_RATIO else 0.0
-    return (V, n, n, 0.0, e, e * V, a_max, 0.0, p_max, n, 1.0 - e * e, a_c, big, n, n, t_load, t_un, t_load + t_un)
+    return pack(V, n, n, 0.0, e, e * V, a_max, 0.0, p_max, n, bm * bm, R, n, n, t_load, t_un)
 
 
 @jitable

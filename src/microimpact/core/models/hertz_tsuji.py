@@ -24,7 +24,7 @@ that this module states so that their *actual* ``e`` can be computed:
   after July 2026 (see :func:`alpha_tsuji`).
 
 ``e`` and the contact time come from integrating the scaled equation
-``x'' = -(x^(3/2) + kappa x^(1/4) x')`` with the integrator of :mod:`.hertz_viscoelastic`
+``x'' = -(x^(3/2) + kappa x^(1/4) x')`` with the integrator of :mod:`~microimpact.core.models.hertz_viscoelastic`
 (``kappa = alpha_T (4/3)^(1/2) (rho X^(1/2) T^2 / m*)^(1/2) ...`` reduces to the constant
 ``kappa = alpha_T (4/3)^(1/2) / (4/3)^(1/2) = alpha_T``: with ``rho = 4/3 E* R*^(1/2)`` the scaled
 damping coefficient is exactly ``alpha_T``, for every speed and pair; derived here).
@@ -52,26 +52,24 @@ import math
 
 from .. import hertz
 from .._jit import jitable
-from ._common import as_floats, check_flag, dem_outcome, nan_outcome
+from . import Parameter, checks
+from ._common import dem_outcome, in_bounds, nan_outcome
 from .hertz_viscoelastic import scaled_damped_hertz
 
 NAME = "hertz_tsuji"
 TITLE = "Hertz with Tsuji's nonlinear damping (LAMMPS damping tsuji/coeff_restitution, LIGGGHTS hertz)"
+LABEL = "Hertz-Tsuji damping"
 PARAMETERS = (
-    ("damping_ratio", "1", "alpha_T >= 0, Tsuji's coefficient: eta_n = alpha_T (m* 4/3 E* a)^(1/2)"),
-    ("limit_force", "1", "1: force clipped at zero, contact ends when it vanishes; 0: ends at zero approach"),
+    Parameter("damping_ratio", "1", "alpha_T >= 0, Tsuji's coefficient: eta_n = alpha_T (m* 4/3 E* a)^(1/2)", low=0.0),
+    Parameter(
+        "limit_force",
+        "1",
+        "1: force clipped at zero, contact ends when it vanishes; 0: ends at zero approach",
+        default=1.0,
+        flag=True,
+    ),
 )
-DEFAULTS = (math.nan, 1.0)
-
-
-def validate(params):
-    """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
-    out = as_floats(PARAMETERS, params)
-    a, limit = out
-    if not (a >= 0.0 and math.isfinite(a)):
-        raise ValueError(f"damping_ratio must be non-negative and finite, got {a!r}")
-    check_flag("limit_force", limit)
-    return tuple(out)
+BOUNDS, validate = checks(NAME, PARAMETERS)
 
 
 @jitable
@@ -111,16 +109,9 @@ def alpha_tsuji(e, sqrt2=False):
 
 
 @jitable
-def _valid(params):
-    if len(params) != 2:
-        return False
-    return params[0] >= 0.0 and params[0] < math.inf and (params[1] == 0.0 or params[1] == 1.0)
-
-
-@jitable
 def outcome(V, E, R, m, p_y, params):
     """Outcome of one impact (see the module docstring; ``p_y`` unused)."""
-    if not _valid(params) or not (V >= 0.0 and V < math.inf):
+    if not in_bounds(params, BOUNDS) or not (V >= 0.0 and V < math.inf):
         return nan_outcome(V)
     if V == 0.0:
         return dem_outcome(V, 1.0, 0.0, 0.0, 0.0, R, math.inf, math.inf)

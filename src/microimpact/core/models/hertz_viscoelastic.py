@@ -54,15 +54,23 @@ import math
 
 from .. import hertz
 from .._jit import jitable
-from ._common import as_floats, check_flag, dem_outcome, nan_outcome
+from . import Parameter, checks
+from ._common import dem_outcome, in_bounds, nan_outcome
 
 NAME = "hertz_viscoelastic"
 TITLE = "Hertz with viscoelastic damping (Brilliantov et al. 1996; LAMMPS damping viscoelastic)"
+LABEL = "Hertz viscoelastic"
 PARAMETERS = (
-    ("dissipative_constant", "s", "A >= 0, viscoelastic dissipative constant of Brilliantov et al."),
-    ("limit_force", "1", "1: force clipped at zero, contact ends when it vanishes; 0: ends at zero approach"),
+    Parameter("dissipative_constant", "s", "A >= 0, viscoelastic dissipative constant of Brilliantov et al.", low=0.0),
+    Parameter(
+        "limit_force",
+        "1",
+        "1: force clipped at zero, contact ends when it vanishes; 0: ends at zero approach",
+        default=1.0,
+        flag=True,
+    ),
 )
-DEFAULTS = (math.nan, 1.0)
+BOUNDS, validate = checks(NAME, PARAMETERS)
 
 # Dormand-Prince 5(4) tableau (as in scipy.integrate.RK45).
 _A21 = 1.0 / 5.0
@@ -83,16 +91,6 @@ _TOL = 1e-12
 _T0 = 1e-4
 _MAX_STEPS = 200000
 _T_MAX = 1e4
-
-
-def validate(params):
-    """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
-    out = as_floats(PARAMETERS, params)
-    A, limit = out
-    if not (A >= 0.0 and math.isfinite(A)):
-        raise ValueError(f"dissipative_constant must be non-negative and finite, got {A!r}")
-    check_flag("limit_force", limit)
-    return tuple(out)
 
 
 @jitable
@@ -249,18 +247,9 @@ def scaled_damped_hertz(kappa, clip, q):
 
 
 @jitable
-def _valid(params):
-    if len(params) != 2:
-        return False
-    A = params[0]
-    lim = params[1]
-    return A >= 0.0 and A < math.inf and (lim == 0.0 or lim == 1.0)
-
-
-@jitable
 def outcome(V, E, R, m, p_y, params):
     """Outcome of one impact (see the module docstring; ``p_y`` unused)."""
-    if not _valid(params) or not (V >= 0.0 and V < math.inf):
+    if not in_bounds(params, BOUNDS) or not (V >= 0.0 and V < math.inf):
         return nan_outcome(V)
     rho = hertz.stiffness(E, R)
     if V == 0.0:

@@ -82,45 +82,37 @@ adhesion.
 
 from __future__ import annotations
 
-import math
-
 from .._jit import jitable
+from . import Parameter, checks
 from . import _fitted_laws as fl
-from ._common import as_floats, check_flag, nan_outcome
+from ._common import in_bounds, nan_outcome
 
 NAME = "jackson_green_brake"
 TITLE = "Jackson-Green loading (Ghaednia et al. 2019 eqs. 5-29) with Brake's (2015) unloading"
+LABEL = "Jackson-Green/Brake"
 PARAMETERS = (
-    ("yield_strength", "Pa", "S_y > 0, yield strength of the sphere"),
-    ("poisson_ratio", "1", "nu of the sphere, -1 < nu <= 0.5, in C = 1.295 exp(0.736 nu)"),
-    ("identical_spheres", "1", "0: sphere on a flat with the pair's E*, R*; 1: two identical spheres"),
+    Parameter("yield_strength", "Pa", "S_y > 0, yield strength of the sphere", low=0.0, low_open=True),
+    Parameter(
+        "poisson_ratio",
+        "1",
+        "nu of the sphere, -1 < nu <= 0.5, in C = 1.295 exp(0.736 nu)",
+        default=0.3,
+        low=-1.0,
+        high=0.5,
+        low_open=True,
+    ),
+    Parameter(
+        "identical_spheres",
+        "1",
+        "0: sphere on a flat with the pair's E*, R*; 1: two identical spheres",
+        default=0.0,
+        flag=True,
+    ),
 )
-DEFAULTS = (math.nan, 0.3, 0.0)
+BOUNDS, validate = checks(NAME, PARAMETERS)
 
 #: Largest ``Delta/R`` of Ghaednia et al.'s comparisons with finite elements (Figs. 8-12).
 VALID_INTERFERENCE_RATIO = 0.05
-
-
-def validate(params):
-    """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
-    out = as_floats(PARAMETERS, params)
-    Y, nu, twin = out
-    if not (Y > 0.0 and math.isfinite(Y)):
-        raise ValueError(f"yield_strength must be positive and finite, got {Y!r}")
-    if not (-1.0 < nu <= 0.5):
-        raise ValueError(f"poisson_ratio must be in (-1, 0.5], got {nu!r}")
-    check_flag("identical_spheres", twin)
-    return tuple(out)
-
-
-@jitable
-def _valid(params):
-    if len(params) != 3:
-        return False
-    Y = params[0]
-    nu = params[1]
-    t = params[2]
-    return Y > 0.0 and Y < math.inf and nu > -1.0 and nu <= 0.5 and (t == 0.0 or t == 1.0)
 
 
 @jitable
@@ -133,7 +125,7 @@ def _limit(E, R, params):
 @jitable
 def outcome(V, E, R, m, p_y, params):
     """Outcome of one impact (see the module docstring; ``p_y`` unused)."""
-    if not _valid(params):
+    if not in_bounds(params, BOUNDS):
         return nan_outcome(V)
     return fl.impact(fl.JACKSON_GREEN, V, E, R, m, params[0], params[1], params[2], _limit(E, R, params))
 

@@ -50,15 +50,15 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
-from . import _jkr
-from ._common import as_floats, nan_outcome
+from . import Parameter, _jkr, checks
+from ._common import in_bounds, nan_outcome
 
 NAME = "jkr_elastic_adhesive"
 TITLE = "JKR elastic adhesion, contact at zero approach, pull-off at -3 pi gamma R (LAMMPS granular jkr)"
-PARAMETERS = (("surface_energy", "J/m^2", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)"),)
-DEFAULTS = (math.nan,)
-#: The particle can stick (``e = 0`` at and below the sticking velocity).
+LABEL = "JKR adhesive"
 STICKS = True
+PARAMETERS = (Parameter("surface_energy", "J/m^2", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)", low=0.0),)
+BOUNDS, validate = checks(NAME, PARAMETERS)
 
 #: ``g(c_F) - g(c_0)``: the pull-off work in units of ``E* R*^(4/3) (pi gamma/E*)^(5/3)``.
 WORK_CONSTANT = (
@@ -71,14 +71,6 @@ WORK_CONSTANT = (
         + 2.0 * (2.0 ** (2.0 / 3.0)) ** 2
     )
 )
-
-
-def validate(params):
-    """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
-    (g,) = as_floats(PARAMETERS, params)
-    if not (g >= 0.0 and math.isfinite(g)):
-        raise ValueError(f"surface_energy must be non-negative and finite, got {g!r}")
-    return (g,)
 
 
 @jitable
@@ -124,11 +116,9 @@ def contact_radius(alpha, E, R, gamma):
 @jitable
 def outcome(V, E, R, m, p_y, params):
     """Outcome of one impact (see the module docstring; ``p_y`` unused)."""
-    if len(params) != 1:
+    if not in_bounds(params, BOUNDS) or not (V >= 0.0 and V < math.inf):
         return nan_outcome(V)
     gamma = params[0]
-    if not (gamma >= 0.0 and gamma < math.inf and V >= 0.0 and V < math.inf):
-        return nan_outcome(V)
     if gamma == 0.0:
         return _jkr.hertz_impact(V, E, R, m)  # b0 = 0, no pull-off
     s = math.sqrt(math.pi * gamma / E)

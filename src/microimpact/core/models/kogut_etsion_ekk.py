@@ -76,45 +76,37 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
+from . import Parameter, checks
 from . import _fitted_laws as fl
-from ._common import as_floats, nan_outcome
+from ._common import in_bounds, nan_outcome
 
 NAME = "kogut_etsion_ekk"
 TITLE = "Kogut-Etsion (2002) loading fits with Etsion-Kligerman-Kadin (2005) unloading"
+LABEL = "Kogut-Etsion/EKK"
 PARAMETERS = (
-    ("yield_strength", "Pa", "Y > 0, yield strength of the sphere (hardness H = 2.8 Y)"),
-    ("poisson_ratio", "1", "nu of the sphere, -1 < nu <= 0.5, in K = 0.454 + 0.41 nu"),
+    Parameter(
+        "yield_strength", "Pa", "Y > 0, yield strength of the sphere (hardness H = 2.8 Y)", low=0.0, low_open=True
+    ),
+    Parameter(
+        "poisson_ratio",
+        "1",
+        "nu of the sphere, -1 < nu <= 0.5, in K = 0.454 + 0.41 nu",
+        default=0.3,
+        low=-1.0,
+        high=0.5,
+        low_open=True,
+    ),
 )
-DEFAULTS = (math.nan, 0.3)
+BOUNDS, validate = checks(NAME, PARAMETERS)
 
 #: ``E/Y`` range of Kogut & Etsion's finite elements.
 VALID_MODULUS_RATIO = (100.0, 1000.0)
 
 
-def validate(params):
-    """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
-    out = as_floats(PARAMETERS, params)
-    Y, nu = out
-    if not (Y > 0.0 and math.isfinite(Y)):
-        raise ValueError(f"yield_strength must be positive and finite, got {Y!r}")
-    if not (-1.0 < nu <= 0.5):
-        raise ValueError(f"poisson_ratio must be in (-1, 0.5], got {nu!r}")
-    return tuple(out)
-
-
-@jitable
-def _valid(params):
-    if len(params) != 2:
-        return False
-    Y = params[0]
-    nu = params[1]
-    return Y > 0.0 and Y < math.inf and nu > -1.0 and nu <= 0.5
-
-
 @jitable
 def outcome(V, E, R, m, p_y, params):
     """Outcome of one impact (see the module docstring; ``p_y`` unused)."""
-    if not _valid(params):
+    if not in_bounds(params, BOUNDS):
         return nan_outcome(V)
     r = E / params[0]
     limit = math.inf if VALID_MODULUS_RATIO[0] <= r <= VALID_MODULUS_RATIO[1] else 0.0

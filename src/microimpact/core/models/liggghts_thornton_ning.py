@@ -120,16 +120,19 @@ import math
 
 from .. import hertz
 from .._jit import jitable
-from ..constants import LARGE_STRAIN_RATIO
+from . import checks
 from . import thornton_ning_2016 as seed
-from ._common import no_parameters
+from ._common import pack
 
 NAME = "liggghts_thornton_ning"
 TITLE = (
     "LIGGGHTS-PUBLIC 3.8 thornton_ning without adhesion: the seed's loading, incremental Hertz unloading of radius R*"
 )
+LABEL = "LIGGGHTS thornton_ning"
 PARAMETERS = ()
-DEFAULTS = ()
+BOUNDS, validate = checks(NAME, PARAMETERS)
+#: Its loading is the seed's, so its history has the seed's stages.
+STAGES = seed.STAGES
 
 
 @jitable
@@ -267,8 +270,7 @@ def outcome(V, E, R, m, p_y, params):
         c = Phat / A15  # 1 - beta^(3/2)
         h = -math.expm1((2.0 / 3.0) * math.log1p(-c)) if c < 1.0 else 1.0  # 1 - beta
         tU = math.sqrt(m / (2.0 * k * math.sqrt(max_approach))) * unloading_integral(c, h)
-    tL = t1 + t2
-    return (
+    return pack(
         V,
         Vy,
         v,
@@ -279,14 +281,12 @@ def outcome(V, E, R, m, p_y, params):
         plastic,
         max_force,
         R,
-        seed.energy_loss(e),
         a_max,
-        1.0 if a_max / R > LARGE_STRAIN_RATIO else 0.0,
+        R,
         t1,
         t2,
-        tL,
+        t1 + t2,
         tU,
-        tL + tU,
     )
 
 
@@ -334,8 +334,3 @@ def signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
 def ends_at_zero_force(params):
     """True: LIGGGHTS detaches the particle where the unloading force reaches zero."""
     return True
-
-
-def validate(params):
-    """No parameters of its own: ``params`` must be empty."""
-    return no_parameters(NAME, params)

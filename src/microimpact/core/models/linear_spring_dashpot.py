@@ -61,28 +61,31 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
-from ._common import as_floats, check_flag, dem_outcome, nan_outcome
+from . import Parameter, checks
+from ._common import dem_outcome, in_bounds, nan_outcome
 
 NAME = "linear_spring_dashpot"
 TITLE = "Linear spring-dashpot, constant e (LAMMPS/LIGGGHTS hooke with coefficient of restitution)"
+LABEL = "linear spring-dashpot"
 PARAMETERS = (
-    ("stiffness", "N/m", "spring constant k"),
-    ("restitution", "1", "coefficient of restitution e_n the damping is computed from, in (0, 1]"),
-    ("limit_force", "1", "1: force clipped at zero, contact ends when it vanishes; 0: ends at zero approach"),
+    Parameter("stiffness", "N/m", "spring constant k", low=0.0, low_open=True),
+    Parameter(
+        "restitution",
+        "1",
+        "coefficient of restitution e_n the damping is computed from, in (0, 1]",
+        low=0.0,
+        high=1.0,
+        low_open=True,
+    ),
+    Parameter(
+        "limit_force",
+        "1",
+        "1: force clipped at zero, contact ends when it vanishes; 0: ends at zero approach",
+        default=0.0,
+        flag=True,
+    ),
 )
-DEFAULTS = (math.nan, math.nan, 0.0)
-
-
-def validate(params):
-    """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
-    out = as_floats(PARAMETERS, params)
-    k, e, limit = out
-    if not (k > 0.0 and math.isfinite(k)):
-        raise ValueError(f"stiffness must be positive and finite, got {k!r}")
-    if not (0.0 < e <= 1.0):
-        raise ValueError(f"restitution must lie in (0, 1], got {e!r}")
-    check_flag("limit_force", limit)
-    return tuple(out)
+BOUNDS, validate = checks(NAME, PARAMETERS)
 
 
 @jitable
@@ -96,19 +99,9 @@ def damping_coefficient(k, e, m):
 
 
 @jitable
-def _valid(params):
-    if len(params) != 3:
-        return False
-    k = params[0]
-    e = params[1]
-    lim = params[2]
-    return k > 0.0 and k < math.inf and e > 0.0 and e <= 1.0 and (lim == 0.0 or lim == 1.0)
-
-
-@jitable
 def outcome(V, E, R, m, p_y, params):
     """Outcome of one impact (see the module docstring; ``E``, ``p_y`` unused)."""
-    if not _valid(params):
+    if not in_bounds(params, BOUNDS):
         return nan_outcome(V)
     k = params[0]
     limit = params[2] == 1.0

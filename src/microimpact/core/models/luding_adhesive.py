@@ -65,45 +65,26 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
-from ._common import as_floats, dem_outcome, nan_outcome
+from . import Parameter, checks
+from ._common import dem_outcome, in_bounds, nan_outcome
 
 NAME = "luding_adhesive"
 TITLE = "Adhesive elasto-plastic linear law, k1 loading / k2 unloading / kc adhesion (Luding 2008; LIGGGHTS)"
+LABEL = "Luding adhesive"
+STICKS = True
 PARAMETERS = (
-    ("loading_stiffness", "N/m", "k1, stiffness of the loading branch (LIGGGHTS' kn)"),
-    ("unloading_stiffness", "N/m", "k2 > k1, largest unloading stiffness (k2Max)"),
-    ("adhesion_stiffness", "N/m", "kc >= 0, stiffness of the adhesive branch"),
-    ("plasticity_depth", "1", "phi_f > 0, LIGGGHTS' phiF"),
+    Parameter("loading_stiffness", "N/m", "k1, stiffness of the loading branch (LIGGGHTS' kn)", low=0.0, low_open=True),
+    Parameter(
+        "unloading_stiffness",
+        "N/m",
+        "k2 > k1, largest unloading stiffness (k2Max)",
+        low="loading_stiffness",
+        low_open=True,
+    ),
+    Parameter("adhesion_stiffness", "N/m", "kc >= 0, stiffness of the adhesive branch", low=0.0),
+    Parameter("plasticity_depth", "1", "phi_f > 0, LIGGGHTS' phiF", low=0.0, low_open=True),
 )
-DEFAULTS = (math.nan, math.nan, math.nan, math.nan)
-
-
-def validate(params):
-    """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
-    out = as_floats(PARAMETERS, params)
-    k1, k2, kc, phi = out
-    if not (k1 > 0.0 and math.isfinite(k1)):
-        raise ValueError(f"loading_stiffness must be positive and finite, got {k1!r}")
-    if not (k2 > k1 and math.isfinite(k2)):
-        raise ValueError(f"unloading_stiffness must be finite and > loading_stiffness ({k1!r}), got {k2!r}")
-    if not (kc >= 0.0 and math.isfinite(kc)):
-        raise ValueError(f"adhesion_stiffness must be non-negative and finite, got {kc!r}")
-    if not (phi > 0.0 and math.isfinite(phi)):
-        raise ValueError(f"plasticity_depth must be positive and finite, got {phi!r}")
-    return tuple(out)
-
-
-@jitable
-def _valid(params):
-    if len(params) != 4:
-        return False
-    k1 = params[0]
-    k2 = params[1]
-    kc = params[2]
-    phi = params[3]
-    return (
-        k1 > 0.0 and k1 < math.inf and k2 > k1 and k2 < math.inf and kc >= 0.0 and kc < math.inf and phi > 0.0
-    ) and phi < math.inf
+BOUNDS, validate = checks(NAME, PARAMETERS)
 
 
 @jitable
@@ -115,7 +96,7 @@ def plasticity_overlap(R, params):
 @jitable
 def outcome(V, E, R, m, p_y, params):
     """Outcome of one impact (see the module docstring; ``E``, ``p_y`` unused)."""
-    if not _valid(params) or not (V >= 0.0 and V < math.inf):
+    if not in_bounds(params, BOUNDS) or not (V >= 0.0 and V < math.inf):
         return nan_outcome(V)
     k1 = params[0]
     k2 = params[1]

@@ -57,39 +57,25 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
-from ._common import as_floats, dem_outcome, nan_outcome
+from . import Parameter, checks
+from ._common import dem_outcome, in_bounds, nan_outcome
 
 NAME = "luding_hysteretic"
 TITLE = "Linear hysteretic spring, k1 loading / k2 unloading (Walton & Braun 1986; Luding 2008)"
+LABEL = "Luding hysteretic"
 PARAMETERS = (
-    ("loading_stiffness", "N/m", "k1, stiffness of the loading branch"),
-    ("unloading_stiffness", "N/m", "k2 >= k1, stiffness of the unloading branch (largest one if plasticity_depth > 0)"),
-    ("plasticity_depth", "1", "0: constant k2; > 0: Luding's k2(alpha_max) with LIGGGHTS' phiF"),
+    Parameter("loading_stiffness", "N/m", "k1, stiffness of the loading branch", low=0.0, low_open=True),
+    Parameter(
+        "unloading_stiffness",
+        "N/m",
+        "k2 >= k1, stiffness of the unloading branch (largest one if plasticity_depth > 0)",
+        low="loading_stiffness",
+    ),
+    Parameter(
+        "plasticity_depth", "1", "0: constant k2; > 0: Luding's k2(alpha_max) with LIGGGHTS' phiF", default=0.0, low=0.0
+    ),
 )
-DEFAULTS = (math.nan, math.nan, 0.0)
-
-
-def validate(params):
-    """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
-    out = as_floats(PARAMETERS, params)
-    k1, k2, phi = out
-    if not (k1 > 0.0 and math.isfinite(k1)):
-        raise ValueError(f"loading_stiffness must be positive and finite, got {k1!r}")
-    if not (k2 >= k1 and math.isfinite(k2)):
-        raise ValueError(f"unloading_stiffness must be finite and >= loading_stiffness ({k1!r}), got {k2!r}")
-    if not (phi >= 0.0 and math.isfinite(phi)):
-        raise ValueError(f"plasticity_depth must be non-negative and finite, got {phi!r}")
-    return tuple(out)
-
-
-@jitable
-def _valid(params):
-    if len(params) != 3:
-        return False
-    k1 = params[0]
-    k2 = params[1]
-    phi = params[2]
-    return k1 > 0.0 and k1 < math.inf and k2 >= k1 and k2 < math.inf and phi >= 0.0 and phi < math.inf
+BOUNDS, validate = checks(NAME, PARAMETERS)
 
 
 @jitable
@@ -108,7 +94,7 @@ def plasticity_overlap(R, params):
 @jitable
 def outcome(V, E, R, m, p_y, params):
     """Outcome of one impact (see the module docstring; ``E``, ``p_y`` unused)."""
-    if not _valid(params):
+    if not in_bounds(params, BOUNDS):
         return nan_outcome(V)
     k1 = params[0]
     k2 = params[1]

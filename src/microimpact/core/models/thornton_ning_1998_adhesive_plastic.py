@@ -94,9 +94,9 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
-from . import _jkr
+from . import Parameter, _jkr, checks
 from . import thornton_ning_2016 as _seed
-from ._common import LARGE_STRAIN_RATIO, as_floats, nan_outcome
+from ._common import in_bounds, nan_outcome, pack
 from ._jkr import GW, GX
 from ._jkr import b_of_alpha as _b_of_alpha
 from ._jkr import force_b as _force_b
@@ -104,20 +104,14 @@ from ._jkr import work_difference as _wd
 
 NAME = "thornton_ning_1998_adhesive_plastic"
 TITLE = "Adhesive elastic-plastic spheres: JKR loading, yield, JKR unloading on R_p (Thornton & Ning 1998)"
-PARAMETERS = (("work_of_adhesion", "J/m^2", "G >= 0, interface energy (LIGGGHTS' surfaceEnergy)"),)
-DEFAULTS = (math.nan,)
+LABEL = "Thornton-Ning 1998 adhesive-plastic"
 #: The particle can stick (``e = 0`` below the sticking velocity).
 STICKS = True
+STAGES = {1: "loading, JKR then plastic (eqs. 49-52, 69)", 3: "unloading, JKR on R_p (eqs. 73, 76)"}
+PARAMETERS = (Parameter("work_of_adhesion", "J/m^2", "G >= 0, interface energy (LIGGGHTS' surfaceEnergy)", low=0.0),)
+BOUNDS, validate = checks(NAME, PARAMETERS)
 
 _THIRD = 1.0 / 3.0
-
-
-def validate(params):
-    """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
-    (g,) = as_floats(PARAMETERS, params)
-    if not (g >= 0.0 and math.isfinite(g)):
-        raise ValueError(f"work_of_adhesion must be non-negative and finite, got {g!r}")
-    return (g,)
 
 
 @jitable
@@ -263,11 +257,9 @@ def _rebound_work(bs, E, R, p_y, s, bY, PY, K):
 @jitable
 def outcome(V, E, R, m, p_y, params):
     """Outcome of one impact (module docstring), in the order of ``OUTCOME_FIELDS``."""
-    if len(params) != 1:
+    if not in_bounds(params, BOUNDS) or not (V >= 0.0 and V < math.inf and p_y > 0.0):
         return nan_outcome(V)
     G = params[0]
-    if not (G >= 0.0 and G < math.inf and V >= 0.0 and V < math.inf and p_y > 0.0):
-        return nan_outcome(V)
     if G == 0.0:
         return _seed.outcome(V, E, R, m, p_y, ())
     s, b0, by, bY, K, PY = yield_constants(E, R, p_y, G)
@@ -287,7 +279,7 @@ def outcome(V, E, R, m, p_y, params):
         v = V / Vy
     if Kin <= KY:  # no yield: the elastic adhesive impact (the same code, the same bits)
         o = _jkr.impact(V, E, R, m, s, b0, bF)
-        return (V, Vy, v, 1.0, o[4], o[5], o[6], o[7], o[8], R, o[10], o[11], o[12], o[15], 0.0, o[15], o[16], o[17])
+        return pack(V, Vy, v, 1.0, o[4], o[5], o[6], o[7], o[8], R, o[11], R, o[15], 0.0, o[15], o[16])
     # plastic: the maximum approach on the plastic branch
     bs = _plastic_turning_point(Kin - KY, E, R, p_y, s, bY, PY, K)
     Ps = plastic_force_b(bs, bY, PY, K, p_y)
@@ -319,8 +311,7 @@ def outcome(V, E, R, m, p_y, params):
         e = math.sqrt(Wr / Kin)
         b0p = (2.0 * Rp * s) ** _THIRD
         tU = _jkr.time_to_top(b0p, bs, E, Rp, m, s) + _jkr.time_tensile(bf, b0p, Wr, E, Rp, m, s)
-    large = 1.0 if bs2 / R > LARGE_STRAIN_RATIO else 0.0
-    return (V, Vy, v, 0.0, e, e * V, a_max, a_p, Ps, Rp, 1.0 - e * e, bs2, large, t1, t2, tL, tU, tL + tU)
+    return pack(V, Vy, v, 0.0, e, e * V, a_max, a_p, Ps, Rp, bs2, R, t1, t2, tL, tU)
 
 
 @jitable
@@ -447,3 +438,31 @@ def force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
 def signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
     """:func:`force` (the contact's end is the snap-off approach, not a zero of the force, with adhesion)."""
     return force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params)
+
+
+@jitable
+def rebound_energy_ratio(V, E, R, m, p_y, params):
+    """``W_r/K`` [-], signed: the work of the unloading curve from the maximum approach to its snap-off
+    (eqs. 73, 76, 77) over the impact energy ``K = m* V^2/2``.
+
+    Where it is positive it is ``e^2`` (:func:`restitution` is its square root: the same operations,
+    the same bits); where it is not, the particle sticks, and the value says how far it is from
+    bouncing. That is what the wall interaction's table of this law interpolates
+    (:func:`microimpact.core.adhesion.whole_law_correction`): a quantity smooth across the sticking
+    velocity, where ``e`` itself rises like a square root. NaN for ``V <= 0`` or bad parameters.
+    """
+    G = params[0]
+    if not (G >= 0.0 and G < math.inf and V > 0.0 and V < math.inf and p_y > 0.0):
+        return math.nan
+    if G == 0.0:
+        e = _seed.restitution_at(V, _seed.yield_point(E, R, m, p_y)[2])
+        return e * e
+    s, b0, by, bY, K, PY = yield_constants(E, R, p_y, G)
+    Kin = 0.5 * m * V * V
+    KY = math.inf if bY == math.inf else (bY - b0) * _wd(bY, b0, E, R, s)
+    if Kin <= KY:  # elastic adhesive: 1 - W/K, W the work of the tensile branch (as restitution)
+        bF = (0.5 * R * s) ** (1.0 / 3.0)
+        W = _jkr.work_integral(bF, E, R, s) - _jkr.work_integral(b0, E, R, s)
+        return 1.0 - W / Kin
+    bs = _plastic_turning_point(Kin - KY, E, R, p_y, s, bY, PY, K)
+    return _rebound_work(bs, E, R, p_y, s, bY, PY, K)[0] / Kin

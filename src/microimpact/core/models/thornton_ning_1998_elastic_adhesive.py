@@ -71,32 +71,24 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
-from . import _jkr
-from ._common import as_floats, nan_outcome
+from . import Parameter, _jkr, checks
+from ._common import in_bounds, nan_outcome
 from ._jkr import b_of_alpha as _b_of_alpha
 from ._jkr import force_b as _force_b
 from ._jkr import work_integral as _G
 
 NAME = "thornton_ning_1998_elastic_adhesive"
 TITLE = "Elastic adhesive spheres, JKR from first touch to snap-off (Thornton & Ning 1998)"
-PARAMETERS = (("work_of_adhesion", "J/m^2", "G >= 0, interface energy (LIGGGHTS' surfaceEnergy)"),)
-DEFAULTS = (math.nan,)
-#: The particle can stick (``e = 0`` at and below the sticking velocity).
+LABEL = "Thornton-Ning 1998 adhesive"
 STICKS = True
+PARAMETERS = (Parameter("work_of_adhesion", "J/m^2", "G >= 0, interface energy (LIGGGHTS' surfaceEnergy)", low=0.0),)
+BOUNDS, validate = checks(NAME, PARAMETERS)
 
 #: ``W / (G^5 R*^4 / E*^2)^(1/3)`` = 7.0922: the work of the tensile branch from ``b_0`` to ``b_f``,
 #: evaluated with the antiderivative of ``P d alpha`` in ``b`` at ``G = R* = E* = 1``.
 WORK_CONSTANT = _G((0.5 * math.sqrt(0.5 * math.pi)) ** (1.0 / 3.0), 1.0, 1.0, math.sqrt(0.5 * math.pi)) - _G(
     (2.0 * math.sqrt(0.5 * math.pi)) ** (1.0 / 3.0), 1.0, 1.0, math.sqrt(0.5 * math.pi)
 )
-
-
-def validate(params):
-    """Check ``params`` (ValueError naming the parameter and its value); return it as floats."""
-    (g,) = as_floats(PARAMETERS, params)
-    if not (g >= 0.0 and math.isfinite(g)):
-        raise ValueError(f"work_of_adhesion must be non-negative and finite, got {g!r}")
-    return (g,)
 
 
 @jitable
@@ -127,11 +119,9 @@ def sticking_velocity(E, R, m, p_y, params):
 @jitable
 def outcome(V, E, R, m, p_y, params):
     """Outcome of one impact (see the module docstring; ``p_y`` unused)."""
-    if len(params) != 1:
+    if not in_bounds(params, BOUNDS) or not (V >= 0.0 and V < math.inf):
         return nan_outcome(V)
     G = params[0]
-    if not (G >= 0.0 and G < math.inf and V >= 0.0 and V < math.inf):
-        return nan_outcome(V)
     if G == 0.0:
         return _jkr.hertz_impact(V, E, R, m)  # b0 = 0, no snap-off
     s = math.sqrt(0.5 * math.pi * G / E)

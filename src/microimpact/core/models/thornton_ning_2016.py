@@ -23,12 +23,16 @@ from .._jit import jitable
 from ..constants import LARGE_STRAIN_RATIO
 from ..hertz_beta_table import U_SPLIT
 from ..special import hertz_beta_scaled_s, hertz_beta_scaled_u
-from ._common import no_parameters
+from . import checks
+from ._common import pack
 
 NAME = "thornton_ning_2016"
 TITLE = "Elastic-plastic impact without adhesion (Aerosol Sci. Tech. 50(4), 2016; Thornton & Ning 1998)"
+LABEL = "seed (Thornton-Ning 2016)"
 PARAMETERS = ()
-DEFAULTS = ()
+BOUNDS, validate = checks(NAME, PARAMETERS)
+#: History stages (seed eqs. 2, 8, 10).
+STAGES = {1: "Hertz loading (eq. 2)", 2: "plastic loading (eq. 8)", 3: "elastic unloading (eq. 10)"}
 
 
 @jitable
@@ -217,8 +221,7 @@ def outcome(V, E, R, m, p_y, params):
     else:
         # Hertz unloading with R_p from alpha* to alpha_p (eq. 26): the stage-1 integral run backwards.
         tU = hertz.rise_time(recovery, rebound)
-    tL = t1 + t2
-    return (
+    return pack(
         V,
         Vy,
         v,
@@ -229,14 +232,12 @@ def outcome(V, E, R, m, p_y, params):
         plastic,
         max_force,
         R_p,
-        energy_loss(e),
         a_max,
-        1.0 if a_max / R > LARGE_STRAIN_RATIO else 0.0,
+        R,
         t1,
         t2,
-        tL,
+        t1 + t2,
         tU,
-        tL + tU,
     )
 
 
@@ -332,11 +333,6 @@ def signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
 def ends_at_zero_force(params):
     """True: the contact ends where the unloading force vanishes, at the plastic approach (eq. 10)."""
     return True
-
-
-def validate(params):
-    """No parameters of its own: ``params`` must be empty."""
-    return no_parameters(NAME, params)
 
 
 @jitable

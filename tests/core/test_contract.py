@@ -1,0 +1,147 @@
+"""The model contract of :mod:`microimpact.core.models`: one parameter spec, two checks generated
+from it that agree; defaults for what a model does not declare; one packing function."""
+
+from __future__ import annotations
+
+import math
+import types
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from microimpact.core import models
+from microimpact.core.arrays import evaluate
+from microimpact.core.quantities import OUTCOME_FIELDS
+
+WITH_PARAMETERS = [n for n in models.available() if models.get(n).PARAMETERS]
+values = st.one_of(
+    st.sampled_from([0.0, 1.0, 2.0, -1.0, 0.5, 1e3, math.inf, -math.inf, math.nan]),
+    st.floats(allow_nan=True, allow_infinity=True),
+)
+
+
+def test_every_model_file_is_written_to_the_spec():
+    """Every model with parameters declares them as :class:`~microimpact.core.models.Parameter` and
+    takes its two checks from :func:`~microimpact.core.models.checks` (no 3-tuples with ``DEFAULTS``
+    beside them, no hand-written second copy of the bounds)."""
+    old = [
+        n
+        for n in WITH_PARAMETERS
+        if "BOUNDS" not in vars(models.get(n).module)
+        or "DEFAULTS" in vars(models.get(n).module)
+        or not all(isinstance(p, models.Parameter) for p in vars(models.get(n).module)["PARAMETERS"])
+    ]
+    assert not old, f"model files not written to the spec: {', '.join(old)}"
+
+
+@pytest.mark.parametrize("name", WITH_PARAMETERS)
+@settings(max_examples=300, derandomize=True, deadline=None)
+@given(data=st.data())
+def test_the_compiled_check_and_validate_agree(name, data):
+    """``in_bounds(params, BOUNDS)`` (what ``outcome`` runs) accepts exactly what ``validate`` accepts."""
+    mod = models.get(name)
+    params = tuple(data.draw(values) for _ in mod.PARAMETERS)
+    try:
+        mod.validate(params)
+        accepted = True
+    except ValueError as exc:
+        accepted = False
+        assert str(exc).split()[0] in {p.name for p in mod.PARAMETERS}  # names the parameter
+    assert models.in_bounds(params, mod.BOUNDS) is accepted
+    if not accepted:
+        assert all(math.isnan(x) for x in mod.outcome(1.0, 1e9, 1e-6, 1e-14, 1e8, params)[1:])
+
+
+@pytest.mark.parametrize("name", WITH_PARAMETERS)
+def test_the_compiled_check_compiled_agrees(name):
+    """The same check inside numba's compiled loop: invalid parameters give NaN rows, as in Python."""
+    mod = models.get(name)
+    good = tuple(
+        p.default if not math.isnan(p.default) else 0.5 * (p.low + p.high) if p.high < math.inf else 10.0 * (i + 1)
+        for i, p in enumerate(mod.PARAMETERS)
+    )
+    mod.validate(good)
+    bad = (-1.0,) + good[1:]
+    V = np.array([0.5, 1.0])
+    for params in (good, bad):
+        compiled = evaluate(
+            mod.outcome,
+            V,
+            np.array(1e9),
+            np.array(1e-6),
+            np.array(1e-14),
+            np.array(1e8),
+            nout=len(OUTCOME_FIELDS),
+            params=params,
+            backend="numba",
+        )
+        plain = evaluate(
+            mod.outcome,
+            V,
+            np.array(1e9),
+            np.array(1e-6),
+            np.array(1e-14),
+            np.array(1e8),
+            nout=len(OUTCOME_FIELDS),
+            params=params,
+            backend="python",
+        )
+        np.testing.assert_array_equal(np.isnan(compiled), np.isnan(plain))
+        np.testing.assert_allclose(compiled, plain, rtol=1e-14)
+
+
+def test_a_bare_model_gets_the_defaults():
+    def outcome(V, E, R, m, p_y, params):
+        return models.pack(V, 1.0, V, 1.0, 1.0, V, 0.0, 0.0, 0.0, R, 0.0, R, 0.0, 0.0, 1.0, 2.0)
+
+    bare = models.declare(types.SimpleNamespace(NAME="bare", TITLE="a law", outcome=outcome, force=lambda *a: 0.0))
+    assert bare.PARAMETERS == () and bare.DEFAULTS == () and bare.STICKS is False
+    assert bare.STAGES == models.GENERIC_STAGES and bare.LABEL == "bare"
+    assert bare.signed_force is bare.force and bare.ends_at_zero_force is None and bare.separation_approach is None
+    assert bare.validate(()) == ()
+    with pytest.raises(ValueError, match="model 'bare' takes no parameters"):
+        bare.validate((1.0,))
+    out = dict(zip(OUTCOME_FIELDS, bare.outcome(3.0, 1.0, 2.0, 1.0, 1.0, ())))
+    assert out["energy_loss"] == 0.0 and out["contact_time"] == 3.0 and out["large_strain"] == 0.0
+    with pytest.raises(ValueError, match="does not define force"):
+        models.declare(types.SimpleNamespace(NAME="x", TITLE="t", outcome=outcome))
+
+
+def test_old_style_parameters_are_still_read():
+    """A model file written before the spec (3-tuples, DEFAULTS beside them) keeps working."""
+    old = models.declare(
+        types.SimpleNamespace(
+            NAME="old",
+            TITLE="t",
+            PARAMETERS=(("k", "N/m", "stiffness"),),
+            DEFAULTS=(2.0,),
+            outcome=None,
+            force=None,
+        )
+    )
+    assert old.PARAMETERS == (models.Parameter("k", "N/m", "stiffness", 2.0),) and old.DEFAULTS == (2.0,)
+    assert models.parameters("linear_spring_dashpot")["limit_force"][2] == 0.0
+
+
+def test_parameter_messages():
+    p = models.Parameter("x", "1", "d", low=0.0, high=1.0, high_open=True)
+    with pytest.raises(ValueError, match=r"x must lie in \[0, 1\), got 1.0"):
+        p.check(1.0, {})
+    q = models.Parameter("y", "1", "d", low=2.0)
+    with pytest.raises(ValueError, match="y must be finite and >= 2.0, got 1.0"):
+        q.check(1.0, {})
+
+
+def test_seed_stage_models_is_deprecated():
+    import microimpact.dynamics as dyn
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        names = dyn.SEED_STAGE_MODELS
+    assert "stage_names" in str(caught[0].message) and caught[0].category is DeprecationWarning
+    assert models.DEFAULT in names
+    assert dyn.stage_names()[2].startswith("plastic loading")
+    assert dyn.stage_names("linear_spring_dashpot") == {0: dyn.STAGE_NAMES[0], 1: "loading", 3: "unloading"}
