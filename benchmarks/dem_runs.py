@@ -459,16 +459,33 @@ def _fmt(x):
     return "" if x is None else str(x)
 
 
-def write_csv(rows, path, versions):
-    """Write the rows with a commented header, atomically (temporary name, then rename)."""
+def write_table(rows, path, header, fields):
+    """Write ``rows`` (dicts) under the ``#`` lines of ``header`` (a string) and one ``# name: description``
+    line per field of ``fields`` ((name, description) pairs), atomically (temporary name, then rename).
+    The writer of both run tables (this script's and ``dem_oblique_runs.py``'s)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     buf = io.StringIO()
+    buf.write(header)
+    for name, desc in fields:
+        buf.write(f"# {name}: {desc}\n")
+    w = csv.DictWriter(buf, fieldnames=[f for f, _ in fields], lineterminator="\n")
+    w.writeheader()
+    for r in rows:
+        w.writerow({f: _fmt(r.get(f)) for f, _ in fields})
+    fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent)
+    with os.fdopen(fd, "w") as fh:
+        fh.write(buf.getvalue())
+    os.replace(tmp, path)
+
+
+def write_csv(rows, path, versions):
+    """Write the rows with a commented header, atomically (:func:`write_table`)."""
     today = datetime.date.today().isoformat()
-    buf.write(f"# Single normal impacts of the seed's silicon case in DEM codes; benchmarks/dem_runs.py, {today}.\n")
+    header = f"# Single normal impacts of the seed's silicon case in DEM codes; benchmarks/dem_runs.py, {today}.\n"
     for code, v in sorted(versions.items()):
-        buf.write(f"# {code}: {v}\n")
-    buf.write(
+        header += f"# {code}: {v}\n"
+    header += (
         f"# Case: sphere radius {RADIUS!r} m, density {DENSITY!r} kg/m^3 (m* = {MASS!r} kg) on a flat wall; "
         f"E* = {E_STAR!r} Pa, p_y = {P_Y!r} Pa (Y = {YIELD_STRESS!r} Pa), nu = {NU!r}.\n"
         f"# E given to the codes: {E_PAIR!r} Pa where E* = E/(2(1-nu^2)) (LIGGGHTS Yeff, LAMMPS hertz/material on a "
@@ -476,16 +493,7 @@ def write_csv(rows, path, versions):
         f"# LIGGGHTS coefficientYieldRatio = pi p_y/(2 E*) = {YIELD_RATIO!r}; no gravity, no friction, no rotation.\n"
         "# Each case at two time steps (t_Hertz(V)/N and half of it): compare them for convergence.\n"
     )
-    for name, desc in FIELDS:
-        buf.write(f"# {name}: {desc}\n")
-    w = csv.DictWriter(buf, fieldnames=[f for f, _ in FIELDS], lineterminator="\n")
-    w.writeheader()
-    for r in rows:
-        w.writerow({f: _fmt(r.get(f)) for f, _ in FIELDS})
-    fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent)
-    with os.fdopen(fd, "w") as fh:
-        fh.write(buf.getvalue())
-    os.replace(tmp, path)
+    write_table(rows, path, header, FIELDS)
 
 
 def read_csv(path=DEFAULT_OUT):

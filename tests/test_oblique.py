@@ -23,7 +23,6 @@ def _alumina(angle, model="mindlin", method="direct", **kw):
         CASE["velocity"],
         angle,
         CASE["friction"],
-        poisson_ratio=CASE["poisson_ratio"],
         tangential=model,
         method=method,
         **kw,

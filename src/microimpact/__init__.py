@@ -24,7 +24,7 @@ import importlib as _importlib  # noqa: E402
 from . import materials, models
 from .core.models import available as _available  # noqa: F401  (the registry loads with the package)
 from .materials import MATERIALS, Material, effective_mass, effective_modulus, effective_radius, get_material
-from .pair import ContactPair, ImpactResult, LargeStrainWarning
+from .pair import AdhesionRangeWarning, ContactPair, ImpactResult, LargeStrainWarning
 
 # Everything else loads on first use (PEP 562), so that ``import microimpact`` and one impact on
 # the command line import neither scipy, nor xarray, nor matplotlib, nor the deposition example.
@@ -95,6 +95,7 @@ __all__ = [
     "ContactPair",
     "ImpactResult",
     "LargeStrainWarning",
+    "AdhesionRangeWarning",
     "Material",
     "MATERIALS",
     "get_material",

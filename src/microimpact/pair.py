@@ -26,6 +26,7 @@ from ._validation import (
     check_velocity,
     check_yield_velocity,
 )
+from .core import adhesion as _adhesion
 from .core import models, quantities
 from .core.constants import LARGE_STRAIN_RATIO
 from .core.models import thornton_ning_1998_adhesive_plastic as _whole_law
@@ -42,6 +43,7 @@ __all__ = [
     "ContactPair",
     "ImpactResult",
     "LargeStrainWarning",
+    "AdhesionRangeWarning",
     "PAIR_INPUTS",
     "DEFAULT_POISSON",
     "DEFAULT_SURFACE_MODULUS",
@@ -88,9 +90,27 @@ class LargeStrainWarning(UserWarning):
     """The contact radius exceeds the small-strain range of the model (``a/R* > 0.3``)."""
 
 
+class AdhesionRangeWarning(UserWarning):
+    """The pair lies outside the adhesion limit (JKR or DMT) its adhesive model is written for, by
+    Tabor's parameter (:meth:`ContactPair.adhesion_range`)."""
+
+
 _TRUE, _FALSE = np.bool_(True), np.bool_(False)
 _LARGE = OUTCOME_FIELDS.index("large_strain")
 _FLAG_INDEX = tuple((OUTCOME_FIELDS.index(k), k) for k in FLAG_FIELDS)
+
+
+def _adhesion_range_text(name, limit, mu):
+    """The warning of a pair outside its adhesive model's limit."""
+    if limit == "JKR":
+        where = f"below {_adhesion.TABOR_JKR:g}: the JKR limit of {name} does not hold"
+        if mu < _adhesion.TABOR_DMT:
+            where += " (the DMT limit does: small, stiff particles)"
+    else:
+        where = f"above {_adhesion.TABOR_DMT:g}: the DMT limit of {name} does not hold"
+        if mu > _adhesion.TABOR_JKR:
+            where += " (the JKR limit does)"
+    return f"Tabor parameter {mu:.3g} (z0 = 0.3 nm) {where}; results flagged in .outside_adhesion_range"
 
 
 def _scalar_or_array(x):
@@ -148,7 +168,19 @@ class ImpactResult:
         Unloading time ``t_U`` [s] (eq. 26).
     contact_time : ndarray
         Contact time ``t_c = t_L + t_U`` [s] (eq. 33).
+    tabor_parameter : float
+        Adhesive models only (NaN otherwise): Tabor's parameter ``mu`` [-] of the pair and the
+        model's work of adhesion (:meth:`ContactPair.adhesion_range`, ``z_0 = 0.3`` nm).
+    outside_adhesion_range : bool
+        True where the model is written for the JKR limit and ``mu < 5``, or for the DMT limit
+        and ``mu > 0.1``: the pair is outside the law's range (flagged, not refused; as
+        ``large_strain``). False for the other models.
     """
+
+    #: Set by :meth:`ContactPair.impact` for an adhesive model (not a field of the outcome table).
+    tabor_parameter = math.nan
+    #: Set by :meth:`ContactPair.impact` for an adhesive model.
+    outside_adhesion_range = _FALSE
 
     velocity: np.ndarray
     yield_velocity: np.ndarray
@@ -880,7 +912,76 @@ class ContactPair:
                 LargeStrainWarning,
                 stacklevel=2,
             )
+        limit = mod.ADHESION_LIMIT
+        if limit is not None:
+            mu, outside = self._adhesion_range(mod, limit, p, _adhesion.EQUILIBRIUM_SEPARATION)
+            res.__dict__["tabor_parameter"] = mu
+            res.__dict__["outside_adhesion_range"] = _TRUE if outside else _FALSE
+            if warn and outside:
+                warnings.warn(_adhesion_range_text(mod.NAME, limit, mu), AdhesionRangeWarning, stacklevel=2)
         return res
+
+    def _adhesion_range(self, mod, limit, p, z0):
+        G = float(mod.work_of_adhesion(p))
+        mu = _adhesion.tabor_parameter(self.effective_modulus, self.effective_radius, G, z0) if G > 0.0 else 0.0
+        outside = mu < _adhesion.TABOR_JKR if limit == "JKR" else mu > _adhesion.TABOR_DMT
+        return mu, bool(outside and G > 0.0)
+
+    def adhesion_range(self, *, model: str, equilibrium_separation: float | None = None, **params) -> dict:
+        """Tabor's parameter of this pair and an adhesive model's work of adhesion, and whether the
+        pair lies in the adhesion limit the model is written for.
+
+        ``mu = (R* G^2/(E*^2 z_0^3))^(1/3)`` (:func:`microimpact.core.adhesion.tabor_parameter`):
+        the JKR limit (Thornton & Ning's laws, LAMMPS' ``jkr``) needs ``mu > 5``, the DMT limit
+        (LAMMPS' ``dmt``) ``mu < 0.1``; between them neither is exact. :meth:`impact` flags a pair
+        outside its model's limit (``outside_adhesion_range``, an :class:`AdhesionRangeWarning`).
+
+        Parameters
+        ----------
+        model : str
+            An adhesive model (one that declares its limit, ``ADHESION_LIMIT``).
+        equilibrium_separation : float, optional
+            ``z_0`` [m], the range of the surface forces; default 0.3 nm
+            (:data:`microimpact.core.adhesion.EQUILIBRIUM_SEPARATION`).
+        **params : float
+            The model's parameters by name (its work of adhesion or surface energy [J/m^2]).
+
+        Returns
+        -------
+        dict
+            ``tabor_parameter`` [-], ``limit`` (``"JKR"`` or ``"DMT"``), ``inside`` (bool),
+            ``work_of_adhesion`` ``G`` [J/m^2], ``equilibrium_separation`` [m].
+
+        Raises
+        ------
+        ValueError
+            If the model is unknown or not adhesive, a parameter is invalid, or
+            ``equilibrium_separation`` is not positive and finite.
+
+        Examples
+        --------
+        >>> pair = ContactPair.paper_case("silicon")
+        >>> r = pair.adhesion_range(model="jkr_elastic_adhesive", surface_energy=0.05)
+        >>> r["limit"], round(r["tabor_parameter"], 2), r["inside"]
+        ('JKR', 8.09, True)
+        """
+        mod = models.get(model)
+        limit = mod.ADHESION_LIMIT
+        if limit is None:
+            raise ValueError(f"model {model!r} has no adhesion limit (it is not a JKR or DMT adhesive law)")
+        p = models.resolve_params(mod, params)
+        z0 = _adhesion.EQUILIBRIUM_SEPARATION if equilibrium_separation is None else equilibrium_separation
+        z0 = float(check_positive("equilibrium_separation", z0, scalar=True))
+        if not math.isfinite(z0):
+            raise ValueError(f"equilibrium_separation must be positive and finite, got {equilibrium_separation!r}")
+        mu, outside = self._adhesion_range(mod, limit, p, z0)
+        return {
+            "tabor_parameter": mu,
+            "limit": limit,
+            "inside": not outside,
+            "work_of_adhesion": float(mod.work_of_adhesion(p)),
+            "equilibrium_separation": z0,
+        }
 
     def history(
         self,

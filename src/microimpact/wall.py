@@ -39,8 +39,9 @@ history, scaled by the adhesive ``J_n``: an approximation.
 The DEM codes' laws of :mod:`microimpact.core.tangential_laws` (``"lammps_mindlin"``,
 ``"lammps_mindlin_force"``, ``"lammps_mindlin_rescale"``, ``"lammps_mindlin_rescale_force"`` (=
 ``"mindlin"``), ``"lammps_linear_history"`` (stiffness ``8 G* a_m`` of each impact),
-``"liggghts_history"``, ``"di_renzo_di_maio"``) are applied the same way, each through its own
-universal table. Two of them are not exactly the code's law here (:func:`microimpact.oblique.oblique_impact`
+``"liggghts_history"``, ``"di_renzo_di_maio"``) and Stronge's compliant impact (``"stronge"``) are
+applied the same way, each through its own universal table (the names of
+:func:`microimpact.oblique.oblique_impact`; its table path gives the same outcome). Two of them are not exactly the code's law here (:func:`microimpact.oblique.oblique_impact`
 integrates both exactly): LIGGGHTS's shorter arm ``R - delta/2`` is taken as ``R`` (its spin differs
 by about ``delta_max/(2R)``, 1e-3 for the alumina case), and the linear law's stiffness follows each
 impact's speed instead of being one constant. Unlike the compliant ``"mindlin"``, the laws
@@ -253,7 +254,7 @@ def wall_interaction(
     tangential : str, optional
         Tangential model: ``"rigid"``, the rigid-body Coulomb impulse (default), the compliant
         contact ``"mindlin"`` or a DEM code's law of
-        :data:`microimpact.core.tangential_laws.LAWS` (module docstring); ``rolling`` then
+        :data:`microimpact.core.tangential_laws.ALL_LAWS` (module docstring); ``rolling`` then
         flags particles whose contact stuck at some time during the impact.
     poisson_ratio : float, optional
         Compliant laws only: one Poisson's ratio for particle and wall, giving

@@ -123,3 +123,84 @@ def test_sweep_over_models(tmp_path, capsys):
     capsys.readouterr()
     assert main(["sweep", "--velocity", "10,50", "--out", str(out), "--model", "linear_spring_dashpot", "-q"]) == 2
     assert "needs the parameter 'stiffness'" in capsys.readouterr().err
+
+
+# ------------------------------------------------------------------ compare --tangential
+
+
+def test_tangential_table_is_compare_tangential(capsys):
+    """The table prints compare_tangential's numbers (oblique_impact per law) at their printed precision."""
+    from microimpact import oblique as ob
+    from microimpact.compare import compare_tangential
+
+    laws = ["mindlin", "lammps_mindlin", "stronge", "rigid"]
+    assert main(["compare", "--tangential", ",".join(laws), "--alumina", "--angles", "5,20,45"]) == 0
+    out = capsys.readouterr().out
+    assert "kappa = 4G*/E* = 0.875415" in out  # alumina on glass, both materials' G*
+    rows = [line.split() for line in out.splitlines() if line.split() and line.split()[0] in laws]
+    assert [r[0] for r in rows] == [n for n in laws for _ in range(3)]
+    c = ob.ALUMINA_CASE
+    ds = compare_tangential(ob.alumina_pair(), c["velocity"], [5.0, 20.0, 45.0], c["friction"], laws)
+    for i, law in enumerate(laws):
+        block = rows[3 * i : 3 * i + 3]
+        assert [float(r[2]) for r in block] == pytest.approx(ds["tangential_restitution"].values[i], abs=6e-6)
+        assert [float(r[3]) for r in block] == pytest.approx(ds["rebound_spin"].values[i], rel=1e-4)
+        assert [r[7] for r in block] == list(ds["regime"].values[i])
+    # the laws do differ where the issue says they do (small angles): a table of one law repeated would fail
+    e5 = {r[0]: float(r[2]) for r in rows if r[1] == "5"}
+    assert e5["lammps_mindlin"] - e5["mindlin"] > 0.05 and e5["mindlin"] - e5["rigid"] > 0.1
+
+
+def test_tangential_json_files_and_plot(tmp_path, capsys):
+    xr = pytest.importorskip("xarray")
+    pytest.importorskip("matplotlib")
+    from microimpact import oblique as ob
+
+    nc, png = tmp_path / "t.nc", tmp_path / "t.png"
+    argv = ["compare", "2.5", "--tangential", "all", "--angles", "10,40", "--friction", "0.2", "--poisson", "0.25"]
+    assert main([*argv, "--json", "--out", str(nc), "--plot", str(png)]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert list(doc["results"]) == list(ob.TANGENTIAL_MODELS) and doc["angle"] == [10.0, 40.0]
+    assert doc["units"]["rebound_spin"] == "rad/s"
+    for law in ("di_renzo_di_maio", "liggghts_history"):
+        o = ob.oblique_impact(SILICON, 2.5, [10.0, 40.0], 0.2, poisson_ratio=0.25, tangential=law)
+        np.testing.assert_array_equal(doc["results"][law]["rebound_spin"], o.rebound_spin)
+        assert doc["results"][law]["regime"] == list(o.regime)
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    with xr.open_dataset(nc) as back:
+        assert list(back["tangential"].values) == list(ob.TANGENTIAL_MODELS)
+        np.testing.assert_array_equal(
+            back["tangential_restitution"].values[1], doc["results"]["rigid"]["tangential_restitution"]
+        )
+
+
+@pytest.mark.parametrize(
+    "argv, match",
+    [
+        (["--tangential", "mindlin,nope", "--alumina"], "got 'nope'"),
+        (["--tangential", "", "--alumina"], "at least one model"),
+        (["--tangential", "mindlin", "--alumina", "--model", "hertz_tsuji"], "--model and --tangential"),
+        (
+            ["--tangential", "mindlin", "--alumina", "--reference-velocity", "3"],
+            "--reference-velocity and --tangential",
+        ),
+        (["--tangential", "mindlin", "--alumina", "--dem-lines"], "--dem-lines and --tangential"),
+        (["10", "--angles", "5,10"], "--angles is used with --tangential only"),
+        (["10", "--alumina"], "--alumina is used with --tangential only"),
+        (["--tangential", "mindlin", "1", "2"], "one resultant speed"),
+        (["--tangential", "mindlin"], "needs the resultant impact speed"),
+        (["--tangential", "mindlin", "0"], "velocity must be positive"),
+        (["--tangential", "mindlin", "--alumina", "--case", "silicon"], "--alumina and --case"),
+        (["--tangential", "mindlin", "--alumina", "--angles", "95"], "angle must be in"),
+        (["--tangential", "mindlin", "--alumina", "--friction", "-1"], "friction"),
+        (["--tangential", "mindlin", "--alumina", "--poisson", "0.7"], "poisson"),
+        (["--tangential", "mindlin", "--alumina", "--out", "t.txt"], "--out must end in"),
+        (["--tangential", "mindlin", "--alumina", "--plot", "nodir/t.png"], "nodir"),
+    ],
+)
+def test_tangential_bad_input_is_one_line_exit_2(argv, match, capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(["compare", *argv]) == 2
+    err = capsys.readouterr().err
+    assert match in err and len(err.strip().splitlines()) == 1 and "Traceback" not in err
+    assert list(tmp_path.iterdir()) == []  # nothing written

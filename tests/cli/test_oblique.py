@@ -21,7 +21,6 @@ def test_json_matches_the_api(capsys):
             c["velocity"],
             [5.0, 20.0, 45.0],
             c["friction"],
-            poisson_ratio=c["poisson_ratio"],
             tangential=model,
         )
         got = doc["models"][model]

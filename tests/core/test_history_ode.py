@@ -34,6 +34,7 @@ PARAMS = {
         {"loading_stiffness": 1e3, "unloading_stiffness": 4e3, "plasticity_depth": 0.2},
     ],
     "jkr_elastic_adhesive": [{"surface_energy": 0.05}],
+    "dmt_elastic_adhesive": [{"surface_energy": 0.05}],
     "jackson_green_brake": [
         {"yield_strength": 40e6, "poisson_ratio": 0.3},
         {"yield_strength": 40e6, "poisson_ratio": 0.25, "identical_spheres": 1},

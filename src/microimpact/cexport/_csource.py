@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from .._validation import check_nonnegative, check_positive
-from ..adhesion import STICKING_CONSTANT
+from ..adhesion import STICKING_CONSTANT, WHOLE_LAW
 from ..core.tangential import stiffness_ratio, stiffness_ratio_same_poisson
 from ._common import comment_text
 
@@ -424,7 +424,7 @@ _WHOLE_LAW_EDITS = (
         " *               e^2 = e_p^2 - (V_s/V)^2, stick when e_p V <= V_s,\n",
         " *   normal:     the whole adhesive elastic-plastic law of Thornton & Ning (1998), Powder Technol.\n"
         " *               99:154 (JKR loading, yield at the adhesion-reduced limiting pressure, plastic loading,\n"
-        " *               unloading on the flattened radius R_p; microimpact's thornton_ning_1998_adhesive_plastic),\n"
+        f" *               unloading on the flattened radius R_p; microimpact's {WHOLE_LAW}),\n"
         " *               through its universal curve: e^2 = e_p^2 - (V_s/V)^2 + D(V/V_y, V_s/V_y), stick when\n"
         " *               e^2 <= 0, e_p(V/V_y) the seed's restitution (Aerosol Sci. Tech. 50(4):321 (2016),\n"
         " *               eqs. 22, 27, 28), D from the table below (bilinear),\n",

@@ -27,6 +27,7 @@ __all__ = [
     "add_model_arguments",
     "parse_models",
     "parse_model_params",
+    "parse_tangential",
 ]
 
 #: Options of :func:`add_pair_arguments`: dest -> option as typed.
@@ -341,3 +342,19 @@ def parse_model_params(texts, names) -> dict:
             raise ValueError(f"--param {model}:{name} is given more than once")
         out.setdefault(model, {})[name] = parse_float(value.strip(), f"--param {model}:{name}")
     return out
+
+
+def parse_tangential(text, known):
+    """The tangential models named by ``--tangential`` (checked, in order, without repeats): a comma
+    list of ``known``, ``both`` (mindlin, rigid) or ``all``."""
+    if text == "both":
+        return ["mindlin", "rigid"]
+    if text == "all":
+        return list(known)
+    names = [t.strip() for t in str(text).split(",") if t.strip()]
+    if not names:
+        raise ValueError(f"tangential must name at least one model, got {text!r}")
+    for n in names:
+        if n not in known:
+            raise ValueError(f"tangential must be among {', '.join(known)} (or both, all), got {n!r}")
+    return list(dict.fromkeys(names))

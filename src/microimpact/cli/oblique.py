@@ -9,7 +9,15 @@ import sys
 
 import numpy as np
 
-from ._common import PAIR_OPTIONS, add_pair_arguments, pair_from_args, parse_float, parse_values, refuse_together
+from ._common import (
+    PAIR_OPTIONS,
+    add_pair_arguments,
+    pair_from_args,
+    parse_float,
+    parse_tangential,
+    parse_values,
+    refuse_together,
+)
 
 
 def register(sub) -> None:
@@ -19,11 +27,16 @@ def register(sub) -> None:
         description="Rebound of a sphere hitting a flat obliquely at speed V: the seed's normal restitution, and "
         "the tangential outcome of the compliant model (Mindlin no-slip tangential spring with a Coulomb limit, "
         "along the seed's normal history) and of the rigid-body Coulomb model, for each impact angle. "
-        "--alumina uses the published alumina case (Chung & Ooi 2011 Test 4; Kharaz et al. 2001).",
+        "--alumina uses the published alumina case: the sphere of Kharaz et al. (2001) on their glass anvil "
+        "(microimpact.oblique.alumina_pair).",
     )
     p.add_argument("velocity", metavar="V", nargs="?", help="resultant impact speed [m/s] (default 3.9 with --alumina)")
     add_pair_arguments(p)
-    p.add_argument("--alumina", action="store_true", help="the alumina-on-rigid-flat case (E, nu, rho, r, mu, V)")
+    p.add_argument(
+        "--alumina",
+        action="store_true",
+        help="the alumina sphere on the glass anvil (E, nu, rho, r, mu, V; glass E, nu)",
+    )
     p.add_argument(
         "--angles",
         default="0:85:18",
@@ -39,7 +52,7 @@ def register(sub) -> None:
         metavar="LAWS",
         help="tangential model(s), comma-separated: mindlin, rigid, lammps_mindlin, lammps_mindlin_force, "
         "lammps_mindlin_rescale, lammps_mindlin_rescale_force, lammps_linear_history, liggghts_history, "
-        "di_renzo_di_maio; 'both' = mindlin,rigid (default), 'all' = every one",
+        "di_renzo_di_maio, stronge; 'both' = mindlin,rigid (default), 'all' = every one",
     )
     p.add_argument(
         "--tangential-stiffness",
@@ -49,21 +62,6 @@ def register(sub) -> None:
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
     p.add_argument("--plot", metavar="FILE.png", help="also draw the three curves to this image")
     p.set_defaults(func=run)
-
-
-def _models(text, known):
-    """The list of models named by ``--tangential`` (checked, in order, without repeats)."""
-    if text == "both":
-        return ["mindlin", "rigid"]
-    if text == "all":
-        return list(known)
-    names = [t.strip() for t in str(text).split(",") if t.strip()]
-    if not names:
-        raise ValueError(f"tangential must name at least one model, got {text!r}")
-    for n in names:
-        if n not in known:
-            raise ValueError(f"tangential must be among {', '.join(known)} (or both, all), got {n!r}")
-    return list(dict.fromkeys(names))
 
 
 def _rows(out):
@@ -92,8 +90,8 @@ def run(args) -> int:
     if args.alumina:
         # the published case fixes the pair: a pair option beside it would be ignored
         refuse_together(args, ("alumina",), tuple(PAIR_OPTIONS))
-        pair = ob.alumina_pair()
-        nu = ob.ALUMINA_CASE["poisson_ratio"]
+        pair = ob.alumina_pair()  # on glass: kappa from both materials
+        nu = None
         V = ob.ALUMINA_CASE["velocity"]
         mu = ob.ALUMINA_CASE["friction"]
     else:
@@ -111,7 +109,7 @@ def run(args) -> int:
         nu = 0.3  # the seed's value for both bodies
     angles = parse_values(args.angles, "angles")
     spin = parse_float(args.spin, "spin")
-    models = _models(args.tangential, ob.TANGENTIAL_MODELS)
+    models = parse_tangential(args.tangential, ob.TANGENTIAL_MODELS)
     k_lin = None
     if args.tangential_stiffness is not None:
         if "lammps_linear_history" not in models:

@@ -43,6 +43,10 @@ __all__ = [
     "TABLE_LIMITING_PRESSURE",
     "whole_law_correction",
     "corrected_restitution",
+    "EQUILIBRIUM_SEPARATION",
+    "TABOR_JKR",
+    "TABOR_DMT",
+    "tabor_parameter",
 ]
 
 #: ``14.18439...``: the constant of Thornton & Ning's (1998) sticking velocity, ``V_s = (2 W_s/m*)^(1/2)``
@@ -151,3 +155,30 @@ def corrected_restitution(V, V_y, V_s, D):
     if not e2 > 0.0:
         return 0.0, 1.0
     return math.sqrt(e2), 0.0
+
+
+#: Default equilibrium separation ``z_0`` [m] of the surfaces in the Tabor parameter: 0.3 nm, within
+#: the 0.2-0.4 nm the public transcriptions of Tabor's parameter give as typical (see
+#: :func:`tabor_parameter`).
+EQUILIBRIUM_SEPARATION = 0.3e-9
+#: Tabor parameter above which the JKR limit applies (the laws of Thornton & Ning, LAMMPS' ``jkr``).
+TABOR_JKR = 5.0
+#: Tabor parameter below which the DMT limit applies (LAMMPS' ``dmt``).
+TABOR_DMT = 0.1
+
+
+@jitable
+def tabor_parameter(E, R, G, z0):
+    """Tabor's parameter ``mu = (R* G^2 / (E*^2 z_0^3))^(1/3)`` [-] (Tabor 1977, J. Colloid Interface
+    Sci. 58:2): the elastic neck that adhesion pulls, ``(R* G^2/E*^2)^(1/3)``, over the range ``z_0``
+    [m] of the surface forces; ``G`` [J/m^2] the work of adhesion, ``E*`` [Pa], ``R*`` [m].
+
+    Tabor's paper was not read here; the definition is the one that public transcriptions found
+    with the project's code search write alike (three independent files: two Rust contact-mechanics
+    modules, "z0 the equilibrium atomic separation, typ. 0.2-0.4 nm", and a Julia tribology script),
+    the JKR limit for ``mu`` large and the DMT limit for ``mu`` small. The thresholds
+    :data:`TABOR_JKR` = 5 and :data:`TABOR_DMT` = 0.1 are the Julia script's (JKR above 5, DMT
+    below 0.1, the transition between, which neither limit describes); a fourth transcription draws
+    the lines at 2 and 0.5.
+    """
+    return (R * G * G / (E * E * z0 * z0 * z0)) ** (1.0 / 3.0)

@@ -26,6 +26,8 @@ __all__ = [
     "oblique_data",
     "plot_oblique",
     "plot_tangential_laws",
+    "tangential_comparison_data",
+    "plot_tangential_comparison",
     "universal_data",
     "plot_universal",
 ]
@@ -64,8 +66,7 @@ def oblique_data(
     """
     case = ob.ALUMINA_CASE
     if pair is None:
-        pair = ob.alumina_pair()
-        poisson_ratio = case["poisson_ratio"] if poisson_ratio is None else poisson_ratio
+        pair = ob.alumina_pair()  # on glass: kappa from both materials unless poisson_ratio is given
     velocity = case["velocity"] if velocity is None else velocity
     friction = case["friction"] if friction is None else friction
     angle = np.linspace(0.5, 89.5, 179) if angle is None else np.atleast_1d(np.asarray(angle, dtype=float))
@@ -184,6 +185,39 @@ def plot_tangential_laws(axes=None, *, models=LAW_MODELS, **kws):
     return plot_oblique(None, axes, table=data, labels={"mindlin": "LAMMPS mindlin_rescale/force (= mindlin)"})
 
 
+def tangential_comparison_data(comparison) -> dict:
+    """Columns of :func:`plot_tangential_comparison`: a :func:`microimpact.compare.compare_tangential`
+    Dataset as :func:`oblique_data`'s columns (one row per law and angle).
+
+    Returns
+    -------
+    dict
+        ``model`` (str), ``angle`` [deg], ``tangential_restitution`` [-], ``rebound_spin`` [rad/s],
+        ``contact_rebound_angle`` [deg], ``rebound_angle`` [deg], ``impulse_ratio`` [-], ``regime`` (str).
+    """
+    names = [str(n) for n in comparison["tangential"].values]
+    ang = np.asarray(comparison["angle"].values, dtype=float)
+    cols = {"model": np.repeat(np.asarray(names), ang.size), "angle": np.tile(ang, len(names))}
+    for k in ("tangential_restitution", "rebound_spin", "contact_rebound_angle", "rebound_angle", "impulse_ratio"):
+        cols[k] = np.asarray(comparison[k].values, dtype=float).reshape(-1)
+    cols["regime"] = np.asarray(comparison["regime"].values).reshape(-1)
+    return cols
+
+
+def plot_tangential_comparison(comparison, axes=None, *, measured=False):
+    """:func:`plot_oblique` of a :func:`microimpact.compare.compare_tangential` Dataset: tangential
+    restitution, rebound spin and contact rebound angle of each law against the impact angle.
+
+    ``measured=True`` adds the published points of the alumina case (draw them only for that case).
+    Returns the three Axes.
+    """
+    data = tangential_comparison_data(comparison)
+    if axes is None:
+        with _style.style() as plt:
+            _, axes = plt.subplots(3, 1, sharex=True, figsize=(6.0, 7.2), layout="constrained")
+    return plot_oblique(None, axes, measured=measured, table=data)
+
+
 def universal_data(kappa=None, *, x=(1.0, 0.1, 0.01), psi=None) -> dict:
     """Columns of :func:`plot_universal`: ``psi_2`` against ``psi_1`` for each ``x = V_y/V_n``.
 
@@ -194,8 +228,7 @@ def universal_data(kappa=None, *, x=(1.0, 0.1, 0.01), psi=None) -> dict:
         ``impulse_ratio`` [-] (``|J_t|/(mu J_n)``).
     """
     if kappa is None:
-        nu = ob.ALUMINA_CASE["poisson_ratio"]
-        kappa = tg.stiffness_ratio_same_poisson(nu)
+        kappa = ob.stiffness_ratio_of(ob.alumina_pair())
     psi = np.linspace(0.0, 8.0, 321) if psi is None else np.atleast_1d(np.asarray(psi, dtype=float))
 
     cols = {k: [] for k in ("model", "x", "psi_1", "psi_2", "impulse_ratio")}

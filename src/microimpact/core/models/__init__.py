@@ -81,6 +81,11 @@ as users name it (``model=NAME``). It declares what it is with module-level name
 ``sticking_velocity(E, R, m, p_y, params)`` [``None``: none known]
     The speed [m/s] at and below which the particle sticks (``e = 0``), for a law with ``STICKS``
     (:meth:`ContactPair.sticking_velocity <microimpact.pair.ContactPair.sticking_velocity>`).
+``ADHESION_LIMIT`` [``None``: no adhesion]
+    ``"JKR"`` or ``"DMT"``: the adhesion limit the law is written for; with
+    ``work_of_adhesion(params)`` (the work of adhesion ``G`` [J/m^2] its parameters give),
+    :meth:`ContactPair.impact <microimpact.pair.ContactPair.impact>` flags a pair outside it by
+    Tabor's parameter (:func:`microimpact.core.adhesion.tabor_parameter`).
 
 :func:`get` returns the :class:`Model` declaration of a name: the module's names with these
 defaults filled in. The generic machinery (arrays, histories, fitting, calibration, sweeps) asks
@@ -247,6 +252,8 @@ class Model:
     separation_approach_after: Callable | None = None
     sticking_velocity: Callable | None = None
     restitution_only: Callable | None = None
+    ADHESION_LIMIT: str | None = None
+    work_of_adhesion: Callable | None = None
     module: Any = None
 
     def __getattr__(self, name):  # the model's own helpers (e.g. a calibration's inverse)
@@ -265,6 +272,7 @@ _HOOKS = (
     "separation_approach_after",
     "sticking_velocity",
     "restitution_only",
+    "work_of_adhesion",
 )
 
 
@@ -298,6 +306,7 @@ def declare(module) -> Model:
         STICKS=bool(ns.get("STICKS", False)),
         STAGES=dict(ns.get("STAGES", GENERIC_STAGES)),
         LABEL=ns.get("LABEL") or name,
+        ADHESION_LIMIT=ns.get("ADHESION_LIMIT"),
         module=module,
         **hooks,
     )

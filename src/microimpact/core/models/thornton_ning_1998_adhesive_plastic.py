@@ -470,3 +470,15 @@ def rebound_energy_ratio(V, E, R, m, p_y, params):
         return 1.0 - W / Kin
     bs = _plastic_turning_point(Kin - KY, E, R, p_y, s, bY, PY, K)
     return _rebound_work(bs, E, R, p_y, s, bY, PY, K)[0] / Kin
+
+
+#: The adhesion limit the law is written for (``"JKR"``: Tabor parameter large; ``"DMT"``: small):
+#: :meth:`microimpact.pair.ContactPair.impact` flags pairs outside it
+#: (:func:`microimpact.core.adhesion.tabor_parameter`).
+ADHESION_LIMIT = "JKR"
+
+
+@jitable
+def work_of_adhesion(params):
+    """The work of adhesion ``G`` [J/m^2] of ``params`` (``G`` itself), for Tabor's parameter."""
+    return params[0]

@@ -162,3 +162,15 @@ def force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
     if alpha < snapoff_approach(E, R, params[0]):
         return 0.0
     return signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params)
+
+
+#: The adhesion limit the law is written for (``"JKR"``: Tabor parameter large; ``"DMT"``: small):
+#: :meth:`microimpact.pair.ContactPair.impact` flags pairs outside it
+#: (:func:`microimpact.core.adhesion.tabor_parameter`).
+ADHESION_LIMIT = "JKR"
+
+
+@jitable
+def work_of_adhesion(params):
+    """The work of adhesion ``G`` [J/m^2] of ``params`` (``G`` itself), for Tabor's parameter."""
+    return params[0]
