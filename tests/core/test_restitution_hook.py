@@ -27,7 +27,13 @@ CI = settings(settings.get_profile("ci"), max_examples=60)
 E_FIELD = OUTCOME_FIELDS.index("restitution")
 
 #: Parameters of each model with a hook whose spec has no default (one valid set each).
-PARAMS: dict = {"thornton_ning_1998_adhesive_plastic": (0.05,)}  # G [J/m^2]
+PARAMS: dict = {
+    "thornton_ning_1998_adhesive_plastic": (0.05,),  # G [J/m^2]
+    "jackson_green_brake": (1e6, 0.3, 0.0),  # Y [Pa] (E*/Y >= 10 in the boxes), nu, identical spheres
+    "kogut_etsion_ekk": (1e6, 0.3),  # Y [Pa], nu
+    "jkr_elastic_adhesive": (0.05,),  # gamma [J/m^2]
+    "thornton_ning_1998_elastic_adhesive": (0.05,),  # G [J/m^2]
+}
 
 HOOKED = [name for name in zoo.available() if zoo.get(name).restitution_only is not None]
 
@@ -43,6 +49,13 @@ def _params(name):
 def test_the_hooked_models_include_the_liggghts_law():
     # the law whose fit cost 24-80x the seed's through its unloading-time quadrature (issue 25)
     assert "liggghts_thornton_ning" in HOOKED
+    assert {
+        "jackson_green_brake",
+        "kogut_etsion_ekk",
+        "jkr_elastic_adhesive",
+        "thornton_ning_1998_adhesive_plastic",
+        "thornton_ning_1998_elastic_adhesive",
+    } <= set(HOOKED)
 
 
 def _same(a, b):

@@ -527,6 +527,25 @@ def plastic_loading_time(law, a1, astar, E, R, m, Y, nu, twin):
 
 
 @jitable
+def restitution(law, V, E, R, m, Y, nu, twin):
+    """The restitution coefficient [-] of :func:`impact` alone (its field ``restitution``: the same
+    calls in the same order), without the contact times (the plastic loading time is a quadrature)."""
+    if not V < math.inf:
+        return math.nan
+    a1 = switch_approach(law, E, R, Y, nu, twin)
+    V1 = math.sqrt(0.8 * hertz.force(a1, E, R) * a1 / m)
+    if V <= V1:  # Hertz
+        return 1.0
+    astar = max_approach(law, V, E, R, m, Y, nu, twin)
+    d, Rb = unloading(law, astar, E, R, Y, nu, twin)[1:3]
+    Wu = unloading_work(astar, d, Rb, E)
+    WL = loading_work(law, 0.0, astar, E, R, Y, nu, twin)
+    if Wu > WL:  # retraces the loading: e = 1
+        return 1.0
+    return math.sqrt(Wu / WL)
+
+
+@jitable
 def impact(law, V, E, R, m, Y, nu, twin, a_limit):
     """The 18-tuple outcome (:data:`~microimpact.core.quantities.OUTCOME_FIELDS`) of an impact at ``V``.
 

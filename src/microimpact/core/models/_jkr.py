@@ -118,6 +118,22 @@ def hertz_impact(V, E, R, m):
 
 
 @jitable
+def _energies(V, E, R, m, s, b0, bF):
+    """``(K, G(b_0), W)``: kinetic energy, work integral at contact and the work lost to ``b_F`` [J]."""
+    K = 0.5 * m * V * V
+    G0 = work_integral(b0, E, R, s)
+    return K, G0, work_integral(bF, E, R, s) - G0
+
+
+@jitable
+def restitution(V, E, R, m, s, b0, bF):
+    """``e`` [-] of :func:`impact` alone (its field ``restitution``, the same operations), without the
+    maximum approach's Newton iteration and the contact times' quadratures."""
+    K, G0, W = _energies(V, E, R, m, s, b0, bF)
+    return 0.0 if K <= W else math.sqrt(1.0 - W / K)
+
+
+@jitable
 def impact(V, E, R, m, s, b0, bF):
     """The 18-tuple outcome of an impact on the JKR curve of ``s``, from contact at ``b0`` to breaking at ``bF``.
 
@@ -126,9 +142,7 @@ def impact(V, E, R, m, s, b0, bF):
     the particle sticks), loading and unloading times by the quadratures above.
     """
     n = math.nan
-    K = 0.5 * m * V * V
-    G0 = work_integral(b0, E, R, s)
-    W = work_integral(bF, E, R, s) - G0
+    K, G0, W = _energies(V, E, R, m, s, b0, bF)
     bm = b0
     while work_integral(bm, E, R, s) - G0 < K:
         bm *= 1.5

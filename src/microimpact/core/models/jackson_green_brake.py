@@ -82,6 +82,8 @@ adhesion.
 
 from __future__ import annotations
 
+import math
+
 from .._jit import jitable
 from . import Parameter, checks
 from . import _fitted_laws as fl
@@ -128,6 +130,15 @@ def outcome(V, E, R, m, p_y, params):
     if not in_bounds(params, BOUNDS):
         return nan_outcome(V)
     return fl.impact(fl.JACKSON_GREEN, V, E, R, m, params[0], params[1], params[2], _limit(E, R, params))
+
+
+@jitable
+def restitution_only(V, E, R, m, p_y, params):
+    """``e`` [-] of :func:`outcome` alone, bit for bit (the contract's hook: fitting compares ``e``),
+    without the contact times' quadrature."""
+    if not in_bounds(params, BOUNDS):
+        return math.nan
+    return fl.restitution(fl.JACKSON_GREEN, V, E, R, m, params[0], params[1], params[2])
 
 
 @jitable

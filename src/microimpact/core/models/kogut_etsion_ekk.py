@@ -114,6 +114,15 @@ def outcome(V, E, R, m, p_y, params):
 
 
 @jitable
+def restitution_only(V, E, R, m, p_y, params):
+    """``e`` [-] of :func:`outcome` alone, bit for bit (the contract's hook: fitting compares ``e``),
+    without the contact times' quadrature."""
+    if not in_bounds(params, BOUNDS):
+        return math.nan
+    return fl.restitution(fl.KOGUT_ETSION, V, E, R, m, params[0], params[1], 0.0)
+
+
+@jitable
 def signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
     """The force law [N]: loading (eqs. 2, 7, 8, fully plastic) while ``alpha >= alpha_max``, else the
     unloading (negative below ``delta_bar``), or the loading curve where the unloading would create
