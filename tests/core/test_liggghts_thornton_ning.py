@@ -309,3 +309,37 @@ def test_reproduces_stored_liggghts_runs():
         assert float(r["restitution"]) == pytest.approx(o["restitution"], rel=1e-3)
         assert float(r["contact_time_s"]) == pytest.approx(o["contact_time"], rel=1e-3)
         assert float(r["plastic_approach_m"]) == pytest.approx(o["plastic_approach"], rel=1e-2)
+
+
+def test_rebound_work_without_cancellation():
+    """e from the returned work W = 0.4 A^(5/2) - D A + 0.6 D^(5/3), D = A^(3/2) - P*/P_y, against the same
+    W in 60-digit decimal arithmetic from the same A and P*/P_y: to 1e-10 from V/V_y = 1.01 to 1e15 (the
+    closed form in doubles cancels as c^2 (1e-11 just above the series' switch at c = 1e-2, and e reached
+    1.35 at V = 1e30 m/s before the series), and e stays in [0, 1] and never
+    grows with V up to 1e300 m/s, where the power overflowed (a traceback in ``microimpact impact``)."""
+    import decimal
+
+    import microimpact as mi
+    from microimpact.core.models import liggghts_thornton_ning as L
+    from microimpact.core.models import thornton_ning_2016 as seed
+
+    ctx = decimal.Context(prec=60)
+    for v in np.geomspace(1.01, 1e15, 300):
+        A, Phat = seed.plastic_stage(float(v), float(v) - 1.0)[:2]
+        e = L.plastic_rebound(float(v))[4]
+        a, p = decimal.Decimal(A), decimal.Decimal(Phat)
+        a15 = ctx.multiply(a, ctx.sqrt(a))
+        d = ctx.subtract(a15, p)
+        w = ctx.add(
+            ctx.subtract(ctx.multiply(decimal.Decimal("0.4"), ctx.multiply(a, a15)), ctx.multiply(d, a)),
+            ctx.multiply(decimal.Decimal("0.6"), ctx.power(d, ctx.divide(5, 3))),
+        )
+        exact = float(ctx.divide(ctx.sqrt(ctx.divide(w, decimal.Decimal("0.4"))), decimal.Decimal(float(v))))
+        assert e == pytest.approx(exact, rel=1e-10, abs=0.0), v
+    pair = mi.ContactPair.paper_case("silicon")
+    V = np.geomspace(10.0, 1e300, 121)
+    e = pair.impact(V, model="liggghts_thornton_ning", warn=False).restitution
+    assert np.all((e >= 0.0) & (e <= 1.0)) and np.all(np.diff(e) <= 0.0)
+    assert all(
+        0.0 <= float(pair.impact(float(v), model="liggghts_thornton_ning", warn=False).restitution) <= 1.0 for v in V
+    )

@@ -209,6 +209,14 @@ def unloading_integral(c, h):
     return 2.0 * math.sqrt(h) * value
 
 
+#: Below this ``c = P*/(P_y A^(3/2))`` (``V/V_y`` above about 3e4) :func:`plastic_rebound` sums the
+#: series of the returned work instead of its closed form, whose terms cancel there.
+SERIES_BELOW = 1e-2
+#: ``0.6 binom(5/3, k) (-1)^k`` for ``k = 2 ... 11``: the series of ``0.6 (1 - c)^(5/3)`` beyond ``0.6 - c``.
+_SERIES = (1 / 3, 1 / 27, 1 / 81, 7 / 1215, 7 / 2187, 13 / 6561, 26 / 19683, 494 / 531441, 5434 / 7971615,
+           2470 / 4782969)  # fmt: skip
+
+
 @jitable
 def plastic_rebound(v):
     """The plastic impact at ``v = V/V_y > 1`` (finite): ``(A, P^*/P_y, A^(3/2), D, e)`` with
@@ -217,8 +225,20 @@ def plastic_rebound(v):
     A, Phat = seed.plastic_stage(v, v - 1.0)[:2]  # alpha*/alpha_y (seed eq. 22), P*/P_y
     A15 = A * math.sqrt(A)
     D = max(A15 - Phat, 0.0)  # x_p^(3/2)
-    W = 0.4 * A * A15 - D * A + 0.6 * D ** (5.0 / 3.0)  # returned work / (P_y alpha_y)
-    e = math.sqrt(max(W, 0.0) / 0.4) / v
+    c = Phat / A15
+    if c < SERIES_BELOW:
+        # W = A^(5/2) g(c), g(c) = 0.4 - (1 - c) + 0.6 (1 - c)^(5/3): the three terms of the form
+        # below cancel to c^2/3 (e was 1.35 at V = 1e30 m/s on the silicon pair, and the power
+        # overflowed at 1e200 m/s); here g by the binomial series of 0.6 (1 - c)^(5/3) from c^2 to
+        # c^11 (the next term is 1e-23 of the sum at c = 1e-2)
+        g = 0.0
+        for k in range(len(_SERIES) - 1, -1, -1):
+            g = g * c + _SERIES[k]
+        g *= c * c
+        e = math.sqrt(g / 0.4) * (A / v) * math.sqrt(math.sqrt(A))
+    else:
+        W = 0.4 * A * A15 - D * A + 0.6 * D ** (5.0 / 3.0)  # returned work / (P_y alpha_y)
+        e = math.sqrt(max(W, 0.0) / 0.4) / v
     return A, Phat, A15, D, e
 
 
@@ -285,14 +305,17 @@ def outcome(V, E, R, m, p_y, params):
     t1 = seed.elastic_stage_time(V, E, R, m, a_y, Vy)
     t2 = seed.plastic_stage_time(V, R, m, p_y, a_y, Vy)
     # Unloading time: Hertz for an elastic impact, else the quadrature above.
-    if V == inf:
+    if V == inf or infinite:  # (V/V_y can overflow at a finite V: e = 0, nothing to unload)
         tU = 0.0
     elif elastic:
         tU = hertz.half_period(V, E, R, m)
     else:
         c = Phat / A15  # 1 - beta^(3/2)
-        h = -math.expm1((2.0 / 3.0) * math.log1p(-c)) if c < 1.0 else 1.0  # 1 - beta
-        tU = math.sqrt(m / (2.0 * k * math.sqrt(max_approach))) * unloading_integral(c, h)
+        if c > 0.0:
+            h = -math.expm1((2.0 / 3.0) * math.log1p(-c)) if c < 1.0 else 1.0  # 1 - beta
+            tU = math.sqrt(m / (2.0 * k * math.sqrt(max_approach))) * unloading_integral(c, h)
+        else:  # A^(3/2) overflowed (V/V_y near 1e300): tU ~ alpha*^(-1/4), 0 to rounding
+            tU = 0.0
     return pack(
         V,
         Vy,
