@@ -66,6 +66,10 @@ def _env():
     env = dict(os.environ)
     env["PYTHONPATH"] = str(ROOT / "src") + os.pathsep + env.get("PYTHONPATH", "")
     env.pop("MICROIMPACT_BACKEND", None)
+    # the runs measure the command, not a coverage tracer: pytest-cov (CI's --cov) starts one in every
+    # child through these variables, which slows it and can add lines to its stderr
+    for key in [k for k in env if k.startswith("COV_CORE_") or k == "COVERAGE_PROCESS_START"]:
+        env.pop(key)
     return env
 
 
