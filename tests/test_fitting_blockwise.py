@@ -131,11 +131,11 @@ def test_the_result_does_not_depend_on_the_block_size(monkeypatch, loss, sigma):
     many, said_many = run()
     assert said == said_many and one.n_far_above_one == many.n_far_above_one > 0
     p = "limiting_pressure"
-    assert many.params[p] == pytest.approx(one.params[p], rel=1e-12)
+    assert many.params[p] == pytest.approx(one.params[p], rel=1e-10)
     assert many.conf_int[p] == pytest.approx(one.conf_int[p], rel=1e-9)
     np.testing.assert_allclose(many.log_covariance, one.log_covariance, rtol=1e-9)
     np.testing.assert_allclose(many.residuals, one.residuals, rtol=0, atol=1e-11)
-    assert many.chi2 == pytest.approx(one.chi2, rel=1e-12) and many.n_elastic == one.n_elastic
+    assert many.chi2 == pytest.approx(one.chi2, rel=1e-10) and many.n_elastic == one.n_elastic
 
 
 @pytest.mark.parametrize("kind", ["normal", "ties", "mostly zero", "heavy tails"])
@@ -159,3 +159,52 @@ def test_max_nfev_stops_the_fit_with_a_warning():
     with pytest.warns(FitWarning, match="did not converge"):
         fit = fit_restitution(V, e, SILICON.replace(limiting_pressure=30e6), max_nfev=1)
     assert not fit.success and fit.nfev == 1 and math.isfinite(fit.params["limiting_pressure"])
+
+
+def test_the_two_parameter_band_of_the_contact_time_is_the_delta_method():
+    """predict(band=True) with two free parameters: e's band is confidence_band's, V_r's is V times
+    it, the contact time's (forward differences, 1 + p whole outcomes) is the delta method computed
+    here by central differences of the public pair.impact at the perturbed parameters."""
+    name = "thornton_ning_1998_adhesive_plastic"
+    V = np.geomspace(0.05, 60.0, 30)
+    e = np.asarray(SILICON.impact(V, model=name, warn=False, work_of_adhesion=0.1).restitution)
+    e = np.where(e > 0, np.abs(e + np.random.default_rng(0).normal(0.0, 0.01, V.size)), 0.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        fit = fit_restitution(
+            V,
+            e,
+            SILICON.replace(limiting_pressure=100e6),
+            model=name,
+            params=("limiting_pressure", "work_of_adhesion"),
+            model_params={"work_of_adhesion": 0.3},
+        )
+    grid = np.array([0.5, 2.0, 10.0, 40.0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        pred = fit.predict(grid, band=True)
+    lo, hi = fit.confidence_band(grid)
+    assert pred.method == "delta method"
+    np.testing.assert_allclose(pred.restitution_lo, lo, rtol=1e-12)
+    np.testing.assert_allclose(
+        pred.rebound_velocity_hi - pred.rebound_velocity, grid * (hi - pred.restitution), rtol=1e-9
+    )
+    p_y, G = fit.params["limiting_pressure"], fit.params["work_of_adhesion"]
+
+    def t_c(p, g):
+        return np.asarray(
+            SILICON.replace(limiting_pressure=p).impact(grid, model=name, warn=False, work_of_adhesion=g).contact_time
+        )
+
+    h = 1e-5
+    g = np.stack(
+        [
+            (t_c(p_y * math.exp(h), G) - t_c(p_y * math.exp(-h), G)) / (2 * h),
+            (t_c(p_y, G * math.exp(h)) - t_c(p_y, G * math.exp(-h))) / (2 * h),
+        ],
+        axis=-1,
+    )
+    half = fit.quantile * np.sqrt(np.einsum("ni,ij,nj->n", g, fit.log_covariance, g))
+    np.testing.assert_allclose(pred.contact_time, t_c(p_y, G), rtol=1e-12)
+    np.testing.assert_allclose(pred.contact_time_hi - pred.contact_time, half, rtol=1e-4)
+    np.testing.assert_allclose(pred.contact_time - pred.contact_time_lo, half, rtol=1e-4)

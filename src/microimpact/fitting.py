@@ -140,6 +140,8 @@ import csv
 import io
 import math
 import os
+import sys
+import time
 import warnings
 from dataclasses import dataclass, field
 
@@ -229,6 +231,10 @@ _START_POINTS = 2048
 #: Above this many points the start's subset is chosen from every k-th point (a bounded sort).
 _SORT_POINTS = 1 << 20
 
+#: About how many times a fit evaluates its model (start grid, steps, Jacobians, band): see
+#: :meth:`_Model._timed`.
+_FIT_CALLS = 50
+
 #: Points per block of the fit's passes over the data: its working memory is a few such blocks.
 _BLOCK = 1 << 16
 
@@ -237,6 +243,9 @@ _JAC_STEP = 1e-6
 
 #: The fit stops when a Levenberg-Marquardt step in ``u`` is below ``_XTOL (1 + |u|)``.
 _XTOL = 1e-10
+
+#: ... or when the decrease of ``Q`` that the step predicts is below ``_FTOL Q``.
+_FTOL = 1e-13
 
 _EPS = float(np.finfo(float).eps)
 
@@ -435,6 +444,12 @@ def _zoo():
     from .core import models  # imported here: keeps `import microimpact` fast
 
     return models
+
+
+def _arrays():
+    from .core import arrays  # imported here: keeps `import microimpact` fast
+
+    return arrays
 
 
 def available_models() -> list[str]:
@@ -660,6 +675,7 @@ class _Model:
             if not math.isfinite(v):
                 raise ValueError(f"model {model} needs a value of its parameter {n}: give model_params={{{n!r}: ...}}")
         self.values = values
+        self.engine_checked = set()
         self.name = pair_names[0] if pair_names else None
         self.yield_strength = None
         finite_py = math.isfinite(pair.limiting_pressure)
@@ -748,11 +764,27 @@ class _Model:
             u0 = float(np.atleast_1d(u)[0])
             return _restitution_of(self.model, _YieldOnly(self.ref_vy * math.exp(self.exponent * u0)), (), V)
         pair, params = self.split(u)
-        return _restitution_of(self.model, pair, params, V)
+        return self._timed(_restitution_of, self.model, pair, params, V)
 
     def outcome(self, u, V, fields=("restitution", "rebound_velocity", "contact_time")):
         pair, params = self.split(u)
-        return _outcome_of(self.model, pair, params, V, fields)
+        return self._timed(_outcome_of, self.model, pair, params, V, fields)
+
+    def _timed(self, fn, *args):
+        """``fn(*args)``; the first call is timed, and where a fit's :data:`_FIT_CALLS` such calls
+        in Python loops would exceed the array layer's budget for one call
+        (:data:`microimpact.core.arrays.PYTHON_BUDGET`), numba is imported: from then on the array
+        layer runs compiled loops (:func:`microimpact.core.arrays.backend_for`; bit for bit the
+        same numbers). A model that integrates its equation of motion for ``e`` costs ~5 ms a point
+        in Python, ~50 us compiled."""
+        if fn in self.engine_checked or "numba" in sys.modules or os.environ.get("MICROIMPACT_BACKEND"):
+            return fn(*args)
+        t0 = time.perf_counter()
+        out = fn(*args)
+        self.engine_checked.add(fn)  # e alone and the whole outcome (a band's contact times) apart
+        if (time.perf_counter() - t0) * _FIT_CALLS > _arrays().PYTHON_BUDGET:
+            import numba  # noqa: F401  (the array layer compiles its loops once numba is imported)
+        return out
 
     def u_of_yield_velocity(self, vy):
         """Inverse of the power law ``V_y = V_y,ref exp(c u)`` (start values)."""
@@ -959,7 +991,12 @@ class FitResult:
             parameter's interval :attr:`conf_int` (evaluated at its ends and the
             estimate: exact for a quantity monotone in the parameter, which ``e``,
             ``V_r`` and the contact time are for the seed); with several, the delta
-            method over all of them (:attr:`log_covariance`).
+            method over all of them (:attr:`log_covariance`): ``e``'s gradient by
+            central differences of ``e`` alone (as :meth:`confidence_band`), ``V_r``'s
+            as ``V`` times it, the contact time's by forward differences (step 1e-6 in
+            ``ln theta``). It costs ``1 + p`` evaluations of the whole outcome
+            (contact times) for ``p`` free parameters, and ``2p`` of ``e`` alone; a
+            model whose outcome is slow in Python runs compiled (as in the fit).
 
         Returns
         -------
@@ -978,8 +1015,16 @@ class FitResult:
             hi = {q: np.maximum(mid[q], np.maximum(ends[0][q], ends[1][q])) for q in _QUANTITIES}
             method = "interval ends"
         else:
+            # e by the model's e alone (central differences, as confidence_band), V_r = e V from
+            # e's, the contact time (a quadrature in most models: the costly field) by forward
+            # differences from the estimate: 1 + p whole outcomes, not 1 + 2p.
             lo, hi = {}, {}
-            grads = self._gradients(lambda u: self._model.outcome(u, V), _QUANTITIES)
+            g_e = self._gradients(lambda u: {"e": self._model.restitution(u, V)}, ("e",))["e"]
+            grads = {
+                "restitution": g_e,
+                "rebound_velocity": g_e * V[..., None],
+                "contact_time": self._forward(lambda u: self._model.outcome(u, V)["contact_time"], mid["contact_time"]),
+            }
             for q in _QUANTITIES:
                 half = self.quantile * np.sqrt(self._quadratic(grads[q]))
                 lo[q], hi[q] = mid[q] - half, mid[q] + half
@@ -1041,6 +1086,16 @@ class FitResult:
             for k in keys:
                 cols[k].append((np.asarray(fp[k]) - np.asarray(fm[k])) / (2 * h))
         return {k: np.stack(v, axis=-1) for k, v in cols.items()}
+
+    def _forward(self, f, f0, h=1e-6):
+        """Forward differences ``(f(u + h e_j) - f0) / h`` for every component of ``u`` (last axis)."""
+        u = np.asarray(self._u, dtype=float)
+        cols = []
+        for j in range(u.size):
+            up = u.copy()
+            up[j] += h
+            cols.append((np.asarray(f(up)) - np.asarray(f0)) / h)
+        return np.stack(cols, axis=-1)
 
     def _quadratic(self, g):
         return np.maximum(np.einsum("...i,ij,...j->...", g, self.log_covariance, g), 0.0)
@@ -1437,6 +1492,12 @@ def _minimise(passes, u0, cols=None, max_nfev=None):
         if size <= _XTOL * (1.0 + float(np.linalg.norm(u[cols]))):
             u[cols] += step
             return u, True, "converged: the step fell below xtol", nfev
+        # The decrease of Q the quadratic model predicts: below Q's own rounding (and a model's
+        # quadrature noise) no trial can confirm it, so the step is taken as it is and the fit ends.
+        predicted = -(2.0 * float(g @ step) + float(step @ H @ step))
+        if lam <= 1e-3 and 0.0 <= predicted <= _FTOL * abs(Q):
+            u[cols] += step
+            return u, True, "converged: the predicted decrease fell below ftol", nfev
         if nfev >= max_nfev:
             return u, False, f"the maximum number of evaluations ({max_nfev}) was reached", nfev
         trial = u.copy()
