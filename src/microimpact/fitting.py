@@ -247,6 +247,9 @@ _XTOL = 1e-10
 #: ... or when the decrease of ``Q`` that the step predicts is below ``_FTOL Q``.
 _FTOL = 1e-13
 
+#: Largest step in ``u`` (a factor e^10 in a parameter).
+_MAX_STEP = 10.0
+
 _EPS = float(np.finfo(float).eps)
 
 #: Bins of a round of :func:`_order_statistics`, and the number of values it sorts at the end.
@@ -1500,9 +1503,14 @@ def _minimise(passes, u0, cols=None, max_nfev=None):
             return u, True, "converged: the predicted decrease fell below ftol", nfev
         if nfev >= max_nfev:
             return u, False, f"the maximum number of evaluations ({max_nfev}) was reached", nfev
+        if size > _MAX_STEP:  # a factor e^_MAX_STEP in a parameter at most per step
+            step *= _MAX_STEP / size
         trial = u.copy()
         trial[cols] += step
-        Qt = passes.objective(trial)
+        try:
+            Qt = passes.objective(trial)
+        except (OverflowError, ZeroDivisionError, FloatingPointError):  # a parameter out of range
+            Qt = math.inf
         nfev += 1
         if math.isfinite(Qt) and Qt <= Q:
             u = trial
