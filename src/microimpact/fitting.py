@@ -1423,6 +1423,7 @@ class _Passes:
 
     def __init__(self, mdl, V, e, w, loss, f_scale):
         self.mdl, self.V, self.e, self.w, self.loss, self.f_scale = mdl, V, e, w, loss, f_scale
+        self.last = None  # (u, r) of the last objective() of data that fit in one block
 
     def resid(self, u, s=slice(None)):
         r = self.mdl.restitution(u, self.V[s]) - self.e[s]
@@ -1430,7 +1431,17 @@ class _Passes:
 
     def objective(self, u):
         """``Q(u) = sum_i 2 L(r_i)`` (``sum r_i^2`` for least squares)."""
+        if self.V.size <= _BLOCK:  # kept: a step taken needs them again for its normal equations
+            r = self.resid(u)
+            self.last = (np.array(u, dtype=float), r)
+            return _objective(self.loss, r, self.f_scale)
         return math.fsum(_objective(self.loss, self.resid(u, s), self.f_scale) for s in _blocks(self.V.size))
+
+    def _kept(self, u):
+        """The residuals at ``u`` if the last objective() computed them (one block), else None."""
+        if self.last is not None and np.array_equal(self.last[0], u):
+            return self.last[1]
+        return None
 
     def jacobian_block(self, u, s, cols, r=None):
         """``(r, J)`` on the block ``s``: ``J[c] = dr/du_cols[c]`` (central differences; one row per
@@ -1454,7 +1465,7 @@ class _Passes:
         k = len(cols)
         parts, g, H = [], np.zeros(k), np.zeros((k, k))
         for s in _blocks(self.V.size):
-            r, J = self.jacobian_block(u, s, cols)
+            r, J = self.jacobian_block(u, s, cols, r=self._kept(u) if self.V.size <= _BLOCK else None)
             psi, dpsi = _psi(self.loss, r, self.f_scale)
             parts.append(_objective(self.loss, r, self.f_scale))
             g += np.einsum("am,m->a", J, psi)  # (numpy's own loops: BLAS threads buy nothing at k <= 3)
