@@ -208,3 +208,25 @@ def test_the_two_parameter_band_of_the_contact_time_is_the_delta_method():
     np.testing.assert_allclose(pred.contact_time, t_c(p_y, G), rtol=1e-12)
     np.testing.assert_allclose(pred.contact_time_hi - pred.contact_time, half, rtol=1e-4)
     np.testing.assert_allclose(pred.contact_time - pred.contact_time_lo, half, rtol=1e-4)
+
+
+@pytest.mark.parametrize("backend", ["python", "numba"])
+@pytest.mark.parametrize("params", [(0.0, 1.0), (0.3, 1.0), (0.3, 0.0), (2.5, 1.0), (-1.0, 1.0)])
+def test_e_by_distinct_groups_is_the_outcomes_field_bit_for_bit(monkeypatch, params, backend):
+    """Hertz-Tsuji's e depends on its damping ratio alone: fitting integrates once per distinct
+    scaled damping kappa of the data (alpha_T up to rounding: at most 8 values over 1e-3..1e3 m/s) and must give the
+    outcome's field exactly, on either engine (out-of-bounds parameters: NaN, as the outcome)."""
+    from microimpact.core import models as zoo
+    from microimpact.impact import outcome_arrays
+
+    monkeypatch.setenv("MICROIMPACT_BACKEND", backend)
+    mod = zoo.get("hertz_tsuji")
+    V = np.concatenate([np.geomspace(1e-3, 1e3, 40), [7.0, 7.0, 50.0]])
+    E, R, m, p_y = (
+        np.asarray(x) for x in (SILICON.effective_modulus, SILICON.effective_radius, SILICON.effective_mass, 1e8)
+    )
+    full = outcome_arrays(mod, V, E, R, m, p_y, params)["restitution"]
+    g = fitting._arrays().evaluate(mod.restitution_group, V, E, R, m, p_y, params=params)[0]
+    e = fitting._restitution_by_group(mod, V, E, R, m, p_y, params)
+    np.testing.assert_array_equal(e, full)
+    assert np.unique(g).size <= 10 < V.size  # the point of it: a handful of integrations, not one per speed

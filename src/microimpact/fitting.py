@@ -548,9 +548,29 @@ def _outcome_of(model_name, pair, params, V, fields=("restitution", "rebound_vel
     )
     params = tuple(float(x) for x in params)
     if fields == ("restitution",):  # what fitting and ranking compare: e alone (the model's hook)
+        if _group_hooks(module) is not None and np.all(V > 0):
+            return {"restitution": _restitution_by_group(module, V, E, R, m, p_y, params)}
         return {"restitution": np.asarray(restitution_arrays(module, V.ravel(), E, R, m, p_y, params)).reshape(V.shape)}
     out = outcome_arrays(module, V.ravel(), E, R, m, p_y, params)
     return {f: np.asarray(out[f], dtype=float).reshape(V.shape) for f in fields}
+
+
+def _group_hooks(module):
+    """``(restitution_group, restitution_of_group)`` of a model whose ``e`` is one function of one
+    dimensionless number (the model contract), else None."""
+    if module.restitution_group is None or module.restitution_of_group is None:
+        return None
+    return module.restitution_group, module.restitution_of_group
+
+
+def _restitution_by_group(module, V, E, R, m, p_y, params):
+    """``e`` at speeds ``V > 0``, evaluated once per distinct group ``g`` of the model (bit for bit the
+    outcome's field: the model computes its outcome's ``e`` from the same ``g``)."""
+    group, of_group = _group_hooks(module)
+    arrays = _arrays()
+    g = arrays.evaluate(group, V.ravel(), E, R, m, p_y, params=params)[0]
+    distinct, where = np.unique(g, return_inverse=True)
+    return arrays.evaluate(of_group, distinct, params=params)[0][where.ravel()].reshape(V.shape)
 
 
 def _restitution_of(model_name, pair, params, V):
