@@ -58,7 +58,7 @@ Method
   (``"linear"``, ``"soft_l1"``, ``"huber"``, ``"cauchy"``, ``"arctan"``; ``L(r) = f^2/2 rho((r/f)^2)``).
 * Optimiser: Levenberg-Marquardt on the normal equations ``(H + lambda diag H) du = -g``, with
   ``g = sum psi(r_i) J_i`` and ``H = sum max(psi'(r_i), eps) J_i J_i^T`` (least_squares' own
-  scaling of a robust loss), both accumulated over blocks of 65,536 points: a fit has at most a few
+  scaling of a robust loss), both accumulated over blocks of 32,768 points: a fit has at most a few
   free parameters, so its memory beyond the data is its residuals (a result attribute) and one
   block, not the ``n x p`` Jacobian and the other ``n``-sized arrays a general solver holds (a
   10^7-point fit: 0.5 GB for the whole ``microimpact fit`` instead of 1.7 GB). It reaches the same
@@ -236,7 +236,9 @@ _SORT_POINTS = 1 << 20
 _FIT_CALLS = 50
 
 #: Points per block of the fit's passes over the data: its working memory is a few such blocks.
-_BLOCK = 1 << 16
+#: Below :data:`microimpact.core.arrays.PARALLEL_MIN`: serial compiled loops (threads bought no
+#: time on two cores and their runtime cost 15 MB of a 10^7-point fit's peak).
+_BLOCK = 1 << 15
 
 #: Step in ``u = ln(theta/theta_ref)`` of the Jacobian's central differences.
 _JAC_STEP = 1e-6
@@ -250,7 +252,7 @@ _FTOL = 1e-13
 #: Largest step in ``u`` (a factor e^10 in a parameter).
 _MAX_STEP = 10.0
 
-_EPS = float(np.finfo(float).eps)
+_DBL_EPS = float(np.finfo(float).eps)
 
 #: Bins of a round of :func:`_order_statistics`, and the number of values it sorts at the end.
 _BINS = 4096
@@ -1489,7 +1491,7 @@ class _Passes:
             psi, dpsi = _psi(self.loss, r, self.f_scale)
             parts.append(_objective(self.loss, r, self.f_scale))
             g += np.einsum("am,m->a", J, psi)  # (numpy's own loops: BLAS threads buy nothing at k <= 3)
-            H += np.einsum("am,bm->ab", J, J * np.maximum(dpsi, _EPS))
+            H += np.einsum("am,bm->ab", J, J * np.maximum(dpsi, _DBL_EPS))
         return math.fsum(parts), g, H
 
 
@@ -1515,7 +1517,7 @@ def _minimise(passes, u0, cols=None, max_nfev=None):
     if not (math.isfinite(Q) and np.all(np.isfinite(g)) and np.all(np.isfinite(H))):
         return u, False, "the residuals or their Jacobian are not finite at the start", nfev
     while True:
-        D = np.diag(np.maximum(np.diag(H), _EPS * max(float(np.max(np.diag(H))), _EPS)))
+        D = np.diag(np.maximum(np.diag(H), _DBL_EPS * max(float(np.max(np.diag(H))), _DBL_EPS)))
         try:
             step = np.linalg.solve(H + lam * D, -g)
         except np.linalg.LinAlgError:
