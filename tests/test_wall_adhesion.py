@@ -494,3 +494,9 @@ def test_capture_speed_field_compiled_equals_python():
     out = _interact(v, n, w, d, rho, E, py, G, mu, adhesion=WHOLE_LAW)
     for k in rng.choice(d.size, 200, replace=False):
         assert out.sticking_velocity[k] == wall_core.whole_law_capture_velocity(d[k], rho[k], E[k], py[k], G[k])
+    # computed once per distinct particle: size classes with two works of adhesion, the rest scalars
+    classes = rng.choice([0.1e-6, 0.5e-6, 2e-6], d.size)
+    Gc = np.where(rng.random(d.size) < 0.5, 0.1, 1.0)
+    cls = _interact(v, n, w, classes, 2000.0, 5e9, 3e8, Gc, mu, adhesion=WHOLE_LAW)
+    each = evaluate(wall_core.whole_law_capture_velocity, classes, np.array(2000.0), np.array(5e9), np.array(3e8), Gc)
+    assert np.array_equal(cls.sticking_velocity, each[0]) and np.unique(each[0]).size == 6

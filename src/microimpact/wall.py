@@ -188,7 +188,9 @@ def _materials(material, n):
 _BYTES_PER_PARTICLE = 8 * (11 + 1 + 6 + 3) + 3
 # and with the whole adhesive law: its prepass (V, slip, V_y, r, m, V_s, x, y) and the table
 # lookup's temporaries (t, u, ft, fu, i, j, a, b, four corner values, D), at most 21 columns at once,
-_BYTES_WHOLE_LAW = 8 * 22 + 2  # and the whole law's capture speed, one more column
+# The capture speeds after it (_capture_speeds: the sort's permutation, 5 sorted columns, the group
+# index, the result: about 9 columns) stay below that peak.
+_BYTES_WHOLE_LAW = 8 * 22 + 2
 
 
 def wall_interaction(
@@ -382,7 +384,7 @@ def wall_interaction(
     e, V = o["restitution"], o["normal_speed"]
     Vy, Vs = o["yield_velocity"], o["sticking_velocity"]
     if adhesion != "additive":  # the whole law's own capture speed, not eq. 54's V_s
-        Vs = evaluate(_wall.whole_law_capture_velocity, d, rho, E, p_y, G)[0]
+        Vs = _capture_speeds(d, rho, E, p_y, G)
     return WallInteraction(
         velocity=v_out[0] if single else v_out,
         spin=None if w_out is None else (w_out[0] if single else w_out),
@@ -397,6 +399,27 @@ def wall_interaction(
         adhesion=adhesion,
         _single=single,
     )
+
+
+def _capture_speeds(d, rho, E, p_y, G):
+    """The whole law's capture speed of each particle (:func:`~microimpact.core.wall.whole_law_capture_velocity`),
+    computed once per distinct particle ``(d, rho, E*, p_y, G)``: the model's hook searches the rebound
+    work's sign change (20-30 us a particle where the contact yields before it can stick, 50 times the
+    rest of the interaction), while a particle stream often holds few distinct particles (size
+    classes, one material). The same values, bit for bit, as evaluating every particle. Measured
+    (2e5 particles, two shared cores): 5 size classes 1.0 us a particle (0.55 us before the field
+    was the law's own); all particles distinct (random sizes, materials, p_y, G) 34 us (0.6 us)."""
+    cols = np.broadcast_arrays(d, rho, E, p_y, G)
+    order = np.lexsort(cols)  # numeric sorts: np.unique(axis=0) compares rows as bytes, 50 times slower
+    cols = [c[order] for c in cols]
+    first = np.zeros(order.size, dtype=bool)  # the first particle of each distinct row
+    first[:1] = True
+    for c in cols:
+        first[1:] |= c[1:] != c[:-1]
+    Vc = evaluate(_wall.whole_law_capture_velocity, *(c[first] for c in cols))[0]
+    out = np.empty(order.size)
+    out[order] = Vc[np.cumsum(first) - 1]
+    return out
 
 
 def _whole_law_correction(vT, nT, wT, d, rho, E, p_y, G):
