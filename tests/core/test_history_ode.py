@@ -65,8 +65,10 @@ def _check(pair, V, name, params):
     assert abs(h.max_approach / float(o.max_approach) - 1.0) < TOL
     assert abs(h.max_force / float(o.max_force) - 1.0) < TOL
     # energy is never created: the rebound is never faster than the impact (to the solver's
-    # rtol of 1e-12: an elastic impact has come back 1e-12 fast) ...
-    assert h.rebound_velocity <= V * (1.0 + 1e-11)
+    # accuracy: at rtol 1e-12 its error accumulates over the steps of the contact; an elastic
+    # impact has come back 1e-12 fast, and DMT's (e = 1 exactly) 1.1e-11 fast in one order of
+    # the suite, where compiled kernels were already loaded) ...
+    assert h.rebound_velocity <= V * (1.0 + 1e-10)
     # ... and, without adhesion, the speed never exceeds the impact speed during the contact
     if "adhesive" not in name:  # an attractive force speeds the particle up at first contact
         assert np.all(np.abs(h.approach_velocity) <= V * (1.0 + 1e-9))
