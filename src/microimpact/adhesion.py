@@ -20,6 +20,7 @@ from ._validation import check_nonnegative, check_positive
 from .core import adhesion as _core
 from .core.adhesion import STICKING_CONSTANT  # noqa: F401  (its old home; the core's is the one)
 from .core.arrays import evaluate
+from .core.models import dmt_elastic_adhesive as _dmt
 from .core.models import thornton_ning_1998_adhesive_plastic as _whole_law
 
 __all__ = [
@@ -28,6 +29,8 @@ __all__ = [
     "adhesive_restitution",
     "ADHESION_RULES",
     "WHOLE_LAW",
+    "check_adhesion_rule",
+    "whole_law_restitution",
     "WholeLawTable",
     "whole_law_table",
 ]
@@ -39,6 +42,28 @@ WHOLE_LAW = _whole_law.NAME
 #: the additive rule (:func:`adhesive_restitution`, the default) or the whole law (through
 #: :func:`whole_law_table`).
 ADHESION_RULES = ("additive", WHOLE_LAW)
+
+
+def check_adhesion_rule(adhesion, name="adhesion"):
+    """``adhesion`` if it is one of :data:`ADHESION_RULES`; else a ValueError naming ``name``, the value
+    and the allowed values.
+
+    The DMT elastic adhesive law (:mod:`~microimpact.core.models.dmt_elastic_adhesive`) is refused
+    with its reason: it is conservative (``e = 1`` at every speed, as LAMMPS' ``dmt``), so as the
+    wall's normal law it would never capture a particle and would drop the plastic loss, and no
+    source read here combines DMT adhesion with yield (the additive rule adds TN98's JKR loss,
+    eq. 54, which DMT does not have).
+    """
+    if isinstance(adhesion, str) and adhesion in ADHESION_RULES:
+        return adhesion
+    allowed = ", ".join(repr(r) for r in ADHESION_RULES)
+    if adhesion == _dmt.NAME:
+        raise ValueError(
+            f"{name} must be one of {allowed}, got {adhesion!r}: the DMT elastic adhesive law returns all the "
+            "energy (e = 1 at every speed, as LAMMPS' dmt), so at the wall it would never capture a particle and "
+            "would drop the plastic loss (use it with pair.impact(model=...) for the contact itself)"
+        )
+    raise ValueError(f"{name} must be one of {allowed}, got {adhesion!r}")
 
 
 # ----------------------------------------------------------------------------- adhesion
@@ -278,6 +303,53 @@ def whole_law_table(*, t_min=-1.0, t_max=3.0, n_t=161, y_max=10.0, n_u=81) -> Wh
     if not (0.0 < y_max < math.inf):
         raise ValueError(f"y_max must be positive and finite, got {y_max!r}")
     return _whole_law_table(t_min, t_max, int(n_t), y_max, int(n_u))
+
+
+def whole_law_restitution(velocity, yield_velocity, sticking_velocity):
+    """Normal restitution of Thornton & Ning's whole law through its table, as the wall computes it.
+
+    ``e^2 = e_p(V/V_y)^2 - (V_s/V)^2 + D(V/V_y, V_s/V_y)`` with ``D`` interpolated in
+    :func:`whole_law_table` and the particle sticking (``e = 0``) where that is not positive
+    (:func:`microimpact.core.adhesion.corrected_restitution`): the operations of
+    :func:`~microimpact.wall.wall_interaction` with ``adhesion="thornton_ning_1998_adhesive_plastic"``
+    (and of the C export) for a head-on impact, so tables written with it
+    (:func:`microimpact.cexport.write_tables`) agree with both. At ``V = 0`` the particle sticks where
+    ``V_s > 0`` (as in the additive rule) and ``e = 1`` without adhesion.
+
+    Parameters
+    ----------
+    velocity : array_like
+        Normal impact speed ``V`` [m/s], finite, >= 0.
+    yield_velocity : array_like
+        ``V_y`` [m/s] (seed eq. 28); ``inf`` for a wall that never yields.
+    sticking_velocity : array_like
+        ``V_s`` [m/s] (eq. 54, :func:`sticking_velocity`), >= 0.
+
+    Returns
+    -------
+    e : ndarray
+        ``e`` [-], 0 where the particle sticks.
+    outside_table : ndarray of bool
+        True where ``V/V_y`` or ``V_s/V_y`` lies beyond the table (its edge was used; flagged, not refused).
+
+    Examples
+    --------
+    >>> e, outside = whole_law_restitution([0.5, 2.0, 50.0], 7.52, 1.0)
+    >>> e.round(4), outside
+    (array([0.    , 0.866 , 0.7287]), array([False, False, False]))
+    """
+    V = check_nonnegative("velocity", velocity)
+    if np.any(np.isinf(V)):
+        raise ValueError(f"velocity must be finite, got {float(V[np.isinf(V)].flat[0])!r}")
+    Vy = check_positive("yield_velocity", yield_velocity, allow_inf=True)
+    Vs = check_nonnegative("sticking_velocity", sticking_velocity)
+    V, Vy, Vs = (np.array(a, dtype=float) for a in np.broadcast_arrays(V, Vy, Vs))
+    with np.errstate(divide="ignore", invalid="ignore"):  # as wall_interaction's prepass
+        x = np.where(Vy < math.inf, V / Vy, 0.0)
+        y = np.where(Vy < math.inf, Vs / Vy, 0.0)
+    D, outside = whole_law_table()(x, y)
+    e = evaluate(_core.corrected_restitution, V, Vy, Vs, np.asarray(D, dtype=float), nout=2)[0]
+    return np.where((V == 0.0) & (Vs > 0.0), 0.0, e), outside
 
 
 @functools.lru_cache(maxsize=4)

@@ -57,7 +57,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._validation import check_nonnegative, check_positive
-from .adhesion import ADHESION_RULES, whole_law_table
+from .adhesion import check_adhesion_rule, whole_law_table
 from .core import wall as _wall
 from .core.arrays import evaluate
 from .core.tangential_laws import ALL_LAWS as LAWS
@@ -267,7 +267,9 @@ def wall_interaction(
         releases before the option, bit for bit) or ``"thornton_ning_1998_adhesive_plastic"``
         (their whole law: ``e^2 = e_p^2 - (V_s/V)^2 + D(V/V_y, V_s/V_y)`` with ``D`` interpolated in
         :func:`~microimpact.adhesion.whole_law_table`; the particle sticks where that is not
-        positive; points beyond the table are flagged in ``outside_table``).
+        positive; points beyond the table are flagged in ``outside_table``). Anything else is refused
+        (:func:`~microimpact.adhesion.check_adhesion_rule`), the DMT elastic adhesive law with its
+        reason: it is conservative (``e = 1`` at every speed), so at the wall it would never capture.
 
     Returns
     -------
@@ -284,8 +286,7 @@ def wall_interaction(
     """
     if tangential not in ("rigid", "mindlin", *LAWS):
         raise ValueError(f"tangential must be 'rigid', 'mindlin' or one of {LAWS}, got {tangential!r}")
-    if not isinstance(adhesion, str) or adhesion not in ADHESION_RULES:
-        raise ValueError(f"adhesion must be one of {ADHESION_RULES}, got {adhesion!r}")
+    check_adhesion_rule(adhesion)
     single = np.ndim(velocity) == 1
     v = _vectors("velocity", velocity)
     N = v.shape[0]

@@ -107,6 +107,7 @@ def write_band(
     effective_shear_modulus=None,
     source=None,
     inputs=(),
+    adhesion="additive",
 ):
     """Write the tables and C source of a fit at its estimate and at both ends of its band.
 
@@ -135,6 +136,9 @@ def write_band(
         As :func:`write_tables` (diameters [m], speeds [m/s], ``G`` [J/m^2]).
     friction, tangential, poisson_ratio, effective_shear_modulus
         As :func:`generate_c_source` (``mu`` [-], ``G*`` [Pa]); C source only.
+    adhesion : str, optional
+        ``"additive"`` (default) or ``"thornton_ning_1998_adhesive_plastic"``: the normal restitution with
+        adhesion of the tables and the C files, as :func:`write_tables` and :func:`generate_c_source`.
     c_source : bool
         Write the C files (default True).
     source : str, optional
@@ -161,8 +165,10 @@ def write_band(
     """
     from pathlib import Path
 
+    from ..adhesion import check_adhesion_rule
     from ..io import atomic_write, owned_directory
 
+    check_adhesion_rule(adhesion)
     ends = band_pairs(fit)
     if not c_source and (tangential != "rigid" or poisson_ratio is not None or effective_shear_modulus is not None):
         raise ValueError("tangential, poisson_ratio and effective_shear_modulus set the C source: c_source=False")
@@ -191,18 +197,21 @@ def write_band(
                 poisson_ratio=poisson_ratio,
                 effective_shear_modulus=effective_shear_modulus,
                 comment=f"fit{where}: {end['text']}",
+                adhesion=adhesion,
             )
-    readme = _band_readme(fit, ends, where, c_source)
+    readme = _band_readme(fit, ends, where, c_source, adhesion)
     target = Path(directory)
     names = []
     with owned_directory(target, "export", inputs=inputs) as tmp:
         with atomic_write(tmp / "README.txt") as fh:
             fh.write(readme)
         names.append("README.txt")
-        names.append(write_universal_table(tmp, v, s).name)
+        names.append(write_universal_table(tmp, v, s, adhesion).name)
         for end, d, p in jobs:
             name = f"restitution_d{float(d) * 1e6:g}um_{end['name']}.csv"
-            write_size_table(tmp / name, end["pair"], d, p, V, G, extra=[f"fit{where}: {end['text']}"])
+            write_size_table(
+                tmp / name, end["pair"], d, p, V, G, extra=[f"fit{where}: {end['text']}"], adhesion=adhesion
+            )
             names.append(name)
         for end_name, text in sources.items():
             with atomic_write(tmp / f"microimpact_wall_{end_name}.c") as fh:
@@ -211,7 +220,7 @@ def write_band(
     return [target / n for n in names]
 
 
-def _band_readme(fit, ends, where, c_source) -> str:
+def _band_readme(fit, ends, where, c_source, adhesion="additive") -> str:
     name = ends[0]["parameter"]
     lines = [
         f"microimpact export of a fit{where}: restitution tables"
@@ -222,6 +231,10 @@ def _band_readme(fit, ends, where, c_source) -> str:
         f"loss {fit.loss}; interval {fit.interval}.",
         "",
     ]
+    if adhesion != "additive":
+        lines[-1:-1] = [
+            f"Adhesion in the tables and C files: {adhesion} (Thornton & Ning's whole law, through its table)."
+        ]
     for end in ends:
         lines.append(f"*_{end['name']}: {end['text']}")
     lines += [

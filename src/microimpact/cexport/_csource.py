@@ -268,7 +268,8 @@ def generate_c_source(
         it. The file then also defines
         ``microimpact_wall_interaction_flagged(..., int *outside_table)``, the same function with one
         more output: 1 where ``V/V_y > 1000`` or ``V_s/V_y > 10``, beyond the table (its edge is
-        used; flagged, not refused), else 0 (NULL: not wanted).
+        used; flagged, not refused), else 0 (NULL: not wanted). Other values are refused as there
+        (:func:`~microimpact.adhesion.check_adhesion_rule`).
 
     Returns
     -------
@@ -285,10 +286,9 @@ def generate_c_source(
         too (it would be ignored).
     """
     from .. import __version__
-    from ..adhesion import ADHESION_RULES
+    from ..adhesion import check_adhesion_rule
 
-    if not isinstance(adhesion, str) or adhesion not in ADHESION_RULES:
-        raise ValueError(f"adhesion must be one of {ADHESION_RULES}, got {adhesion!r}")
+    check_adhesion_rule(adhesion)
     E = effective_modulus if effective_modulus is not None else (pair.effective_modulus if pair else None)
     p_y = limiting_pressure if limiting_pressure is not None else (pair.limiting_pressure if pair else None)
     if E is None or p_y is None:

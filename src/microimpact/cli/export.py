@@ -6,7 +6,7 @@ import argparse
 import math
 from pathlib import Path
 
-from ..adhesion import work_of_adhesion
+from ..adhesion import ADHESION_RULES, check_adhesion_rule, work_of_adhesion
 from ..cexport import DEFAULT_VS_OVER_VY, generate_c_source, write_band, write_c_source, write_tables
 from ..core.tangential_laws import ALL_LAWS as LAWS
 from ..fitting import INTERVALS, LOSSES
@@ -54,6 +54,15 @@ def register(sub) -> None:
         metavar="GAMMA",
         help="surface energy per surface gamma [J/m^2] of particle and wall (one value, or "
         "gamma1,gamma2); G = 2 (gamma1 gamma2)^(1/2)",
+    )
+    p.add_argument(
+        "--adhesion",
+        metavar="RULE",
+        default="additive",
+        help="normal restitution with adhesion of the tables and the C file: "
+        + " or ".join(ADHESION_RULES)
+        + " (Thornton & Ning's whole adhesive elastic-plastic law, through the table of its universal curve; "
+        "the per-size tables gain an 'outside table' column); default %(default)s, Thornton & Ning's additive rule",
     )
     p.add_argument("--friction", metavar="MU", default="0", help="Coulomb friction coefficient (default 0)")
     p.add_argument("--diameters", metavar="D", help="particle diameters [m], e.g. 1e-6,5e-6 (default: the pair's)")
@@ -109,6 +118,7 @@ def run(args) -> int:
 
     check_pair_options(args)
     check_outputs(directories=[args.out])
+    adhesion = check_adhesion_rule(args.adhesion, "--adhesion")
     tangential, kappa_kw = _tangential_options(args)
     if args.fit is None:
         for dest in ("free", "confidence", "loss", "interval"):
@@ -177,13 +187,18 @@ def run(args) -> int:
             c_source=not args.no_c,
             source=Path(args.fit).name,
             inputs=[args.fit],
+            adhesion=adhesion,
             **c_kw,
         )
     else:
+        if adhesion != "additive":
+            c_kw["adhesion"] = adhesion
         if c_kw and not args.no_c:
             generate_c_source(pair, work_of_adhesion=G, friction=mu, **c_kw)  # kappa checked before writing
         with owned_directory(out, "export") as tmp:
-            written = write_tables(tmp, pair, diameters, velocities, work_of_adhesion=G, vs_over_vy_values=vs)
+            written = write_tables(
+                tmp, pair, diameters, velocities, work_of_adhesion=G, vs_over_vy_values=vs, adhesion=adhesion
+            )
             if decks is not None:
                 written += _write_decks(tmp, pair, *decks)
             if not args.no_c:
@@ -195,7 +210,10 @@ def run(args) -> int:
         print(fit.summary())
         print()
     print(pair.describe())
-    print(f"  work of adhesion G = {G:.6g} J/m^2, friction mu = {mu:.6g}, tangential {tangential}")
+    print(
+        f"  work of adhesion G = {G:.6g} J/m^2, friction mu = {mu:.6g}, tangential {tangential}"
+        + ("" if adhesion == "additive" else f", adhesion {adhesion}")
+    )
     for path in written:
         print(f"wrote {out / Path(path).name}")
     if fit is not None:
