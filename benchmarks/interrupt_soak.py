@@ -215,6 +215,10 @@ def main(argv=None) -> int:
     p.add_argument("--from-exec", action="store_true", help="draw the moment from the process start")
     p.add_argument("--json", action="store_true")
     a = p.parse_args(argv)
+    if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+        # started as a background job of a script (SIGINT ignored, and so in every child, which then
+        # rightly keeps ignoring it): the commands get SIGINT as a user's terminal gives it
+        signal.signal(signal.SIGINT, signal.default_int_handler)
     t = time.monotonic()
     res = soak(a.runs, a.workers, a.seed, a.cases.split(",") if a.cases else None, a.from_exec)
     s = summary(res)

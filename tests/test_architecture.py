@@ -25,6 +25,7 @@ LAYERS = {
     "io": 1,
     "_signals": 1,
     "_face": 2,
+    "_history": 2,
     "contact": 2,
     "impact": 2,
     "dynamics": 2,

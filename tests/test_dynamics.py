@@ -280,7 +280,15 @@ def test_history_continuity_and_end_states(V):
 def test_history_closed_equals_ode(V):
     closed = SILICON.history(V, n=401)
     ode = dynamics.integrate_impact(V, *SILICON._args, times=closed.time)
-    assert np.array_equal(ode["stage"], closed.stage)
+    # the same stages, except that at the closed form's own boundary times (t1, t_L, t_c, on its
+    # grid) the integration's boundary, 1e-12 away on either side, may already have passed
+    boundary = np.isin(closed.time, [closed.elastic_stage_time, closed.loading_time, closed.contact_time])
+    assert np.array_equal(ode["stage"][~boundary], closed.stage[~boundary])
+    after = {1: 2, 2: 3, 3: 0}
+    for t, got, want in zip(closed.time[boundary], ode["stage"][boundary], closed.stage[boundary]):
+        assert got in (want, after[want]), (t, got, want)
+    for key in ("elastic_stage_time", "loading_time", "contact_time"):
+        assert rel(ode[key], getattr(closed, key)) < 1e-10, key
     for key, scale in (("approach", closed.max_approach), ("approach_velocity", V), ("force", closed.max_force)):
         np.testing.assert_allclose(ode[key], getattr(closed, key), rtol=0, atol=1e-9 * scale, err_msg=key)
     via_pair = SILICON.history(V, n=401, method="ode")

@@ -14,6 +14,11 @@ and checks for a pending interrupt before it renames anything into place) and
   lock, a blocking call), the registered temporary files are removed and the process exits with
   ``128 + signal``. A second signal ends it at once the same way.
 * :func:`restore` -- the previous handlers back, the watchdog disarmed.
+
+A signal the process was started with ignored stays ignored in every stage, as Python itself
+keeps an ignored SIGINT: a non-interactive shell starts a background job (``cmd &`` in a script)
+with SIGINT ignored, and ``nohup``-like launchers do the same, so that a Ctrl-C meant for the
+foreground does not end it. Such a command runs to its end; SIGTERM still ends it.
 """
 
 from __future__ import annotations
@@ -170,6 +175,8 @@ def install() -> None:
         sys.unraisablehook = _unraisable
     for sig in SIGNALS:
         try:
+            if signal.getsignal(sig) == signal.SIG_IGN:
+                continue  # started ignoring it (a background job of a script, nohup): it stays ignored
             _state["old"][sig] = signal.signal(sig, _raise)
         except (ValueError, OSError):  # pragma: no cover
             pass

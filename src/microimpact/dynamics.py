@@ -23,20 +23,20 @@ numerically: the seed's own route, kept as an independent check.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, fields
 
 import numpy as np
 
-from . import contact
+from . import _history, contact
 from ._face import array_function
 from ._validation import check_nonnegative, check_pair, check_positive, check_velocity
 from .core import hertz, quantities
+from .core import models as _models
 from .core import special as _special
 from .core.arrays import evaluate
 from .core.models import thornton_ning_2016 as _seed
 from .core.special import BETA_25_12, HERTZ_TIME_CONSTANT
-from .impact import elastic_max_approach, impact_outcome, outcome_arrays, yield_velocity
+from .impact import elastic_max_approach, impact_outcome, outcome_arrays
 
 __all__ = [
     "BETA_25_12",
@@ -410,46 +410,6 @@ HISTORY_SCALARS: dict[str, tuple[str, str]] = quantities.table(
 )
 
 
-def _scalar_pair(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure):
-    """Check the inputs of one impact; return them as floats."""
-    out = []
-    names = ("velocity", "effective_modulus", "effective_radius", "effective_mass", "limiting_pressure")
-    for name, value in zip(names, (velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)):
-        if np.ndim(value) != 0:
-            raise ValueError(f"{name} must be a single number for a history, got shape {np.shape(value)}")
-        out.append(value)
-    V = float(check_velocity("velocity", out[0]))
-    if not (0.0 < V < np.inf):
-        raise ValueError(f"velocity must be positive and finite for a history, got {V!r}")
-    E, R, m, p_y = (float(x) for x in check_pair(*out[1:]))
-    return V, E, R, m, p_y
-
-
-def _time_grid(n, times, boundaries, t_c):
-    """The times of a history: ``times`` as given, or ``n`` uniform points on ``[0, t_c]`` plus the boundaries."""
-    if times is not None:
-        try:
-            t = np.array(times, dtype=float, ndmin=1)
-        except (TypeError, ValueError):
-            raise ValueError(f"times must be an array of numbers, got {times!r}") from None
-        if t.ndim != 1 or t.size == 0:
-            raise ValueError(f"times must be a non-empty 1-d array, got shape {t.shape}")
-        if not np.all(np.isfinite(t)):
-            raise ValueError(f"times must be finite, got {float(t[~np.isfinite(t)][0])!r}")
-        return t
-    if isinstance(n, (bool, np.bool_)) or not isinstance(n, (int, np.integer)) or n < 2:
-        raise ValueError(f"n must be an integer >= 2, got {n!r}")
-    t = np.linspace(0.0, t_c, int(n))
-    t[-1] = t_c
-    return np.union1d(t, [b for b in boundaries if 0.0 < b < t_c])
-
-
-def _stage_of(t, t1, t_L, t_c):
-    """Stage code at each time: 1 on ``[0, t1]``, 2 on ``(t1, t_L]``, 3 on ``(t_L, t_c]``, 0 outside."""
-    stage = np.where(t <= t1, 1, np.where(t <= t_L, 2, 3))
-    return np.where((t < 0.0) | (t > t_c), 0, stage).astype(np.int8)
-
-
 def _hertz_fraction(x, xc):
     """``u = I^-1_x(2/5, 1/2)`` and ``1 - u``, given ``x`` and its complement ``xc = 1 - x`` (both exact).
 
@@ -467,13 +427,6 @@ def _hertz_fraction(x, xc):
     w[~low] = evaluate(_special.incomplete_beta_inverse, xc[~low], np.asarray(0.5), np.asarray(0.4), B)[0]
     u[~low] = 1.0 - w[~low]
     return u, w
-
-
-def _free_flight(t, V, t_c, a_p, V_r):
-    """Approach and velocity outside the contact: ``V t`` before, ``alpha_p - V_r (t - t_c)`` after."""
-    approach = np.where(t < 0.0, V * t, a_p - V_r * (t - t_c))
-    velocity = np.where(t < 0.0, V, -V_r)
-    return approach, velocity
 
 
 def impact_history(
@@ -522,7 +475,9 @@ def impact_history(
     >>> round(float(h["approach_velocity"][-1]), 2)  # -V_r; seed: 36.31
     -36.24
     """
-    V, E, R, m, p_y = _scalar_pair(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)
+    V, E, R, m, p_y = _history.scalar_pair(
+        velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure
+    )
     outcome = impact_outcome(V, E, R, m, p_y)
     out = {k: float(np.asarray(v)) for k, v in outcome.items()}
     tm = contact_times(V, E, R, m, p_y, outcome=outcome)
@@ -535,9 +490,9 @@ def impact_history(
     alpha_m = float(elastic_max_approach(V, E, R, m))
     T_m = hertz.rise_time(alpha_m, V)  # time of a purely elastic impact to reach alpha_m
 
-    t = _time_grid(n, times, (t1, t_L), t_c)
-    stage = _stage_of(t, t1, t_L, t_c)
-    approach, vel = _free_flight(t, V, t_c, a_p, V_r)
+    t = _history.time_grid(n, times, (t1, t_L), t_c)
+    stage = _history.stage_of(t, t1, t_L, t_c)
+    approach, vel = _history.free_flight(t, V, t_c, a_p, V_r)
     force = np.zeros_like(t)
 
     # Stage 1: Hertz loading (eqs. 2, 17, 20).
@@ -743,56 +698,6 @@ class ImpactHistory:
 # ============================================================================ Newton's equation, numerically
 
 
-def _event(fun, direction):
-    fun.terminal = True
-    fun.direction = direction
-    return fun
-
-
-def _integrate_phase(rhs, t0, y0, span, events, method, rtol, atol, tries=60):
-    """Integrate until a terminal event; extend the span if none occurred. Returns (pieces, event index, t, y)."""
-    from scipy.integrate import solve_ivp  # imported here: the ODE is only the cross-check
-
-    pieces = []
-    for _ in range(tries):
-        sol = solve_ivp(rhs, (t0, t0 + span), y0, method=method, rtol=rtol, atol=atol, events=events, dense_output=True)
-        if not sol.success:  # pragma: no cover - solver failure
-            raise RuntimeError(f"integration failed: {sol.message}")
-        pieces.append((sol.t[0], sol.t[-1], sol.sol))
-        if sol.status == 1:
-            for i, te in enumerate(sol.t_events):
-                if te.size:
-                    return pieces, i, float(te[0]), np.array(sol.y_events[i][0], dtype=float), sol.nfev
-        t0, y0, span = sol.t[-1], sol.y[:, -1], 2.0 * span
-    raise RuntimeError("integration did not reach the end of the stage")  # pragma: no cover
-
-
-def _sample_pieces(pieces, stages, tau, stage, X, V, out, force_of):
-    """Fill ``out = (approach, approach_velocity, force)`` at the scaled times ``tau`` from the dense
-    solutions ``pieces`` (``(tau_start, tau_end, sol, stage)``, the phases of :func:`_integrate_phase`).
-
-    ``X`` and ``V`` turn the scaled state back into metres and m/s; ``force_of(k, a, b, tau_sel,
-    approach_sel)`` gives the force at the selected times of stage ``k`` in the piece ``[a, b]``.
-    The last piece of a stage also takes the times just past its end (rounding at the boundary).
-    The one stitching loop of :func:`integrate_impact` and :func:`integrate_model`.
-    """
-    approach, vel, force = out
-    for k in stages:
-        idx = np.flatnonzero(stage == k)
-        ends = [p[1] for p in pieces if p[3] == k]
-        last_b = max(ends) if ends else None
-        for a, b, sol, st in pieces:
-            if st != k or idx.size == 0:
-                continue
-            sel = idx[(tau[idx] >= a) & ((tau[idx] <= b) | (b == last_b))]
-            if sel.size:
-                y = sol(np.clip(tau[sel], a, b))
-                approach[sel] = X * y[0]
-                vel[sel] = V * y[1]
-                force[sel] = force_of(k, a, b, tau[sel], approach[sel])
-            idx = np.setdiff1d(idx, sel)
-
-
 def integrate_impact(
     velocity,
     effective_modulus,
@@ -801,7 +706,7 @@ def integrate_impact(
     limiting_pressure,
     *,
     rtol=1e-12,
-    atol=1e-14,
+    atol=1e-17,
     method="DOP853",
     n=None,
     times=None,
@@ -809,24 +714,28 @@ def integrate_impact(
     """One impact by integrating Newton's equation ``m* d2alpha/dt2 = -P`` numerically (seed eqs. 16-26).
 
     The independent check of the closed forms (:func:`contact_times`,
-    :func:`impact_history`), following the seed's own route. The force is the
-    history-dependent law of :mod:`microimpact.contact`: Hertz (eq. 2) up to the yield
-    approach, plastic loading (eq. 8) up to the maximum approach, then elastic
-    unloading (eq. 10) with ``R_p`` (eq. 9) and ``alpha_p`` (eq. 11) fixed by the
-    maximum approach the integration reached. :func:`scipy.integrate.solve_ivp`
-    locates, with terminal events, the yield (``alpha = alpha_y``), the maximum
-    approach (``dalpha/dt = 0``) and the separation (``alpha = alpha_p``).
+    :func:`impact_history`), following the seed's own route: :func:`integrate_model` applied to
+    the seed's model (the one integrator, :mod:`microimpact.core.models.thornton_ning_2016`). The
+    force is its history-dependent law: Hertz (eq. 2) up to the yield approach, plastic loading
+    (eq. 8) up to the maximum approach, then elastic unloading (eq. 10) with ``R_p`` (eq. 9) and
+    ``alpha_p`` (eq. 11) fixed by the maximum approach the integration reached.
+    :func:`scipy.integrate.solve_ivp` locates, with terminal events, the yield (``alpha =
+    alpha_y``, the model's ``stage_two_approach``), the maximum approach (``dalpha/dt = 0``) and
+    the separation (``alpha = alpha_p``, its ``separation_approach_after``).
 
-    The equation is integrated in scaled variables ``alpha/alpha_m`` and
-    ``t V/alpha_m`` (``alpha_m`` the maximum approach of a purely elastic impact), so
-    that the tolerances act on numbers of order one.
+    The equation is integrated in scaled variables (time in units of the loading time of a first,
+    loose run, length in units of ``V`` times that), so that the tolerances act on numbers of
+    order one.
 
     Parameters
     ----------
     velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure : float
         ``V`` [m/s] (positive, finite), ``E*`` [Pa], ``R*`` [m], ``m*`` [kg], ``p_y`` [Pa].
     rtol, atol : float
-        Tolerances of the solver (``atol`` on the scaled variables).
+        Tolerances of the solver (``atol`` on the scaled variables; 1e-17 as for
+        :func:`integrate_model`, whose integrator this is: with 1e-14 the scaled state near the
+        first contact, where the force grows as ``alpha^(3/2)``, is controlled too loosely and
+        the rebound speed is 1e-10 off the closed form instead of 1e-11).
     method : str
         A :func:`~scipy.integrate.solve_ivp` method; ``"DOP853"`` (default) or ``"Radau"``.
     n, times : optional
@@ -838,195 +747,18 @@ def integrate_impact(
         The scalars of :data:`HISTORY_SCALARS` (``elastic_stage_time``,
         ``plastic_stage_time``, ``loading_time``, ``unloading_time``, ``contact_time``
         [s], ``max_approach``, ``plastic_approach`` [m], ``max_force`` [N],
-        ``rebound_velocity`` [m/s], ...), ``nfev`` (right-hand-side evaluations),
-        ``method`` = ``"ode"``, and with ``n`` or ``times`` the arrays ``time``,
+        ``rebound_velocity`` [m/s], ...), ``nfev`` (right-hand-side evaluations of the
+        precise run), ``method`` = ``"ode"``, and with ``n`` or ``times`` the arrays ``time``,
         ``approach``, ``approach_velocity``, ``force``, ``stage``.
     """
-    V, E, R, m, p_y = _scalar_pair(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)
-    if n is not None or times is not None:  # check the grid before integrating
-        _time_grid(1001 if n is None else n, times, (), 1.0)
-    Vy = float(yield_velocity(p_y, E, R, m))
-    plastic = V > Vy
-    L = float(elastic_max_approach(V, E, R, m))  # length scale alpha_m
-    T = L / V  # time scale
-    F = m * V**2 / L  # force scale
-
-    def hertz_force(a):
-        return float(contact.hertz_force(max(a, 0.0), E, R))
-
-    def plastic_force(a):
-        return float(contact.plastic_loading_force(max(a, 0.0), E, R, p_y))
-
-    def make_rhs(force):
-        return lambda t, y: [y[1], -force(L * y[0]) / F]
-
-    tm_elastic = hertz.rise_time(1.0, 1.0)  # scaled time of the elastic loading
-    nfev = 0
-    pieces = []
-
-    # Stage 1: Hertz loading until yield or rest.
-    events = [_event(lambda t, y: y[1], -1)]
-    if plastic:
-        x_y = float(contact.yield_approach(p_y, E, R)) / L
-        events.append(_event(lambda t, y: y[0] - x_y, 1))
-    pc, which, t_ev, y_ev, nf = _integrate_phase(
-        make_rhs(hertz_force), 0.0, [0.0, 1.0], 1.2 * tm_elastic, events, method, rtol, atol
+    V, E, R, m, p_y = _history.scalar_pair(
+        velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure
     )
-    pieces += [(a, b, s, 1) for a, b, s in pc]
-    nfev += nf
-    t1 = t_ev
-    loading_force = hertz_force
-    if which == 1:
-        # Stage 2: plastic loading until rest.
-        y_ev[0] = x_y  # the event's own state, exactly on the boundary
-        omega = float(plastic_frequency(p_y, R, m)) * T
-        pc, _, t_ev, y_ev, nf = _integrate_phase(
-            make_rhs(plastic_force), t1, y_ev, 0.6 * np.pi / omega, events[:1], method, rtol, atol
-        )
-        pieces += [(a, b, s, 2) for a, b, s in pc]
-        nfev += nf
-        loading_force = plastic_force
-    t_L = t_ev
-    a_star = L * float(y_ev[0])
-    P_star = loading_force(a_star)
-    R_p = float(contact.unloading_radius(a_star, P_star, E, R))
-    a_p = float(contact.plastic_approach(a_star, P_star, E, R))
-
-    # Stage 3: elastic unloading from the maximum approach until separation.
-    def unloading(a):
-        return float(contact.unloading_force(a, a_p, R_p, E))
-
-    x_p = a_p / L
-    pc, _, t_ev, y_ev, nf = _integrate_phase(
-        make_rhs(unloading),
-        t_L,
-        [a_star / L, 0.0],
-        1.2 * tm_elastic,
-        [_event(lambda t, y: y[0] - x_p, -1)],
-        method,
-        rtol,
-        atol,
+    out = _history.integrate(
+        _models.get(_seed.NAME), (), V, E, R, m, p_y, rtol=rtol, atol=atol, method=method, n=n, times=times
     )
-    pieces += [(a, b, s, 3) for a, b, s in pc]
-    nfev += nf
-    t_c = t_ev
-    V_r = -V * float(y_ev[1])
-
-    out = {
-        "velocity": V,
-        "rebound_velocity": V_r,
-        "max_approach": a_star,
-        "plastic_approach": a_p,
-        "max_force": P_star,
-        "elastic_stage_time": T * t1,
-        "plastic_stage_time": T * (t_L - t1),
-        "loading_time": T * t_L,
-        "unloading_time": T * (t_c - t_L),
-        "contact_time": T * t_c,
-        "yield_velocity": Vy,
-        "effective_modulus": E,
-        "effective_radius": R,
-        "effective_mass": m,
-        "limiting_pressure": p_y,
-        "method": "ode",
-        "nfev": nfev,
-    }
-    if n is None and times is None:
-        return out
-
-    t = _time_grid(1001 if n is None else n, times, (T * t1, T * t_L), T * t_c)
-    stage = _stage_of(t, T * t1, T * t_L, T * t_c)
-    approach, vel = _free_flight(t, V, T * t_c, a_p, V_r)
-    force = np.zeros_like(t)
-    laws = {1: hertz_force, 2: plastic_force, 3: unloading}
-    _sample_pieces(
-        pieces, (1, 2, 3), t / T, stage, L, V, (approach, vel, force), lambda k, a, b, ts, xs: [laws[k](x) for x in xs]
-    )
-    out.update(time=t, approach=approach, approach_velocity=vel, force=force, stage=stage)
+    del out["model"]  # the seed's: this function's result has always been the seed's alone
     return out
-
-
-def _model_and_params(model, params):
-    """The model module and its parameter tuple, from a name (or module) and a dict (or tuple)."""
-    from .core import models as _models
-
-    mod = _models.get(model) if isinstance(model, str) else _models.get(getattr(model, "NAME", model))
-    if params is None:
-        params = {}
-    if isinstance(params, dict):
-        return mod, _models.resolve_params(mod, params)
-    return mod, tuple(mod.validate(tuple(params)))
-
-
-def _model_run(mod, V, E, R, m, p_y, params, T, rtol, atol, method):
-    """Integrate ``m* alpha'' = -P`` with the model's force law in ``tau = t/T``, ``x = alpha/(V T)``,
-    ``u = alpha'/V``: loading to the maximum approach, then unloading to the end of the contact.
-
-    Returns ``(pieces, t_L, x_star, t_c, x_end, u_end, nfev)`` (scaled); ``t_c`` is None where the
-    particle has not left after many loading times (it sticks).
-    """
-    X = V * T
-    c = T / (m * V)  # u' = -P c
-    f = mod.force
-
-    def rhs1(t, y):
-        a = y[0] * X if y[0] > 0.0 else 0.0  # loading starts at zero approach
-        return [y[1], -f(a, y[1] * V, a, E, R, m, p_y, params) * c]
-
-    pieces, _, tL, y, nfev = _integrate_phase(
-        rhs1, 0.0, [0.0, 1.0], 2.0, [_event(lambda t, y: y[1], -1)], method, rtol, atol
-    )
-    pieces = [(a, b, s, 1) for a, b, s in pieces]
-    x_star = float(y[0])
-    amax = x_star * X
-
-    def rhs2(t, y):
-        return [y[1], -f(y[0] * X, y[1] * V, amax, E, R, m, p_y, params) * c]
-
-    if mod.separation_approach_after is not None:  # where the contact breaks depends on alpha_max
-        sep = mod.separation_approach_after(amax, E, R, m, p_y, params) / X
-    elif mod.separation_approach is not None:
-        sep = mod.separation_approach(E, R, m, p_y, params) / X
-    else:
-        sep = 0.0
-    events = [_event(lambda t, y: y[0] - sep, -1)]
-    if mod.ends_at_zero_force is not None and mod.ends_at_zero_force(params):
-        g = mod.signed_force
-
-        def zero_force(t, y):
-            # sign(P)|P|^(2/3): a Hertzian force vanishing as (alpha - delta)^(3/2) becomes linear
-            # there, so the solver's root finder (brentq, 100 iterations) converges; the bare force,
-            # flat at its root, made it fail (Kogut-Etsion at E*/Y = 2500).
-            p = g(y[0] * X, y[1] * V, amax, E, R, m, p_y, params)
-            return math.copysign(abs(p) ** (2.0 / 3.0), p)
-
-        events.append(_event(zero_force, -1))
-    try:
-        pc, which, tc, y, nf = _integrate_phase(rhs2, tL, [x_star, 0.0], 2.0 * tL, events, method, rtol, atol, tries=8)
-    except RuntimeError:  # no separation within ~500 loading times: the particle sticks
-        return pieces, tL, x_star, None, None, 0.0, nfev
-    if which == 1:
-        # A force clipped at zero (or vanishing with zero slope, as the seed's unloading) does not
-        # change sign, so the solver's root finder may stop anywhere where it is already zero:
-        # bisect, within the last step, for the first time the force is no longer positive.
-        sol = pc[-1][2]
-        steps = np.asarray(getattr(sol, "ts", [pc[-1][0]]), dtype=float)
-        before = steps[steps < tc]
-        lo, hi = (float(before[-1]) if before.size else pc[-1][0]), tc
-
-        def positive(t):
-            x, u = sol(t)
-            return events[1](t, (x, u)) > 0.0
-
-        if positive(lo):
-            for _ in range(200):
-                mid = 0.5 * (lo + hi)
-                if not lo < mid < hi:
-                    break
-                lo, hi = (mid, hi) if positive(mid) else (lo, mid)
-            tc, y = hi, sol(hi)
-    pieces += [(a, b, s, 3) for a, b, s in pc]
-    return pieces, tL, x_star, tc, float(y[0]), float(y[1]), nfev + nf
 
 
 def integrate_model(
@@ -1051,10 +783,11 @@ def integrate_model(
     maximum approach (``dalpha/dt = 0``, located by a terminal event of
     :func:`scipy.integrate.solve_ivp`), from where ``alpha_max`` is frozen; the contact ends where
     the approach falls to the model's ``separation_approach`` (0 unless the model defines one) or,
-    when ``ends_at_zero_force(params)``, where its ``signed_force`` vanishes, whichever comes first.
-    The same phase integrator as :func:`integrate_impact` (the seed's three-stage route, which
-    locates the yield point too); here the equation is scaled by the loading time of a first,
-    loose run, so that the tolerances act on numbers of order one. It is the independent check of
+    when ``ends_at_zero_force(params)``, where its ``signed_force`` vanishes, whichever comes first;
+    a model that declares ``stage_two_approach`` (the seed: its yield approach) has its loading
+    split there into stages 1 and 2. The equation is scaled by the loading time of a first, loose
+    run, so that the tolerances act on numbers of order one. The one integrator (also behind
+    :func:`integrate_impact`). It is the independent check of
     every model's closed form (:meth:`ContactPair.impact <microimpact.pair.ContactPair.impact>`).
 
     Parameters
@@ -1084,7 +817,9 @@ def integrate_model(
         ``plastic_stage_time`` and ``yield_velocity`` from the model's outcome, NaN where it
         does not define them), ``model``, ``method`` = ``"ode"``, ``nfev``, and with ``n`` or
         ``times`` the arrays ``time``, ``approach``, ``approach_velocity``, ``force`` and
-        ``stage`` (1 loading, 3 unloading, 0 apart).
+        ``stage`` (1 loading, 2 the second loading stage where the model has one, 3 unloading,
+        0 apart). ``elastic_stage_time`` and ``plastic_stage_time`` are the integration's own
+        where the model declares ``stage_two_approach``.
 
     Raises
     ------
@@ -1099,89 +834,8 @@ def integrate_model(
     >>> round(r["rebound_velocity"] / 50.0, 4)  # the model's closed form: 0.6905
     0.6905
     """
-    mod, p = _model_and_params(model, params)
-    V, E, R, m, p_y = _scalar_pair(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)
-    if n is not None or times is not None:  # check the grid before integrating
-        _time_grid(1001 if n is None else n, times, (), 1.0)
-    stuck = ValueError(
-        f"with model {mod.NAME!r} the particle does not leave the surface at velocity {V:g} m/s "
-        "(e = 0, contact_time = inf): there is no finite history"
+    mod, p = _history.model_and_params(model, params)
+    V, E, R, m, p_y = _history.scalar_pair(
+        velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure
     )
-    closed = dict(zip(quantities.OUTCOME_FIELDS, mod.outcome(V, E, R, m, p_y, p)))
-    if closed["contact_time"] == np.inf:  # the model's own solution says it sticks
-        raise stuck
-    # a loose run in Hertz's time scale, then the precise one scaled by its loading time
-    T0 = float(hertz.time_scale(V, E, R, m))
-    rough = _model_run(mod, V, E, R, m, p_y, p, T0, 1e-7, 1e-9, method)
-    if rough[3] is None:
-        raise stuck
-    T = T0 * rough[1]
-    pieces, tL, x_star, tc, x_end, u_end, nfev = _model_run(mod, V, E, R, m, p_y, p, T, rtol, atol, method)
-    if tc is None:  # pragma: no cover - the loose run would have seen it
-        raise stuck
-    X = V * T
-    amax = x_star * X
-    f = mod.force
-
-    def force_at(tau):
-        for a, b, sol, st in pieces:
-            if a <= tau <= b:
-                x, u = sol(tau)
-                if st == 1:
-                    al = max(x, 0.0) * X
-                    return f(al, u * V, al, E, R, m, p_y, p)
-                return f(x * X, u * V, amax, E, R, m, p_y, p)
-        return 0.0
-
-    # the largest force: on a grid, refined around its best point
-    from scipy.optimize import minimize_scalar
-
-    grid = np.concatenate([np.linspace(0.0, tL, 257), np.linspace(tL, tc, 257)[1:]])
-    vals = np.array([force_at(t) for t in grid])
-    i = int(np.argmax(vals))
-    P_star = float(vals[i])
-    lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
-    if hi > lo:
-        r = minimize_scalar(lambda t: -force_at(t), bounds=(lo, hi), method="bounded", options={"xatol": 1e-12})
-        P_star = max(P_star, -float(r.fun))
-    V_r = -V * u_end
-    a_end = x_end * X
-    out = {
-        "velocity": V,
-        "rebound_velocity": V_r,
-        "max_approach": amax,
-        "plastic_approach": a_end,
-        "max_force": P_star,
-        "elastic_stage_time": closed["elastic_stage_time"],
-        "plastic_stage_time": closed["plastic_stage_time"],
-        "loading_time": T * tL,
-        "unloading_time": T * (tc - tL),
-        "contact_time": T * tc,
-        "yield_velocity": closed["yield_velocity"],
-        "effective_modulus": E,
-        "effective_radius": R,
-        "effective_mass": m,
-        "limiting_pressure": p_y,
-        "model": mod.NAME,
-        "method": "ode",
-        "nfev": nfev,
-    }
-    if n is None and times is None:
-        return out
-    t = _time_grid(1001 if n is None else n, times, (T * tL,), T * tc)
-    stage = np.where(t <= T * tL, 1, 3)
-    stage = np.where((t < 0.0) | (t > T * tc), 0, stage).astype(np.int8)
-    approach, vel = _free_flight(t, V, T * tc, a_end, V_r)
-    force = np.zeros_like(t)
-    _sample_pieces(
-        pieces,
-        (1, 3),
-        t / T,
-        stage,
-        X,
-        V,
-        (approach, vel, force),
-        lambda k, a, b, ts, xs: [force_at(min(max(x, a), b)) for x in ts],
-    )
-    out.update(time=t, approach=approach, approach_velocity=vel, force=force, stage=stage)
-    return out
+    return _history.integrate(mod, p, V, E, R, m, p_y, rtol=rtol, atol=atol, method=method, n=n, times=times)

@@ -163,3 +163,33 @@ def test_an_interrupt_a_library_swallows_or_converts_still_ends_the_run(tmp_path
     assert proc.returncode == 128 + sig, proc.stderr
     assert len(proc.stderr.strip().splitlines()) == 1 and "interrupted" in proc.stderr, proc.stderr
     assert "Traceback" not in proc.stderr and "ignored" not in proc.stderr
+
+
+def test_an_ignored_sigint_stays_ignored(tmp_path):
+    # started with SIGINT ignored (a background job of a script, nohup-like launchers): the command keeps
+    # ignoring it, as Python does, and runs to its end; SIGTERM still ends it
+    def ignore_sigint():
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+    n = 20000
+    runs = {}
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        proc = subprocess.Popen(
+            [sys.executable, "-m", "microimpact", "impact", f"1:100:{n}"],
+            cwd=tmp_path,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+            env=_env(),
+            preexec_fn=ignore_sigint,
+        )
+        first = proc.stdout.readline()  # the command is at work (and soon blocked on the full pipe)
+        proc.send_signal(sig)
+        out, err = proc.communicate(timeout=60)
+        runs[sig] = (first + out, err, proc.returncode)
+    out, err, rc = runs[signal.SIGINT]
+    assert rc == 0 and "interrupted" not in err, err
+    assert sum(line.strip()[:1].isdigit() for line in out.splitlines()) == n  # every impact printed
+    out, err, rc = runs[signal.SIGTERM]
+    assert rc == 128 + signal.SIGTERM, err
+    assert len(err.strip().splitlines()) == 1 and "interrupted" in err and "Traceback" not in err, err

@@ -114,3 +114,22 @@ def test_incomplete_beta_inverse_against_scipy_and_mpmath(a, b):
         assert special.incomplete_beta_inverse(x, a, b, beta_ab) == pytest.approx(float(ref), rel=1e-14)
     assert special.incomplete_beta_inverse(0.0, a, b, beta_ab) == 0.0
     assert special.incomplete_beta_inverse(1.0, a, b, beta_ab) == 1.0
+
+
+@pytest.mark.parametrize("p, start", [("5/3", 2), ("5/2", 0), ("1/2", 1), (3, 0)])
+def test_binomial_series_sums_to_the_power(p, start):
+    """The coefficients summed at small x give (1 - x)^p minus its first terms, in mpmath at 40 digits."""
+    from fractions import Fraction
+
+    q = Fraction(p)
+    coeffs = special.binomial_series(q, start, start + 40, Fraction(3, 5))
+    with mp.workdps(40):
+        qm = mp.mpf(q.numerator) / q.denominator
+        for x in ("0.01", "0.1", "0.3"):
+            xm = mp.mpf(x)
+            head = sum(mp.binomial(qm, k) * (-xm) ** k for k in range(start))
+            ref = mp.mpf(3) / 5 * ((1 - xm) ** qm - head)
+            got = sum(mp.mpf(c) * xm ** (k + start) for k, c in enumerate(coeffs))
+            assert abs(got - ref) <= 1e-15 * abs(ref) + mp.mpf(10) ** -30
+    if q.denominator == 1:  # an integer power: the series ends
+        assert special.binomial_series(q, 0, 10)[4:] == (0.0,) * 6

@@ -10,8 +10,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from microimpact import dynamics
-from microimpact.core import adhesion, hertz, models
+from microimpact import _history
+from microimpact.core import adhesion, models
 from microimpact.core.models import thornton_ning_1998_adhesive_plastic as ap
 from microimpact.core.models import thornton_ning_1998_elastic_adhesive as tn
 from microimpact.core.models import thornton_ning_2016 as seed
@@ -158,12 +158,7 @@ def test_energy_never_created(V, g, pexp, r, Eexp):
 
 def _sticks_in_the_ode(V, E, R, m, p_y, G):
     """True where Newton's equation with the force law does not separate (the project's ODE run)."""
-    mod, p = ap, (G,)
-    T0 = float(hertz.time_scale(V, E, R, m))
-    rough = dynamics._model_run(mod, V, E, R, m, p_y, p, T0, 1e-7, 1e-9, "DOP853")
-    if rough[3] is None:
-        return True
-    return dynamics._model_run(mod, V, E, R, m, p_y, p, T0 * rough[1], 1e-12, 1e-14, "DOP853")[3] is None
+    return not _history.leaves(models.get(ap.NAME), (G,), V, E, R, m, p_y)
 
 
 @pytest.mark.parametrize(

@@ -7,6 +7,10 @@ algorithm (Lentz 1976; Press et al., *Numerical Recipes*, 3rd ed., §5.2 and §6
 symmetry ``B(u; a, b) = B(a, b) - B(1 - u; b, a)`` (DLMF 8.17.4) where the fraction converges
 slowly. This keeps :mod:`scipy` out of the path of one impact: importing ``scipy.special`` costs
 more than the rest of ``microimpact impact 50`` together.
+
+:func:`binomial_series` gives the coefficients of a binomial series as a tuple of floats, computed
+exactly with :class:`fractions.Fraction` and rounded once, for the series a law sums where its
+closed form cancels (e.g. :mod:`microimpact.core.models.liggghts_thornton_ning`).
 """
 
 from __future__ import annotations
@@ -18,6 +22,7 @@ from .hertz_beta_table import DEGREE, PIECES, S_COEFFS, U_COEFFS, U_SPLIT, WIDTH
 
 __all__ = [
     "beta",
+    "binomial_series",
     "incomplete_beta",
     "incomplete_beta_with",
     "incomplete_beta_inverse",
@@ -29,6 +34,24 @@ __all__ = [
     "HERTZ_TIME_CONSTANT",
     "HERTZ_TIME_CONSTANT_PRINTED",
 ]
+
+
+def binomial_series(p, start, stop, scale=1):
+    """The coefficients ``scale binom(p, k) (-1)^k`` of ``x^k`` in ``scale (1 - x)^p``, for
+    ``start <= k < stop``, each the exact rational rounded once to a float.
+
+    ``p`` and ``scale`` are exact numbers (``int`` or :class:`fractions.Fraction`; a float is taken
+    at its exact binary value). Not compiled: it runs once, at import, to build a law's table.
+    """
+    from fractions import Fraction
+
+    p, c, out = Fraction(p), Fraction(1), []
+    for k in range(stop):
+        if k >= start:
+            out.append(float(Fraction(scale) * c * (-1) ** k))
+        c = c * (p - k) / (k + 1)
+    return tuple(out)
+
 
 _TINY = 1e-300
 _EPS = 1e-16

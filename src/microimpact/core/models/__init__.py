@@ -66,11 +66,21 @@ as users name it (``model=NAME``). It declares what it is with module-level name
 ``ends_at_zero_force(params)`` [``None``: never]
     True when the contact ends where ``signed_force`` vanishes (else where the approach falls to
     ``separation_approach``).
+``ZERO_FORCE_ORDER`` [``1.5``: Hertzian]
+    The order ``n`` of that zero: near the end of the contact ``signed_force`` vanishes as
+    ``d^n`` in the distance ``d`` to it (``3/2`` for a Hertzian unloading, the common case; ``1``
+    where the force crosses zero with a slope, as a dashpot's or a linear spring's). A history's
+    integration (:mod:`microimpact.dynamics`) locates the end on ``sign(P)|P|^(1/n)``, a simple
+    zero, which its root finder needs.
 ``separation_approach(E, R, m, p_y, params)`` [``None``: 0]
     Approach [m] at which the contact breaks on unloading (negative for adhesive laws).
 ``separation_approach_after(alpha_max, E, R, m, p_y, params)`` [``None``: ``separation_approach``]
     The same where it depends on the largest approach ``alpha_max`` [m] reached (a law that
     flattens the contact, whose unloading curve is set at the turning point).
+``stage_two_approach(E, R, m, p_y, params)`` [``None``: one loading stage]
+    Approach [m] at which loading passes from stage 1 to stage 2 of ``STAGES`` (the seed: its
+    yield approach, eq. 5; ``inf``: never), for a law whose loading changes there; a history's
+    integration then locates it and times both stages.
 ``restitution_only(V, E, R, m, p_y, params)`` [``None``: field ``restitution`` of ``outcome``]
     Marked ``@jitable``; the restitution coefficient ``e`` [-] alone, bit for bit the field
     ``restitution`` of :func:`outcome` (same arguments), for a law whose ``e`` does not need what
@@ -250,6 +260,8 @@ class Model:
     ends_at_zero_force: Callable | None = None
     separation_approach: Callable | None = None
     separation_approach_after: Callable | None = None
+    stage_two_approach: Callable | None = None
+    ZERO_FORCE_ORDER: float = 1.5
     sticking_velocity: Callable | None = None
     restitution_only: Callable | None = None
     ADHESION_LIMIT: str | None = None
@@ -270,6 +282,7 @@ _HOOKS = (
     "ends_at_zero_force",
     "separation_approach",
     "separation_approach_after",
+    "stage_two_approach",
     "sticking_velocity",
     "restitution_only",
     "work_of_adhesion",
@@ -307,6 +320,7 @@ def declare(module) -> Model:
         STAGES=dict(ns.get("STAGES", GENERIC_STAGES)),
         LABEL=ns.get("LABEL") or name,
         ADHESION_LIMIT=ns.get("ADHESION_LIMIT"),
+        ZERO_FORCE_ORDER=float(ns.get("ZERO_FORCE_ORDER", 1.5)),
         module=module,
         **hooks,
     )

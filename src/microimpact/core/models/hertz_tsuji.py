@@ -70,6 +70,9 @@ PARAMETERS = (
     ),
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
+#: Order of the zero of :func:`signed_force` where the contact ends: the damping term cancels the
+#: Hertz term at a finite approach with the particle moving out, a simple zero.
+ZERO_FORCE_ORDER = 1.0
 
 
 @jitable

@@ -71,6 +71,9 @@ PARAMETERS = (
     ),
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
+#: Order of the zero of :func:`signed_force` where the contact ends: the viscous term cancels the
+#: elastic one at a finite approach with the particle moving out, a simple zero.
+ZERO_FORCE_ORDER = 1.0
 
 # Dormand-Prince 5(4) tableau (as in scipy.integrate.RK45).
 _A21 = 1.0 / 5.0

@@ -117,9 +117,11 @@ The functions here take plain floats and do not check them; the callers validate
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 
 from .. import hertz
 from .._jit import jitable
+from ..special import binomial_series
 from . import checks
 from . import thornton_ning_2016 as seed
 from ._common import pack
@@ -212,9 +214,9 @@ def unloading_integral(c, h):
 #: Below this ``c = P*/(P_y A^(3/2))`` (``V/V_y`` above about 3e4) :func:`plastic_rebound` sums the
 #: series of the returned work instead of its closed form, whose terms cancel there.
 SERIES_BELOW = 1e-2
-#: ``0.6 binom(5/3, k) (-1)^k`` for ``k = 2 ... 11``: the series of ``0.6 (1 - c)^(5/3)`` beyond ``0.6 - c``.
-_SERIES = (1 / 3, 1 / 27, 1 / 81, 7 / 1215, 7 / 2187, 13 / 6561, 26 / 19683, 494 / 531441, 5434 / 7971615,
-           2470 / 4782969)  # fmt: skip
+#: ``0.6 binom(5/3, k) (-1)^k`` for ``k = 2 ... 11``: the series of ``0.6 (1 - c)^(5/3)`` beyond ``0.6 - c``
+#: (``1/3, 1/27, 1/81, 7/1215, ...``, exact rationals rounded once).
+_SERIES = binomial_series(Fraction(5, 3), 2, 12, Fraction(3, 5))
 
 
 @jitable

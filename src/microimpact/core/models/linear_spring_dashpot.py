@@ -86,6 +86,9 @@ PARAMETERS = (
     ),
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
+#: Order of the zero of :func:`signed_force` where the contact ends: ``k alpha + eta alpha_dot``
+#: crosses zero with a slope (a simple zero).
+ZERO_FORCE_ORDER = 1.0
 
 
 @jitable

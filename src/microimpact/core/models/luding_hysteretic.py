@@ -76,6 +76,9 @@ PARAMETERS = (
     ),
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
+#: Order of the zero of :func:`signed_force` where the contact ends: the unloading branch
+#: ``k2 (alpha - alpha_0)`` is linear, a simple zero.
+ZERO_FORCE_ORDER = 1.0
 
 
 @jitable

@@ -324,15 +324,26 @@ def force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
 
 
 @jitable
-def signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
-    """:func:`force` (never attractive: the seed has no adhesion)."""
-    return force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params)
+def ends_at_zero_force(params):
+    """False: the contact ends at the plastic approach (:func:`separation_approach_after`), where the
+    unloading force (eq. 10) vanishes; located as an approach, a simple zero in time."""
+    return False
 
 
 @jitable
-def ends_at_zero_force(params):
-    """True: the contact ends where the unloading force vanishes, at the plastic approach (eq. 10)."""
-    return True
+def separation_approach_after(alpha_max, E, R, m, p_y, params):
+    """Approach [m] at which unloading from ``alpha_max`` ends: the plastic approach ``alpha_p``
+    (eq. 11, with ``P*`` the loading force at ``alpha_max``, eqs. 2, 8); 0 for an elastic contact."""
+    return plastic_approach(alpha_max, loading_force(alpha_max, E, R, p_y), E, R)
+
+
+@jitable
+def stage_two_approach(E, R, m, p_y, params):
+    """Approach [m] at which Hertz loading (stage 1, eq. 2) gives way to plastic loading (stage 2,
+    eq. 8): the yield approach ``alpha_y`` (eq. 5); ``inf`` for ``p_y = inf``."""
+    if p_y == math.inf:
+        return math.inf
+    return yield_approach(p_y, E, R)
 
 
 @jitable
