@@ -239,7 +239,10 @@ def _table(kappa, dpsi, psi_max, n_x, x_min, steps, law):
                 for j, lx in enumerate(log_x):
                     F, _, regime = universal_curve(psi, kappa, 10.0**lx, steps=steps, law=law)
                     values[j] = np.where(regime == tg.REGIME_SLIDING, 1.0, F)  # exactly the Coulomb limit
-                if not np.all(values[:, -1] == 1.0):  # pragma: no cover - grid too short for this kappa
+                # Mindlin-Deresiewicz never slides throughout (it sticks at first touch, T/(mu P) =
+                # 1 - O(psi^-3)): its curve reaches 1 within the table's error (1.4e-3 at psi = 10)
+                short = 3e-3 if law == "mindlin_deresiewicz" else 0.0
+                if not np.all(values[:, -1] >= 1.0 - short):  # pragma: no cover - grid too short for this kappa
                     raise RuntimeError(f"psi_max = {psi_max} does not reach sliding throughout for kappa = {kappa}")
                 cache.store_array(kind, key, values)
     values.setflags(write=False)
@@ -431,8 +434,10 @@ def oblique_impact(
         (module docstring), or a DEM code's law (:mod:`microimpact.core.tangential_laws`):
         ``"lammps_mindlin"``, ``"lammps_mindlin_force"``, ``"lammps_mindlin_rescale"``,
         ``"lammps_mindlin_rescale_force"`` (the same as ``"mindlin"``), ``"lammps_linear_history"``,
-        ``"liggghts_history"``, ``"di_renzo_di_maio"``, or Stronge's compliant impact ``"stronge"``
-        (its own linear normal spring with the seed's ``e``; only the tangential outcome is its).
+        ``"liggghts_history"``, ``"di_renzo_di_maio"``, the Mindlin-Deresiewicz incremental stiffness
+        with turning points ``"mindlin_deresiewicz"`` (no DEM code runs it), or Stronge's compliant
+        impact ``"stronge"`` (its own linear normal spring with the seed's ``e``; only the
+        tangential outcome is its).
     spin : array_like, optional
         Incoming spin ``omega`` [rad/s], positive adding to the slip (``u0 = v_t + r omega``).
     method : {"table", "direct"}

@@ -68,7 +68,7 @@ def register(sub) -> None:
         metavar="LAWS",
         help="tangential laws, comma-separated (mindlin, rigid, lammps_mindlin, lammps_mindlin_force, "
         "lammps_mindlin_rescale, lammps_mindlin_rescale_force, lammps_linear_history, liggghts_history, "
-        "di_renzo_di_maio, stronge), or 'all'",
+        "di_renzo_di_maio, mindlin_deresiewicz, stronge), or 'all'",
     )
     t.add_argument(
         "--angles",

@@ -52,7 +52,7 @@ def register(sub) -> None:
         metavar="LAWS",
         help="tangential model(s), comma-separated: mindlin, rigid, lammps_mindlin, lammps_mindlin_force, "
         "lammps_mindlin_rescale, lammps_mindlin_rescale_force, lammps_linear_history, liggghts_history, "
-        "di_renzo_di_maio, stronge; 'both' = mindlin,rigid (default), 'all' = every one",
+        "di_renzo_di_maio, mindlin_deresiewicz, stronge; 'both' = mindlin,rigid (default), 'all' = every one",
     )
     p.add_argument(
         "--tangential-stiffness",

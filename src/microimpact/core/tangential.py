@@ -340,8 +340,22 @@ def integrate_tangential(u0_hat, kappa, x, steps):
         if stage == 2 and elastic:
             continue
         xs = enter_stage(stage, 0.0, xs, sliding, hc, kappa)
-        xs, u, z, sliding, sign, slid, stuck = tangential_laws.integrate_stage(
-            tangential_laws.KIND_SEED, stage, 0.0, h, steps, xs, u, z, sliding, sign, slid, stuck, hc, q
+        xs, u, z, sliding, sign, slid, stuck, _ = tangential_laws.integrate_stage(
+            tangential_laws.KIND_SEED,
+            stage,
+            0.0,
+            h,
+            steps,
+            xs,
+            u,
+            z,
+            sliding,
+            sign,
+            slid,
+            stuck,
+            hc,
+            q,
+            tangential_laws.NO_MEMORY,
         )
     return u, tangential_laws.regime_code(slid, stuck)
 

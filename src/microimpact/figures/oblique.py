@@ -44,6 +44,7 @@ LABELS = {
     "lammps_linear_history": "LAMMPS linear_history",
     "liggghts_history": "LIGGGHTS history",
     "di_renzo_di_maio": "Di Renzo & Di Maio 2005",
+    "mindlin_deresiewicz": "Mindlin–Deresiewicz (turning points)",
     "stronge": "Stronge (linear springs)",
 }
 _LABELS = LABELS
@@ -167,6 +168,7 @@ LAW_MODELS = (
     "lammps_linear_history",
     "liggghts_history",
     "di_renzo_di_maio",
+    "mindlin_deresiewicz",
     "stronge",
     "rigid",
 )
