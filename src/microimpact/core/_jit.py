@@ -19,15 +19,30 @@ again), compiled with numba's ``error_model="numpy"`` like the loops that call t
 
 from __future__ import annotations
 
-__all__ = ["jitable", "JITABLE", "for_numba", "has_loop", "register_all"]
+__all__ = ["jitable", "JITABLE", "INLINE", "for_numba", "has_loop", "register_all"]
 
 #: Functions marked with :func:`jitable`, in definition order.
 JITABLE: list = []
 
 
-def jitable(fn):
-    """Mark ``fn`` (a scalar function written in numba's subset of Python) and return it unchanged."""
+#: Marked functions numba inlines into their callers (``@jitable(inline=True)``).
+INLINE: set = set()
+
+
+def jitable(fn=None, *, inline=False):
+    """Mark ``fn`` (a scalar function written in numba's subset of Python) and return it unchanged.
+
+    ``@jitable(inline=True)`` also asks numba to inline it into every compiled caller (its
+    ``inline="always"``, at the level of numba's own code, before types are inferred): for small
+    functions called in an inner loop with many arguments, such as the law dispatch of
+    :func:`microimpact.core.tangential_laws.step_rates`, which the compiler would otherwise call
+    with every argument passed anew. Same operations, so the same numbers.
+    """
+    if fn is None:
+        return lambda f: jitable(f, inline=inline)
     JITABLE.append(fn)
+    if inline:
+        INLINE.add(fn)
     return fn
 
 
@@ -86,5 +101,6 @@ def register_all() -> None:
         if fn in _REGISTERED:
             continue
         twin = for_numba(fn)
-        overload(fn, jit_options={"error_model": "numpy"}, strict=False)(lambda *a, _t=twin, **k: _t)
+        inline = "always" if fn in INLINE else "never"
+        overload(fn, jit_options={"error_model": "numpy"}, strict=False, inline=inline)(lambda *a, _t=twin, **k: _t)
         _REGISTERED.add(fn)

@@ -37,8 +37,8 @@ __all__ = [
 
 
 def binomial_series(p, start, stop, scale=1):
-    """``scale * binom(p, k) * (-1)^k`` for ``k = start ... stop - 1``: the coefficients of ``x^k`` in
-    ``scale * (1 - x)^p``, each the exact rational rounded once to a float.
+    """The coefficients ``scale binom(p, k) (-1)^k`` of ``x^k`` in ``scale (1 - x)^p``, for
+    ``start <= k < stop``, each the exact rational rounded once to a float.
 
     ``p`` and ``scale`` are exact numbers (``int`` or :class:`fractions.Fraction`; a float is taken
     at its exact binary value). Not compiled: it runs once, at import, to build a law's table.

@@ -284,15 +284,6 @@ def switch_function(stage, v, xs, u, sliding, sign, hc, kappa):
 
 
 @jitable
-def _rk4(stage, v, h, xs, u, sliding, sign, hc, kappa):
-    k1x, k1u, _ = tangential_rates(stage, v, xs, u, sliding, sign, hc, kappa)
-    k2x, k2u, _ = tangential_rates(stage, v + 0.5 * h, xs + 0.5 * h * k1x, u + 0.5 * h * k1u, sliding, sign, hc, kappa)
-    k3x, k3u, _ = tangential_rates(stage, v + 0.5 * h, xs + 0.5 * h * k2x, u + 0.5 * h * k2u, sliding, sign, hc, kappa)
-    k4x, k4u, _ = tangential_rates(stage, v + h, xs + h * k3x, u + h * k3u, sliding, sign, hc, kappa)
-    return (xs + h * (k1x + 2.0 * k2x + 2.0 * k3x + k4x) / 6.0, u + h * (k1u + 2.0 * k2u + 2.0 * k3u + k4u) / 6.0)
-
-
-@jitable
 def enter_stage(stage, v, xs, sliding, hc, kappa):
     """Convert the stuck state at a stage boundary: ``T^`` to ``S^ = T^/k^`` entering stage 3."""
     if stage == 3 and not sliding:
@@ -336,6 +327,7 @@ def integrate_tangential(u0_hat, kappa, x, steps):
     elastic = hc[0] == 1.0
     u = u0_hat
     xs = 0.0
+    z = 0.0
     psi = kappa * abs(u0_hat)
     sliding = psi > 1.0
     sign = 1.0 if u0_hat >= 0.0 else -1.0
@@ -343,47 +335,17 @@ def integrate_tangential(u0_hat, kappa, x, steps):
     stuck = not sliding
     steps = int(steps)  # arrays pass it as a float
     h = 1.0 / steps
+    q = (kappa, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     for stage in range(1, 4):
         if stage == 2 and elastic:
             continue
         xs = enter_stage(stage, 0.0, xs, sliding, hc, kappa)
-        for i in range(steps):
-            v0 = i * h
-            rem = h
-            for _ in range(16):  # at most a few regime changes within one step
-                xn, un = _rk4(stage, v0, rem, xs, u, sliding, sign, hc, kappa)
-                if switch_function(stage, v0 + rem, xn, un, sliding, sign, hc, kappa) <= 0.0:
-                    xs, u = xn, un
-                    break
-                lo, hi = 0.0, 1.0
-                for _ in range(60):
-                    mid = 0.5 * (lo + hi)
-                    xm, um = _rk4(stage, v0, mid * rem, xs, u, sliding, sign, hc, kappa)
-                    if switch_function(stage, v0 + mid * rem, xm, um, sliding, sign, hc, kappa) > 0.0:
-                        hi = mid
-                    else:
-                        lo = mid
-                xm, um = _rk4(stage, v0, hi * rem, xs, u, sliding, sign, hc, kappa)
-                vs = v0 + hi * rem
-                if sliding:
-                    xs = leave_slip(stage, vs, sign, hc, kappa)
-                    sliding = False
-                    stuck = True
-                else:
-                    _, _, t = tangential_rates(stage, vs, xm, um, False, sign, hc, kappa)
-                    sign = -1.0 if t > 0.0 else 1.0
-                    sliding = True
-                    slid = True
-                    xs = 0.0
-                u = um
-                v0 = vs
-                rem = rem * (1.0 - hi)
-                if rem <= 0.0:
-                    break
-    if slid and stuck:
-        regime = REGIME_MICROSLIP
-    elif slid:
-        regime = REGIME_SLIDING
-    else:
-        regime = REGIME_STICKING
-    return u, float(regime)
+        xs, u, z, sliding, sign, slid, stuck = tangential_laws.integrate_stage(
+            tangential_laws.KIND_SEED, stage, 0.0, h, steps, xs, u, z, sliding, sign, slid, stuck, hc, q
+        )
+    return u, tangential_laws.regime_code(slid, stuck)
+
+
+# The stepping routine is the one every tangential law shares (core.tangential_laws, which builds on
+# this module's normal history): imported last, once every name above exists.
+from . import tangential_laws  # noqa: E402

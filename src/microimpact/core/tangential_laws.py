@@ -81,7 +81,10 @@ from .tangential import (
     REGIME_SLIDING,
     REGIME_STICKING,
     history_constants,
+    leave_slip,
     stage_point,
+    switch_function,
+    tangential_rates,
 )
 
 __all__ = [
@@ -94,6 +97,15 @@ __all__ = [
     "integrate_law",
     "stronge_normal",
     "integrate_stronge",
+    "KIND_SEED",
+    "KIND_LAW",
+    "KIND_STRONGE",
+    "step_rates",
+    "step_switch",
+    "stick_state",
+    "step_rk4",
+    "integrate_stage",
+    "regime_code",
 ]
 
 #: Laws by name, their integer code (the order of :func:`law_parameters`).
@@ -206,26 +218,6 @@ def law_switch(stage, v, xs, vt, wr, sliding, sign, hc, kappa, c, factor, linear
 
 
 @jitable
-def _law_rk4(stage, v, h, xs, vt, wr, sliding, sign, hc, kappa, c, factor, linear, lam_eps):
-    k1x, k1v, k1w, _ = law_rates(stage, v, xs, vt, wr, sliding, sign, hc, kappa, c, factor, linear, lam_eps)
-    h2 = 0.5 * h
-    k2x, k2v, k2w, _ = law_rates(
-        stage, v + h2, xs + h2 * k1x, vt + h2 * k1v, wr + h2 * k1w, sliding, sign, hc, kappa, c, factor, linear, lam_eps
-    )
-    k3x, k3v, k3w, _ = law_rates(
-        stage, v + h2, xs + h2 * k2x, vt + h2 * k2v, wr + h2 * k2w, sliding, sign, hc, kappa, c, factor, linear, lam_eps
-    )
-    k4x, k4v, k4w, _ = law_rates(
-        stage, v + h, xs + h * k3x, vt + h * k3v, wr + h * k3w, sliding, sign, hc, kappa, c, factor, linear, lam_eps
-    )
-    return (
-        xs + h * (k1x + 2.0 * k2x + 2.0 * k3x + k4x) / 6.0,
-        vt + h * (k1v + 2.0 * k2v + 2.0 * k3v + k4v) / 6.0,
-        wr + h * (k1w + 2.0 * k2w + 2.0 * k3w + k4w) / 6.0,
-    )
-
-
-@jitable
 def integrate_law(code, v0_hat, w0_hat, kappa, x, eps, steps):
     """Tangential outcome of one impact under the law ``code`` (fixed-step RK4, bisected switches).
 
@@ -279,58 +271,12 @@ def integrate_law(code, v0_hat, w0_hat, kappa, x, eps, steps):
             t_prev = xs * _power(a_prev, c_prev)
             xs = t_prev / _power(a_new, c)
         c_prev = c
-        for i in range(steps):
-            v0 = i * h
-            rem = h
-            for _ in range(16):  # at most a few regime changes within one step
-                xn, vn, wn = _law_rk4(stage, v0, rem, xs, vt, wr, sliding, sign, hc, kappa, c, factor, linear, lam_eps)
-                if law_switch(stage, v0 + rem, xn, vn, wn, sliding, sign, hc, kappa, c, factor, linear, lam_eps) <= 0.0:
-                    xs, vt, wr = xn, vn, wn
-                    break
-                lo, hi = 0.0, 1.0
-                for _ in range(60):
-                    mid = 0.5 * (lo + hi)
-                    xm, vm, wm = _law_rk4(
-                        stage, v0, mid * rem, xs, vt, wr, sliding, sign, hc, kappa, c, factor, linear, lam_eps
-                    )
-                    if (
-                        law_switch(
-                            stage, v0 + mid * rem, xm, vm, wm, sliding, sign, hc, kappa, c, factor, linear, lam_eps
-                        )
-                        > 0.0
-                    ):
-                        hi = mid
-                    else:
-                        lo = mid
-                xm, vm, wm = _law_rk4(
-                    stage, v0, hi * rem, xs, vt, wr, sliding, sign, hc, kappa, c, factor, linear, lam_eps
-                )
-                vs = v0 + hi * rem
-                _, a_s, adot_s, p_s, _, _ = stage_point(stage, vs, hc)
-                if sliding:
-                    ac = _power(a_s, c)
-                    xs = -sign * p_s / ac if ac > 0.0 else 0.0
-                    sliding = False
-                    stuck = True
-                else:
-                    t = xm * _power(a_s, c)
-                    sign = -1.0 if t > 0.0 else 1.0
-                    sliding = True
-                    slid = True
-                    xs = 0.0
-                vt, wr = vm, wm
-                v0 = vs
-                rem = rem * (1.0 - hi)
-                if rem <= 0.0:
-                    break
+        q = (kappa, c, factor, linear, lam_eps, 0.0, 0.0)
+        xs, vt, wr, sliding, sign, slid, stuck = integrate_stage(
+            KIND_LAW, stage, 0.0, h, steps, xs, vt, wr, sliding, sign, slid, stuck, hc, q
+        )
         _, a_prev, _, _, _, _ = stage_point(stage, 1.0, hc)
-    if slid and stuck:
-        regime = REGIME_MICROSLIP
-    elif slid:
-        regime = REGIME_SLIDING
-    else:
-        regime = REGIME_STICKING
-    return vt, wr, float(regime)
+    return vt, wr, regime_code(slid, stuck)
 
 
 @jitable
@@ -366,16 +312,6 @@ def _stronge_switch(stage, s, xs, u, sliding, sign, e, eta2):
 
 
 @jitable
-def _stronge_rk4(stage, s, h, xs, u, sliding, sign, e, eta2):
-    k1x, k1u, _ = _stronge_rates(stage, s, xs, u, sliding, sign, e, eta2)
-    h2 = 0.5 * h
-    k2x, k2u, _ = _stronge_rates(stage, s + h2, xs + h2 * k1x, u + h2 * k1u, sliding, sign, e, eta2)
-    k3x, k3u, _ = _stronge_rates(stage, s + h2, xs + h2 * k2x, u + h2 * k2u, sliding, sign, e, eta2)
-    k4x, k4u, _ = _stronge_rates(stage, s + h, xs + h * k3x, u + h * k3u, sliding, sign, e, eta2)
-    return (xs + h * (k1x + 2.0 * k2x + 2.0 * k3x + k4x) / 6.0, u + h * (k1u + 2.0 * k2u + 2.0 * k3u + k4u) / 6.0)
-
-
-@jitable
 def integrate_stronge(u0_hat, kappa, e, steps):
     """Tangential outcome of Stronge's compliant frictional impact (fixed-step RK4, bisected switches).
 
@@ -399,52 +335,150 @@ def integrate_stronge(u0_hat, kappa, e, steps):
     eta2 = 1.0 / kappa
     u = u0_hat
     xs = 0.0
+    z = 0.0
     sliding = abs(u0_hat) > eta2
     sign = 1.0 if u0_hat >= 0.0 else -1.0
     slid = sliding
     stuck = not sliding
     steps = int(steps)
+    q = (kappa, 0.0, 0.0, 0.0, 0.0, e, eta2)
     for stage in (1, 3):
         s_start = 0.0 if stage == 1 else 0.5 * math.pi
         span = 0.5 * math.pi if stage == 1 else 0.5 * math.pi * e
         h = span / steps
-        for i in range(steps):
-            s0 = s_start + i * h
-            rem = h
-            for _ in range(16):
-                xn, un = _stronge_rk4(stage, s0, rem, xs, u, sliding, sign, e, eta2)
-                if _stronge_switch(stage, s0 + rem, xn, un, sliding, sign, e, eta2) <= 0.0:
-                    xs, u = xn, un
-                    break
-                lo, hi = 0.0, 1.0
-                for _ in range(60):
-                    mid = 0.5 * (lo + hi)
-                    xm, um = _stronge_rk4(stage, s0, mid * rem, xs, u, sliding, sign, e, eta2)
-                    if _stronge_switch(stage, s0 + mid * rem, xm, um, sliding, sign, e, eta2) > 0.0:
-                        hi = mid
-                    else:
-                        lo = mid
-                xm, um = _stronge_rk4(stage, s0, hi * rem, xs, u, sliding, sign, e, eta2)
-                ss = s0 + hi * rem
-                if sliding:
-                    p, _ = stronge_normal(stage, ss, e)
-                    xs = -sign * p
-                    sliding = False
-                    stuck = True
+        xs, u, z, sliding, sign, slid, stuck = integrate_stage(
+            KIND_STRONGE, stage, s_start, h, steps, xs, u, z, sliding, sign, slid, stuck, NO_HISTORY, q
+        )
+    return u, regime_code(slid, stuck)
+
+
+# ============================================================================ one stepping routine
+#
+# Every law above, and the model of :mod:`microimpact.core.tangential`, is integrated by the same
+# fixed-step RK4 with bisected regime switches: :func:`integrate_stage` steps one stage of the normal
+# history, the law chosen by ``kind`` (:data:`KIND_SEED`, :data:`KIND_LAW`, :data:`KIND_STRONGE`)
+# through :func:`step_rates` and :func:`step_switch`. numba cannot pass a function to a compiled
+# function, hence the integer dispatch; the constants of every law travel in one tuple ``q`` of
+# floats, ``(kappa, c, factor, linear, lam_eps, e, eta2)`` (each law reads its own).
+
+#: ``kind`` of :func:`integrate_stage`: the model of :mod:`microimpact.core.tangential`, state
+#: ``(X, u^, unused)``.
+KIND_SEED = 0
+#: ``kind``: a law of :data:`LAWS` (:func:`law_rates`), state ``(X, v^, w^)``.
+KIND_LAW = 1
+#: ``kind``: Stronge's compliant impact (:func:`stronge_normal`), state ``(T, u, unused)``.
+KIND_STRONGE = 2
+
+#: Stand-in for the normal history's constants where a law has its own normal force (Stronge).
+NO_HISTORY = (0.0,) * 14
+
+
+@jitable(inline=True)
+def step_rates(kind, stage, s, x, y, z, sliding, sign, hc, q):
+    """``(dx/ds, dy/ds, dz/ds, T)`` of the law ``kind`` at the stage variable ``s`` (state ``x, y, z``)."""
+    if kind == KIND_SEED:
+        dx, dy, t = tangential_rates(stage, s, x, y, sliding, sign, hc, q[0])
+        return (dx, dy, 0.0, t)
+    if kind == KIND_STRONGE:
+        dx, dy, t = _stronge_rates(stage, s, x, y, sliding, sign, q[5], q[6])
+        return (dx, dy, 0.0, t)
+    return law_rates(stage, s, x, y, z, sliding, sign, hc, q[0], q[1], q[2], q[3], q[4])
+
+
+@jitable(inline=True)
+def step_switch(kind, stage, s, x, y, z, sliding, sign, hc, q):
+    """Positive when the law ``kind`` must change regime (stick to slip, or slip to stick)."""
+    if kind == KIND_SEED:
+        return switch_function(stage, s, x, y, sliding, sign, hc, q[0])
+    if kind == KIND_STRONGE:
+        return _stronge_switch(stage, s, x, y, sliding, sign, q[5], q[6])
+    return law_switch(stage, s, x, y, z, sliding, sign, hc, q[0], q[1], q[2], q[3], q[4])
+
+
+@jitable
+def stick_state(kind, stage, s, sign, hc, q):
+    """Stuck state ``x`` at the instant sliding in direction ``sign`` stops: ``T = -sign P`` in the law's variable."""
+    if kind == KIND_SEED:
+        return leave_slip(stage, s, sign, hc, q[0])
+    if kind == KIND_STRONGE:
+        p, _ = stronge_normal(stage, s, q[5])
+        return -sign * p
+    _, a, _, p, _, _ = stage_point(stage, s, hc)
+    ac = _power(a, q[1])
+    return -sign * p / ac if ac > 0.0 else 0.0
+
+
+@jitable(inline=True)
+def step_rk4(kind, stage, s, h, x, y, z, sliding, sign, hc, q):
+    """One classical RK4 step of length ``h`` of :func:`step_rates` from ``s``: the new ``(x, y, z)``."""
+    k1x, k1y, k1z, _ = step_rates(kind, stage, s, x, y, z, sliding, sign, hc, q)
+    h2 = 0.5 * h
+    k2x, k2y, k2z, _ = step_rates(kind, stage, s + h2, x + h2 * k1x, y + h2 * k1y, z + h2 * k1z, sliding, sign, hc, q)
+    k3x, k3y, k3z, _ = step_rates(kind, stage, s + h2, x + h2 * k2x, y + h2 * k2y, z + h2 * k2z, sliding, sign, hc, q)
+    k4x, k4y, k4z, _ = step_rates(kind, stage, s + h, x + h * k3x, y + h * k3y, z + h * k3z, sliding, sign, hc, q)
+    return (
+        x + h * (k1x + 2.0 * k2x + 2.0 * k3x + k4x) / 6.0,
+        y + h * (k1y + 2.0 * k2y + 2.0 * k3y + k4y) / 6.0,
+        z + h * (k1z + 2.0 * k2z + 2.0 * k3z + k4z) / 6.0,
+    )
+
+
+@jitable
+def integrate_stage(kind, stage, start, h, steps, x, y, z, sliding, sign, slid, stuck, hc, q):
+    """Integrate one stage of an impact under the law ``kind``: ``steps`` RK4 steps of ``h`` from ``start``.
+
+    A step that ends past a regime switch (:func:`step_switch` positive) is bisected (60 halvings)
+    to the switch, the regime changed there (sliding stops: :func:`stick_state`; the stuck force
+    reaches the limit: the contact slides against it, the state ``x`` unused), and the rest of the
+    step integrated in the new regime, up to 16 switches within one step.
+
+    Returns
+    -------
+    tuple
+        ``(x, y, z, sliding, sign, slid, stuck)``: the state at the stage's end, the regime then
+        (sliding, and its direction), and whether the contact ever slid / stuck (for :func:`regime_code`).
+    """
+    for i in range(steps):
+        s0 = start + i * h
+        rem = h
+        for _ in range(16):  # at most a few regime changes within one step
+            xn, yn, zn = step_rk4(kind, stage, s0, rem, x, y, z, sliding, sign, hc, q)
+            if step_switch(kind, stage, s0 + rem, xn, yn, zn, sliding, sign, hc, q) <= 0.0:
+                x, y, z = xn, yn, zn
+                break
+            lo, hi = 0.0, 1.0
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                xm, ym, zm = step_rk4(kind, stage, s0, mid * rem, x, y, z, sliding, sign, hc, q)
+                if step_switch(kind, stage, s0 + mid * rem, xm, ym, zm, sliding, sign, hc, q) > 0.0:
+                    hi = mid
                 else:
-                    sign = -1.0 if xm > 0.0 else 1.0
-                    sliding = True
-                    slid = True
-                    xs = 0.0
-                u = um
-                s0 = ss
-                rem = rem * (1.0 - hi)
-                if rem <= 0.0:
-                    break
+                    lo = mid
+            xm, ym, zm = step_rk4(kind, stage, s0, hi * rem, x, y, z, sliding, sign, hc, q)
+            ss = s0 + hi * rem
+            if sliding:
+                x = stick_state(kind, stage, ss, sign, hc, q)
+                sliding = False
+                stuck = True
+            else:
+                _, _, _, t = step_rates(kind, stage, ss, xm, ym, zm, False, sign, hc, q)
+                sign = -1.0 if t > 0.0 else 1.0
+                sliding = True
+                slid = True
+                x = 0.0
+            y, z = ym, zm
+            s0 = ss
+            rem = rem * (1.0 - hi)
+            if rem <= 0.0:
+                break
+    return x, y, z, sliding, sign, slid, stuck
+
+
+@jitable
+def regime_code(slid, stuck):
+    """The regime code of :mod:`microimpact.core.tangential` (a float) of an impact that slid / stuck."""
     if slid and stuck:
-        regime = REGIME_MICROSLIP
-    elif slid:
-        regime = REGIME_SLIDING
-    else:
-        regime = REGIME_STICKING
-    return u, float(regime)
+        return float(REGIME_MICROSLIP)
+    if slid:
+        return float(REGIME_SLIDING)
+    return float(REGIME_STICKING)
