@@ -23,9 +23,11 @@ import microimpact as mi
 from microimpact.adhesion import ADHESION_RULES, WHOLE_LAW, whole_law_table
 from microimpact.cexport import generate_c_source, write_c_source
 from microimpact.core import adhesion as core_adh
+from microimpact.core import wall as wall_core
 from microimpact.core.arrays import evaluate
 from microimpact.core.models import thornton_ning_1998_adhesive_plastic as ap
 from microimpact.core.models import thornton_ning_2016 as seed
+from microimpact.core.quantities import OUTCOME_FIELDS
 from microimpact.wall import wall_interaction
 
 PROFILE = dict(derandomize=True, deadline=None)
@@ -417,3 +419,84 @@ def test_additive_c_source_unchanged():
     # with the compliant tangential model too
     both = generate_c_source(pair, friction=0.25, tangential="mindlin", poisson_ratio=0.3, adhesion=WHOLE_LAW)
     assert "microimpact_oblique_impulse_ratio" in both and "microimpact_tn98_correction" in both
+
+
+# ----------------------------------------------------------------------------- the capture speed field
+_E_FIELD = OUTCOME_FIELDS.index("restitution")
+
+
+def _outcome_boundary(E, r, m, p_y, G):
+    """The speed where the whole law's outcome (its closed form, not its sticking_velocity hook) first
+    leaves e = 0: a doubling scan from far below, then bisection to rounding."""
+
+    def stuck(V):
+        return ap.outcome(V, E, r, m, p_y, (G,))[_E_FIELD] == 0.0
+
+    lo = 1e-6
+    assert stuck(lo)
+    hi = 2.0 * lo
+    while stuck(hi):
+        lo, hi = hi, 2.0 * hi
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if not lo < mid < hi:
+            break
+        lo, hi = (mid, hi) if stuck(mid) else (lo, mid)
+    return lo, hi
+
+
+def test_whole_law_sticking_velocity_is_its_capture_speed():
+    """With the whole law the wall reports the law's own capture speed (not eq. 54's V_s of the
+    undeformed sphere): the e = 0 boundary of the law's outcome, found by bisection, to 1e-9; the
+    additive rule keeps eq. 54. Particles where V_s < V_y (the law does not yield before it can stick:
+    the two agree) and where V_s > V_y (they part by up to several times), and p_y = inf."""
+    d = np.array([0.05e-6, 0.1e-6, 0.3e-6, 1e-6, 5e-6, 20e-6, 0.2e-6, 2e-6])
+    rho = np.array([1350.0, 2000.0, 2500.0, 1350.0, 8000.0, 1000.0, 3000.0, 2200.0])
+    E = np.array([1.31e9, 5e9, 7e10, 1.31e9, 1e11, 1e9, 2e10, 3e9])
+    py = np.array([156e6, 3e8, 1e9, 156e6, 5e8, 5e7, np.inf, 2e8])
+    G = np.array([1.0, 0.3, 0.5, 0.1, 2.0, 0.05, 0.2, 3.0])
+    V = np.column_stack([np.zeros(d.size), np.zeros(d.size), -np.full(d.size, 1.0)])
+    kw = dict(effective_modulus=E, limiting_pressure=py, work_of_adhesion=G)
+    whole = wall_interaction(V, [0, 0, 1], d, rho, adhesion=WHOLE_LAW, **kw)
+    add = wall_interaction(V, [0, 0, 1], d, rho, **kw)
+    r = 0.5 * d
+    m = evaluate(wall_core.sphere_mass, r, rho)[0]
+    parted = 0
+    for k in range(d.size):
+        lo, hi = _outcome_boundary(float(E[k]), float(r[k]), float(m[k]), float(py[k]), float(G[k]))
+        Vc = whole.sticking_velocity[k]
+        assert lo * (1 - 1e-9) <= Vc <= hi * (1 + 1e-9), (k, lo, Vc, hi)
+        Vs = core_adh.sticking_velocity(G[k], E[k], r[k], m[k])
+        assert add.sticking_velocity[k] == Vs  # eq. 54, unchanged
+        if add.yield_velocity[k] > Vs:  # no yield before capture: eq. 54 is the whole law's too
+            assert Vc == pytest.approx(Vs, rel=1e-9)
+        else:
+            parted += Vc > 1.1 * Vs
+        pair = mi.ContactPair.sphere_on_flat(float(r[k]), float(rho[k]), float(E[k]), float(py[k]))
+        assert Vc == pytest.approx(pair.sticking_velocity(work_of_adhesion=float(G[k])), rel=1e-12)
+    assert parted >= 3
+    # the wall's own stick flag (through the table) switches within 1.5e-3 of the reported speed where
+    # the particle is inside the table (beyond it, V_s/V_y > 10 here, the edge is used and flagged)
+    for f, stuck in ((1.0 - 1.5e-3, True), (1.0 + 1.5e-3, False)):
+        at = wall_interaction(V * (f * whole.sticking_velocity)[:, None], [0, 0, 1], d, rho, adhesion=WHOLE_LAW, **kw)
+        inside = ~at.outside_table
+        assert np.count_nonzero(inside) >= 4 and np.all(at.stuck[inside] == stuck)
+        assert np.array_equal(at.sticking_velocity, whole.sticking_velocity)
+    # no adhesion: nothing sticks, 0 reported
+    none = wall_interaction(V, [0, 0, 1], d, rho, adhesion=WHOLE_LAW, **{**kw, "work_of_adhesion": 0.0})
+    assert np.all(none.sticking_velocity == 0.0) and not none.stuck.any()
+
+
+def test_capture_speed_field_compiled_equals_python():
+    """The field over many particles (the compiled loop) is the scalar hook's, bit for bit."""
+    rng = np.random.default_rng(77)
+    v, n, w, d, rho, E, py, G, mu = _cases(rng, 20_000)
+    out = _interact(v, n, w, d, rho, E, py, G, mu, adhesion=WHOLE_LAW)
+    for k in rng.choice(d.size, 200, replace=False):
+        assert out.sticking_velocity[k] == wall_core.whole_law_capture_velocity(d[k], rho[k], E[k], py[k], G[k])
+    # computed once per distinct particle: size classes with two works of adhesion, the rest scalars
+    classes = rng.choice([0.1e-6, 0.5e-6, 2e-6], d.size)
+    Gc = np.where(rng.random(d.size) < 0.5, 0.1, 1.0)
+    cls = _interact(v, n, w, classes, 2000.0, 5e9, 3e8, Gc, mu, adhesion=WHOLE_LAW)
+    each = evaluate(wall_core.whole_law_capture_velocity, classes, np.array(2000.0), np.array(5e9), np.array(3e8), Gc)
+    assert np.array_equal(cls.sticking_velocity, each[0]) and np.unique(each[0]).size == 6

@@ -23,6 +23,7 @@ import math
 
 from . import adhesion
 from ._jit import jitable
+from .models import thornton_ning_1998_adhesive_plastic as _whole
 from .models.thornton_ning_2016 import yield_point
 
 __all__ = [
@@ -30,6 +31,7 @@ __all__ = [
     "contact_slip",
     "unit_normal",
     "approach_and_slip",
+    "whole_law_capture_velocity",
     "wall_impact",
     "WALL_FIELDS",
     "NONE",
@@ -106,6 +108,18 @@ def approach_and_slip(vx, vy, vz, nx, ny, nz, wx, wy, wz, d, rho, E, p_y):
     vn, tx, ty, tz, sx, sy, sz = contact_slip(vx, vy, vz, ux, uy, uz, wx, wy, wz, r)
     Vy = yield_point(E, r, sphere_mass(r, rho), p_y)[2]
     return (-vn if vn < 0.0 else 0.0), math.sqrt(sx * sx + sy * sy + sz * sz), Vy
+
+
+@jitable
+def whole_law_capture_velocity(d, rho, E, p_y, G):
+    """The capture speed [m/s] of Thornton & Ning's whole law for a sphere of diameter ``d`` [m] and
+    density ``rho`` [kg/m^3] at the wall (``R* = r``, ``m* = m``; ``E = E*`` [Pa], ``p_y`` [Pa], ``G``
+    [J/m^2]): the model's own sticking velocity
+    (:func:`~microimpact.core.models.thornton_ning_1998_adhesive_plastic.sticking_velocity`), at and
+    below which the whole law sticks; 0 without adhesion. What the wall reports as ``sticking_velocity``
+    with ``adhesion=`` the whole law (its table's stick boundary lies within 1.5e-3 of it)."""
+    r = 0.5 * d
+    return _whole.sticking_velocity(E, r, sphere_mass(r, rho), p_y, (G,))
 
 
 @jitable

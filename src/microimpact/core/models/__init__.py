@@ -125,6 +125,7 @@ __all__ = [
     "DEFAULT",
     "GENERIC_STAGES",
     "Parameter",
+    "LIMIT_FORCE",
     "Model",
     "declare",
     "checks",
@@ -192,6 +193,20 @@ class Parameter(NamedTuple):
         lo = "(" if self.low_open else "["
         hi = ")" if self.high_open else "]"
         raise ValueError(f"{name} must lie in {lo}{self.low:g}, {self.high:g}{hi}, got {value!r}")
+
+
+#: The 0/1 switch ``limit_force`` of the damped DEM laws (``hertz_tsuji``, ``hertz_viscoelastic``,
+#: ``linear_spring_dashpot``): 1, the force is clipped at zero and the contact ends when it vanishes
+#: (LAMMPS' ``limit_damping``); 0, the contact ends at zero approach. Declared once here; each law
+#: puts it in its ``PARAMETERS`` with its default (1 here; ``LIMIT_FORCE._replace(default=0.0)`` for
+#: another).
+LIMIT_FORCE = Parameter(
+    "limit_force",
+    "1",
+    "1: force clipped at zero, contact ends when it vanishes; 0: ends at zero approach",
+    default=1.0,
+    flag=True,
+)
 
 
 def bounds(params_spec) -> tuple:

@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from .._jit import jitable
-from ._common import pack
+from ._common import nan_outcome, pack
 
 __all__ = [
     "GX",
@@ -25,6 +25,8 @@ __all__ = [
     "time_tensile",
     "hertz_impact",
     "impact",
+    "law_outcome",
+    "law_restitution",
     "b_of_alpha",
 ]
 
@@ -165,6 +167,29 @@ def impact(V, E, R, m, s, b0, bF):
         e = math.sqrt(1.0 - W / K)
         t_un = t_load + time_tensile(bF, b0, K - W, E, R, m, s)
     return pack(V, n, n, 0.0, e, e * V, a_max, 0.0, p_max, n, bm * bm, R, n, n, t_load, t_un)
+
+
+@jitable
+def law_outcome(V, E, R, m, valid, g, s, b0, bF):
+    """The outcome of an elastic adhesive law on the JKR curve ``(s, b0, bF)``, the one body of both
+    laws' ``outcome``: :func:`nan_outcome` unless ``valid`` (the law's parameters in bounds) and
+    ``0 <= V < inf``; Hertz's impact where the adhesion ``g`` is 0; else :func:`impact`."""
+    if not valid or not (V >= 0.0 and V < math.inf):
+        return nan_outcome(V)
+    if g == 0.0:
+        return hertz_impact(V, E, R, m)  # b0 = 0, no pull-off
+    return impact(V, E, R, m, s, b0, bF)
+
+
+@jitable
+def law_restitution(V, E, R, m, valid, g, s, b0, bF):
+    """``e`` [-] of :func:`law_outcome` alone, bit for bit (the laws' ``restitution_only`` hook):
+    NaN, 1 (Hertz) or :func:`restitution`, without the maximum approach and the contact times."""
+    if not valid or not (V >= 0.0 and V < math.inf):
+        return math.nan
+    if g == 0.0:
+        return 1.0  # Hertz: every impact elastic
+    return restitution(V, E, R, m, s, b0, bF)
 
 
 @jitable

@@ -52,7 +52,7 @@ import math
 
 from .. import hertz
 from .._jit import jitable
-from . import Parameter, checks
+from . import LIMIT_FORCE, Parameter, checks
 from ._common import dem_outcome, in_bounds, nan_outcome
 from .hertz_viscoelastic import scaled_damped_hertz
 
@@ -61,13 +61,7 @@ TITLE = "Hertz with Tsuji's nonlinear damping (LAMMPS damping tsuji/coeff_restit
 LABEL = "Hertz-Tsuji damping"
 PARAMETERS = (
     Parameter("damping_ratio", "1", "alpha_T >= 0, Tsuji's coefficient: eta_n = alpha_T (m* 4/3 E* a)^(1/2)", low=0.0),
-    Parameter(
-        "limit_force",
-        "1",
-        "1: force clipped at zero, contact ends when it vanishes; 0: ends at zero approach",
-        default=1.0,
-        flag=True,
-    ),
+    LIMIT_FORCE,
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
 #: Order of the zero of :func:`signed_force` where the contact ends: the damping term cancels the

@@ -54,7 +54,7 @@ import math
 
 from .. import hertz
 from .._jit import jitable
-from . import Parameter, checks
+from . import LIMIT_FORCE, Parameter, checks
 from ._common import dem_outcome, in_bounds, nan_outcome
 
 NAME = "hertz_viscoelastic"
@@ -62,13 +62,7 @@ TITLE = "Hertz with viscoelastic damping (Brilliantov et al. 1996; LAMMPS dampin
 LABEL = "Hertz viscoelastic"
 PARAMETERS = (
     Parameter("dissipative_constant", "s", "A >= 0, viscoelastic dissipative constant of Brilliantov et al.", low=0.0),
-    Parameter(
-        "limit_force",
-        "1",
-        "1: force clipped at zero, contact ends when it vanishes; 0: ends at zero approach",
-        default=1.0,
-        flag=True,
-    ),
+    LIMIT_FORCE,
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
 #: Order of the zero of :func:`signed_force` where the contact ends: the viscous term cancels the

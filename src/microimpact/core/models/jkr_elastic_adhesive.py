@@ -51,7 +51,7 @@ import math
 
 from .._jit import jitable
 from . import Parameter, _jkr, checks
-from ._common import in_bounds, nan_outcome
+from ._common import in_bounds
 
 NAME = "jkr_elastic_adhesive"
 TITLE = "JKR elastic adhesion, contact at zero approach, pull-off at -3 pi gamma R (LAMMPS granular jkr)"
@@ -115,36 +115,32 @@ def contact_radius(alpha, E, R, gamma):
 
 @jitable
 def _curve(E, R, params):
-    """``(s, b_0, b_F)`` of the JKR curve of these parameters (see the module docstring)."""
+    """``(valid, gamma, s, b_0, b_F)``: ``params`` in bounds, the adhesion and the JKR curve of these
+    parameters (see the module docstring); zeros where invalid or without adhesion (Hertz)."""
+    if not in_bounds(params, BOUNDS):
+        return False, 0.0, 0.0, 0.0, 0.0
     gamma = params[0]
+    if gamma == 0.0:
+        return True, 0.0, 0.0, 0.0, 0.0
     s = math.sqrt(math.pi * gamma / E)
     b0 = math.sqrt((2.0 * R * s) ** (2.0 / 3.0))
     bF = math.sqrt((1.5 * R * s) ** (2.0 / 3.0))
-    return s, b0, bF
+    return True, gamma, s, b0, bF
 
 
 @jitable
 def outcome(V, E, R, m, p_y, params):
     """Outcome of one impact (see the module docstring; ``p_y`` unused)."""
-    if not in_bounds(params, BOUNDS) or not (V >= 0.0 and V < math.inf):
-        return nan_outcome(V)
-    gamma = params[0]
-    if gamma == 0.0:
-        return _jkr.hertz_impact(V, E, R, m)  # b0 = 0, no pull-off
-    s, b0, bF = _curve(E, R, params)
-    return _jkr.impact(V, E, R, m, s, b0, bF)
+    valid, g, s, b0, bF = _curve(E, R, params)
+    return _jkr.law_outcome(V, E, R, m, valid, g, s, b0, bF)
 
 
 @jitable
 def restitution_only(V, E, R, m, p_y, params):
     """``e`` [-] of :func:`outcome` alone, bit for bit (the contract's hook: fitting compares ``e``),
     without the maximum approach and the contact times' quadratures."""
-    if not in_bounds(params, BOUNDS) or not (V >= 0.0 and V < math.inf):
-        return math.nan
-    if params[0] == 0.0:
-        return 1.0  # Hertz: every impact elastic
-    s, b0, bF = _curve(E, R, params)
-    return _jkr.restitution(V, E, R, m, s, b0, bF)
+    valid, g, s, b0, bF = _curve(E, R, params)
+    return _jkr.law_restitution(V, E, R, m, valid, g, s, b0, bF)
 
 
 @jitable

@@ -61,7 +61,7 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
-from . import Parameter, checks
+from . import LIMIT_FORCE, Parameter, checks
 from ._common import dem_outcome, in_bounds, nan_outcome
 
 NAME = "linear_spring_dashpot"
@@ -77,13 +77,7 @@ PARAMETERS = (
         high=1.0,
         low_open=True,
     ),
-    Parameter(
-        "limit_force",
-        "1",
-        "1: force clipped at zero, contact ends when it vanishes; 0: ends at zero approach",
-        default=0.0,
-        flag=True,
-    ),
+    LIMIT_FORCE._replace(default=0.0),
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
 #: Order of the zero of :func:`signed_force` where the contact ends: ``k alpha + eta alpha_dot``

@@ -72,7 +72,7 @@ import math
 
 from .._jit import jitable
 from . import Parameter, _jkr, checks
-from ._common import in_bounds, nan_outcome
+from ._common import in_bounds
 from ._jkr import b_of_alpha as _b_of_alpha
 from ._jkr import force_b as _force_b
 from ._jkr import work_integral as _G
@@ -118,36 +118,32 @@ def sticking_velocity(E, R, m, p_y, params):
 
 @jitable
 def _curve(E, R, params):
-    """``(s, b_0, b_F)`` of the JKR curve of these parameters (see the module docstring)."""
+    """``(valid, G, s, b_0, b_F)``: ``params`` in bounds, the adhesion and the JKR curve of these
+    parameters (see the module docstring); zeros where invalid or without adhesion (Hertz)."""
+    if not in_bounds(params, BOUNDS):
+        return False, 0.0, 0.0, 0.0, 0.0
     G = params[0]
+    if G == 0.0:
+        return True, 0.0, 0.0, 0.0, 0.0
     s = math.sqrt(0.5 * math.pi * G / E)
     b0 = (2.0 * R * s) ** (1.0 / 3.0)
     bF = (0.5 * R * s) ** (1.0 / 3.0)
-    return s, b0, bF
+    return True, G, s, b0, bF
 
 
 @jitable
 def outcome(V, E, R, m, p_y, params):
     """Outcome of one impact (see the module docstring; ``p_y`` unused)."""
-    if not in_bounds(params, BOUNDS) or not (V >= 0.0 and V < math.inf):
-        return nan_outcome(V)
-    G = params[0]
-    if G == 0.0:
-        return _jkr.hertz_impact(V, E, R, m)  # b0 = 0, no snap-off
-    s, b0, bF = _curve(E, R, params)
-    return _jkr.impact(V, E, R, m, s, b0, bF)
+    valid, g, s, b0, bF = _curve(E, R, params)
+    return _jkr.law_outcome(V, E, R, m, valid, g, s, b0, bF)
 
 
 @jitable
 def restitution_only(V, E, R, m, p_y, params):
     """``e`` [-] of :func:`outcome` alone, bit for bit (the contract's hook: fitting compares ``e``),
     without the maximum approach and the contact times' quadratures."""
-    if not in_bounds(params, BOUNDS) or not (V >= 0.0 and V < math.inf):
-        return math.nan
-    if params[0] == 0.0:
-        return 1.0  # Hertz: every impact elastic
-    s, b0, bF = _curve(E, R, params)
-    return _jkr.restitution(V, E, R, m, s, b0, bF)
+    valid, g, s, b0, bF = _curve(E, R, params)
+    return _jkr.law_restitution(V, E, R, m, valid, g, s, b0, bF)
 
 
 @jitable
