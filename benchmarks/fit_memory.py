@@ -11,7 +11,7 @@ Nothing is written; the numbers are printed (``--json`` prints them as JSON).
 the system sees, interpreter included) of the command ``microimpact fit FILE`` on a CSV file of N
 rows (written to a temporary folder first, velocity and restitution as above), or of reading that
 file alone (:func:`microimpact.fitting.load_restitution_csv`). The reader streams the file into
-typed arrays (16 bytes a row); the goal is a 10^7-row fit within 500 MB.
+typed arrays (20 bytes a row: two values and a 4-byte line number); the goal is a 10^7-row fit within 500 MB.
 """
 
 from __future__ import annotations

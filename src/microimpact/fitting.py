@@ -54,21 +54,30 @@ Gaussian noise) and usually mean a tracking or calibration error.
 
 Method
 ------
-* Optimiser: :func:`scipy.optimize.least_squares` (trust-region reflective),
-  with its robust losses (``"soft_l1"``, ``"huber"``, ``"cauchy"``, ``"arctan"``).
+* Objective: ``sum_i L(r_i)`` with the losses of :func:`scipy.optimize.least_squares`
+  (``"linear"``, ``"soft_l1"``, ``"huber"``, ``"cauchy"``, ``"arctan"``; ``L(r) = f^2/2 rho((r/f)^2)``).
+* Optimiser: Levenberg-Marquardt on the normal equations ``(H + lambda diag H) du = -g``, with
+  ``g = sum psi(r_i) J_i`` and ``H = sum max(psi'(r_i), eps) J_i J_i^T`` (least_squares' own
+  scaling of a robust loss), both accumulated over blocks of 32,768 points: a fit has at most a few
+  free parameters, so its memory beyond the data is its residuals (a result attribute) and one
+  block, not the ``n x p`` Jacobian and the other ``n``-sized arrays a general solver holds (a
+  10^7-point fit: 0.5 GB for the whole ``microimpact fit`` instead of 1.7 GB). It reaches the same
+  minimum as :func:`~scipy.optimize.least_squares` (``tests/test_fitting_blockwise.py``: to 1e-7
+  for every loss, one and two parameters).
 * Parametrisation: ``u = ln(theta / theta_ref)`` for every free parameter (keeps it
   positive and the problem well scaled).
 * Start: a grid search of the least-absolute-deviation objective over ``V_y``
   on at most 2048 points spread evenly over the sorted speeds (memory does not grow
   with the grid), then the local refinement on all points. Memory grows linearly
-  with the number of points (about 0.1 kB per point; ``benchmarks/fit_memory.py``).
+  with the number of points, by the residuals the result keeps (8 bytes a point;
+  10 bytes a point traced at 10^6 points, ``benchmarks/fit_memory.py``).
 * Elastic points: the model gives ``e = 1`` at and below the fitted ``V_y``; such
   points stay in the fit with the residual ``e_i - 1`` and are counted in
   :attr:`FitResult.n_elastic`.
 * Residuals ``r_i = (e_i - e(V_i)) / sigma_i`` (``sigma_i = 1`` if not given).
 * Covariance of ``u`` from the Jacobian ``J = dr/du`` of the *raw* residuals at the
-  solution (central differences; :func:`~scipy.optimize.least_squares` returns a
-  Jacobian rescaled by the robust loss, which must not be used here):
+  solution (central differences, step 1e-6 in ``u``; ``J^T J`` accumulated block by block),
+  not the Jacobian rescaled by the robust loss:
 
   - ``loss="linear"``: ``C = s^2 (J^T J)^-1``. Without ``sigma``, ``s^2`` is the
     residual variance ``sum r_i^2 / (n - p)``. With ``sigma`` the uncertainties are
@@ -131,6 +140,8 @@ import csv
 import io
 import math
 import os
+import sys
+import time
 import warnings
 from dataclasses import dataclass, field
 
@@ -216,6 +227,36 @@ _PROFILE_REACH = 8.0
 
 #: Largest number of points the start's grid search looks at.
 _START_POINTS = 2048
+
+#: Above this many points the start's subset is chosen from every k-th point (a bounded sort).
+_SORT_POINTS = 1 << 20
+
+#: About how many times a fit evaluates its model (start grid, steps, Jacobians, band): see
+#: :meth:`_Model._timed`.
+_FIT_CALLS = 50
+
+#: Points per block of the fit's passes over the data: its working memory is a few such blocks.
+#: Below :data:`microimpact.core.arrays.PARALLEL_MIN`: serial compiled loops (threads bought no
+#: time on two cores and their runtime cost 15 MB of a 10^7-point fit's peak).
+_BLOCK = 1 << 15
+
+#: Step in ``u = ln(theta/theta_ref)`` of the Jacobian's central differences.
+_JAC_STEP = 1e-6
+
+#: The fit stops when a Levenberg-Marquardt step in ``u`` is below ``_XTOL (1 + |u|)``.
+_XTOL = 1e-10
+
+#: ... or when the decrease of ``Q`` that the step predicts is below ``_FTOL Q``.
+_FTOL = 1e-13
+
+#: Largest step in ``u`` (a factor e^10 in a parameter).
+_MAX_STEP = 10.0
+
+_DBL_EPS = float(np.finfo(float).eps)
+
+#: Bins of a round of :func:`_order_statistics`, and the number of values it sorts at the end.
+_BINS = 4096
+_GATHER = 1 << 18
 
 # Column names accepted by load_restitution_csv (lower case, units stripped).
 _VELOCITY_NAMES = ("velocity", "v", "speed", "impact_velocity", "impact_speed")
@@ -311,9 +352,10 @@ def load_restitution_csv(path) -> RestitutionData:
 
     name = os.fspath(path)
     where = os.path.basename(name)
-    # Streamed line by line into typed arrays (8 bytes a value): memory grows with the data by a
-    # small constant, not by Python objects per cell (10^7 rows: about 0.3 GB, not 3 GB).
-    V, e, s, lines = array("d"), array("d"), array("d"), array("q")
+    # Streamed line by line into typed arrays (8 bytes a value, 4 a line number until a file passes
+    # 2^31 lines): memory grows with the data by a small constant, not by Python objects per cell
+    # (10^7 rows: 0.2 GB, not 3 GB).
+    V, e, s, lines = array("d"), array("d"), array("d"), array("i")
     header = None
     with open(name, encoding="utf-8-sig") as fh:
         for lineno, line in enumerate(fh, start=1):
@@ -353,7 +395,11 @@ def load_restitution_csv(path) -> RestitutionData:
                 s.append(sg)
             V.append(v)
             e.append(r)
-            lines.append(lineno)
+            try:
+                lines.append(lineno)
+            except OverflowError:  # past 2^31 - 1 lines: 8-byte line numbers from here on
+                lines = array("q", lines)
+                lines.append(lineno)
     if header is None:
         raise ValueError(f"{where}: no header line (expected columns velocity, restitution)")
     if not lines:
@@ -364,7 +410,7 @@ def load_restitution_csv(path) -> RestitutionData:
         np.frombuffer(V, dtype=float),
         np.frombuffer(e, dtype=float),
         sigma,
-        np.frombuffer(lines, dtype=np.int64),
+        np.frombuffer(lines, dtype=f"i{lines.itemsize}"),
         source=where,
     )
 
@@ -403,6 +449,12 @@ def _zoo():
     from .core import models  # imported here: keeps `import microimpact` fast
 
     return models
+
+
+def _arrays():
+    from .core import arrays  # imported here: keeps `import microimpact` fast
+
+    return arrays
 
 
 def available_models() -> list[str]:
@@ -498,9 +550,29 @@ def _outcome_of(model_name, pair, params, V, fields=("restitution", "rebound_vel
     )
     params = tuple(float(x) for x in params)
     if fields == ("restitution",):  # what fitting and ranking compare: e alone (the model's hook)
+        if _group_hooks(module) is not None and np.all(V > 0):
+            return {"restitution": _restitution_by_group(module, V, E, R, m, p_y, params)}
         return {"restitution": np.asarray(restitution_arrays(module, V.ravel(), E, R, m, p_y, params)).reshape(V.shape)}
     out = outcome_arrays(module, V.ravel(), E, R, m, p_y, params)
     return {f: np.asarray(out[f], dtype=float).reshape(V.shape) for f in fields}
+
+
+def _group_hooks(module):
+    """``(restitution_group, restitution_of_group)`` of a model whose ``e`` is one function of one
+    dimensionless number (the model contract), else None."""
+    if module.restitution_group is None or module.restitution_of_group is None:
+        return None
+    return module.restitution_group, module.restitution_of_group
+
+
+def _restitution_by_group(module, V, E, R, m, p_y, params):
+    """``e`` at speeds ``V > 0``, evaluated once per distinct group ``g`` of the model (bit for bit the
+    outcome's field: the model computes its outcome's ``e`` from the same ``g``)."""
+    group, of_group = _group_hooks(module)
+    arrays = _arrays()
+    g = arrays.evaluate(group, V.ravel(), E, R, m, p_y, params=params)[0]
+    distinct, where = np.unique(g, return_inverse=True)
+    return arrays.evaluate(of_group, distinct, params=params)[0][where.ravel()].reshape(V.shape)
 
 
 def _restitution_of(model_name, pair, params, V):
@@ -628,6 +700,7 @@ class _Model:
             if not math.isfinite(v):
                 raise ValueError(f"model {model} needs a value of its parameter {n}: give model_params={{{n!r}: ...}}")
         self.values = values
+        self.engine_checked = set()
         self.name = pair_names[0] if pair_names else None
         self.yield_strength = None
         finite_py = math.isfinite(pair.limiting_pressure)
@@ -716,11 +789,27 @@ class _Model:
             u0 = float(np.atleast_1d(u)[0])
             return _restitution_of(self.model, _YieldOnly(self.ref_vy * math.exp(self.exponent * u0)), (), V)
         pair, params = self.split(u)
-        return _restitution_of(self.model, pair, params, V)
+        return self._timed(_restitution_of, self.model, pair, params, V)
 
     def outcome(self, u, V, fields=("restitution", "rebound_velocity", "contact_time")):
         pair, params = self.split(u)
-        return _outcome_of(self.model, pair, params, V, fields)
+        return self._timed(_outcome_of, self.model, pair, params, V, fields)
+
+    def _timed(self, fn, *args):
+        """``fn(*args)``; the first call is timed, and where a fit's :data:`_FIT_CALLS` such calls
+        in Python loops would exceed the array layer's budget for one call
+        (:data:`microimpact.core.arrays.PYTHON_BUDGET`), numba is imported: from then on the array
+        layer runs compiled loops (:func:`microimpact.core.arrays.backend_for`; bit for bit the
+        same numbers). A model that integrates its equation of motion for ``e`` costs ~5 ms a point
+        in Python, ~50 us compiled."""
+        if fn in self.engine_checked or "numba" in sys.modules or os.environ.get("MICROIMPACT_BACKEND"):
+            return fn(*args)
+        t0 = time.perf_counter()
+        out = fn(*args)
+        self.engine_checked.add(fn)  # e alone and the whole outcome (a band's contact times) apart
+        if (time.perf_counter() - t0) * _FIT_CALLS > _arrays().PYTHON_BUDGET:
+            import numba  # noqa: F401  (the array layer compiles its loops once numba is imported)
+        return out
 
     def u_of_yield_velocity(self, vy):
         """Inverse of the power law ``V_y = V_y,ref exp(c u)`` (start values)."""
@@ -771,11 +860,6 @@ def _loss_terms(loss, r, f_scale):
 def _objective(loss, r, f_scale):
     """``Q = sum 2 L(r_i)`` (``sum r_i^2`` for least squares)."""
     return float(np.sum(_loss_terms(loss, r, f_scale)))
-
-
-def _mad_scale(r):
-    """Robust scatter ``1.4826 median |r - median r|`` (consistent with the sd for Gaussian noise)."""
-    return 1.4826 * float(np.median(np.abs(r - np.median(r)))) if r.size else 0.0
 
 
 # ---------------------------------------------------------------------- result
@@ -932,7 +1016,12 @@ class FitResult:
             parameter's interval :attr:`conf_int` (evaluated at its ends and the
             estimate: exact for a quantity monotone in the parameter, which ``e``,
             ``V_r`` and the contact time are for the seed); with several, the delta
-            method over all of them (:attr:`log_covariance`).
+            method over all of them (:attr:`log_covariance`): ``e``'s gradient by
+            central differences of ``e`` alone (as :meth:`confidence_band`), ``V_r``'s
+            as ``V`` times it, the contact time's by forward differences (step 1e-6 in
+            ``ln theta``). It costs ``1 + p`` evaluations of the whole outcome
+            (contact times) for ``p`` free parameters, and ``2p`` of ``e`` alone; a
+            model whose outcome is slow in Python runs compiled (as in the fit).
 
         Returns
         -------
@@ -951,8 +1040,16 @@ class FitResult:
             hi = {q: np.maximum(mid[q], np.maximum(ends[0][q], ends[1][q])) for q in _QUANTITIES}
             method = "interval ends"
         else:
+            # e by the model's e alone (central differences, as confidence_band), V_r = e V from
+            # e's, the contact time (a quadrature in most models: the costly field) by forward
+            # differences from the estimate: 1 + p whole outcomes, not 1 + 2p.
             lo, hi = {}, {}
-            grads = self._gradients(lambda u: self._model.outcome(u, V), _QUANTITIES)
+            g_e = self._gradients(lambda u: {"e": self._model.restitution(u, V)}, ("e",))["e"]
+            grads = {
+                "restitution": g_e,
+                "rebound_velocity": g_e * V[..., None],
+                "contact_time": self._forward(lambda u: self._model.outcome(u, V)["contact_time"], mid["contact_time"]),
+            }
             for q in _QUANTITIES:
                 half = self.quantile * np.sqrt(self._quadratic(grads[q]))
                 lo[q], hi[q] = mid[q] - half, mid[q] + half
@@ -1014,6 +1111,16 @@ class FitResult:
             for k in keys:
                 cols[k].append((np.asarray(fp[k]) - np.asarray(fm[k])) / (2 * h))
         return {k: np.stack(v, axis=-1) for k, v in cols.items()}
+
+    def _forward(self, f, f0, h=1e-6):
+        """Forward differences ``(f(u + h e_j) - f0) / h`` for every component of ``u`` (last axis)."""
+        u = np.asarray(self._u, dtype=float)
+        cols = []
+        for j in range(u.size):
+            up = u.copy()
+            up[j] += h
+            cols.append((np.asarray(f(up)) - np.asarray(f0)) / h)
+        return np.stack(cols, axis=-1)
 
     def _quadratic(self, g):
         return np.maximum(np.einsum("...i,ij,...j->...", g, self.log_covariance, g), 0.0)
@@ -1255,7 +1362,9 @@ def fit_restitution(
     line_numbers : array_like of int, optional
         Source line of each point, quoted in error messages and warnings.
     max_nfev : int, optional
-        Passed to :func:`scipy.optimize.least_squares`.
+        Largest number of evaluations of the objective at trial steps (those of the Jacobian's
+        differences not counted, as :func:`scipy.optimize.least_squares` counts them); default
+        100 per free parameter. A fit stopped by it warns (:class:`FitWarning`).
 
     Returns
     -------
@@ -1306,11 +1415,207 @@ def fit_restitution(
 
 
 def _start_subset(V, n_max=_START_POINTS):
-    """Indices of at most ``n_max`` points spread evenly over the sorted speeds."""
+    """Indices of at most ``n_max`` points spread evenly over the sorted speeds.
+
+    Above :data:`_SORT_POINTS` points the speeds are first thinned to every k-th point (which
+    keeps the sort's memory bounded: the start needs a spread of speeds, not every point)."""
     if V.size <= n_max:
         return np.arange(V.size)
+    if V.size > _SORT_POINTS:
+        stride = -(-V.size // _SORT_POINTS)
+        idx = np.arange(0, V.size, stride)
+        return idx[_start_subset(V[idx], n_max)]
     order = np.argsort(V, kind="stable")
     return order[np.linspace(0, V.size - 1, n_max).astype(np.intp)]
+
+
+def _blocks(n, size=None):
+    """Slices of at most :data:`_BLOCK` points covering ``range(n)`` (the fit's passes over the data)."""
+    size = _BLOCK if size is None else size
+    return (slice(a, min(a + size, n)) for a in range(0, n, size))
+
+
+class _Passes:
+    """The fit's passes over the data, block by block: memory per pass is O(block), not O(n).
+
+    ``r_i = (e(V_i; u) - e_i) w_i`` are the weighted residuals (model minus data, the sign of
+    :func:`scipy.optimize.least_squares`), ``J = dr/du`` by central differences with step
+    :data:`_JAC_STEP` in ``u``, and the loss is ``L(r) = f^2/2 rho((r/f)^2)``.
+    """
+
+    def __init__(self, mdl, V, e, w, loss, f_scale):
+        self.mdl, self.V, self.e, self.w, self.loss, self.f_scale = mdl, V, e, w, loss, f_scale
+        self.last = None  # (u, r) of the last objective() of data that fit in one block
+
+    def resid(self, u, s=slice(None)):
+        r = self.mdl.restitution(u, self.V[s]) - self.e[s]
+        return r if self.w is None else r * self.w[s]
+
+    def objective(self, u):
+        """``Q(u) = sum_i 2 L(r_i)`` (``sum r_i^2`` for least squares)."""
+        if self.V.size <= _BLOCK:  # kept: a step taken needs them again for its normal equations
+            r = self.resid(u)
+            self.last = (np.array(u, dtype=float), r)
+            return _objective(self.loss, r, self.f_scale)
+        return math.fsum(_objective(self.loss, self.resid(u, s), self.f_scale) for s in _blocks(self.V.size))
+
+    def _kept(self, u):
+        """The residuals at ``u`` if the last objective() computed them (one block), else None."""
+        if self.last is not None and np.array_equal(self.last[0], u):
+            return self.last[1]
+        return None
+
+    def jacobian_block(self, u, s, cols, r=None):
+        """``(r, J)`` on the block ``s``: ``J[c] = dr/du_cols[c]`` (central differences; one row per
+        parameter, so that products over the points run on contiguous rows)."""
+        r = self.resid(u, s) if r is None else r
+        J = np.empty((len(cols), r.size))
+        for c, j in enumerate(cols):
+            up, um = u.copy(), u.copy()
+            up[j] += _JAC_STEP
+            um[j] -= _JAC_STEP
+            J[c] = self.resid(up, s)
+            J[c] -= self.resid(um, s)
+            J[c] /= 2 * _JAC_STEP
+        return r, J
+
+    def normal_equations(self, u, cols):
+        """``(Q, g, H)`` at ``u`` over the parameters ``cols``: the objective, the gradient
+        ``g = sum psi(r_i) J_i`` of ``Q/2`` and the Gauss-Newton matrix ``H = sum w_i J_i J_i^T`` with
+        ``w_i = max(psi'(r_i), eps)`` (for least squares ``J^T J``): least_squares' scaling of a robust
+        loss (``scale_for_robust_loss_function``), accumulated block by block."""
+        k = len(cols)
+        parts, g, H = [], np.zeros(k), np.zeros((k, k))
+        for s in _blocks(self.V.size):
+            r, J = self.jacobian_block(u, s, cols, r=self._kept(u) if self.V.size <= _BLOCK else None)
+            psi, dpsi = _psi(self.loss, r, self.f_scale)
+            parts.append(_objective(self.loss, r, self.f_scale))
+            g += np.einsum("am,m->a", J, psi)  # (numpy's own loops: BLAS threads buy nothing at k <= 3)
+            H += np.einsum("am,bm->ab", J, J * np.maximum(dpsi, _DBL_EPS))
+        return math.fsum(parts), g, H
+
+
+def _minimise(passes, u0, cols=None, max_nfev=None):
+    """Levenberg-Marquardt on the normal equations of ``Q(u)`` over the components ``cols`` of ``u``.
+
+    Each iteration is one pass over the data for ``(Q, g, H)`` (:meth:`_Passes.normal_equations`,
+    ``k x k`` matrices for ``k`` free parameters) and one pass for ``Q`` at each trial step
+    ``(H + lambda diag H) du = -g``: memory O(block), not O(n k) as a Jacobian held whole. A step
+    is taken when ``Q`` does not grow; ``lambda`` shrinks tenfold after a taken step and grows tenfold
+    after a refused one. Stops when a step is below ``xtol (1 + |u|)`` (``xtol`` =
+    :data:`_XTOL`), taken, or after ``max_nfev`` trial evaluations (default ``100 k``).
+    Returns ``(u, success, message, nfev)``; ``nfev`` counts the evaluations of ``Q`` (not those of
+    the Jacobian's differences, as :func:`scipy.optimize.least_squares` counts).
+    """
+    u = np.array(u0, dtype=float)
+    cols = list(range(u.size)) if cols is None else list(cols)
+    if not cols:
+        return u, True, "no free parameter", 0
+    max_nfev = 100 * len(cols) if max_nfev is None else int(max_nfev)
+    Q, g, H = passes.normal_equations(u, cols)
+    nfev, lam = 1, 1e-6
+    if not (math.isfinite(Q) and np.all(np.isfinite(g)) and np.all(np.isfinite(H))):
+        return u, False, "the residuals or their Jacobian are not finite at the start", nfev
+    while True:
+        D = np.diag(np.maximum(np.diag(H), _DBL_EPS * max(float(np.max(np.diag(H))), _DBL_EPS)))
+        try:
+            step = np.linalg.solve(H + lam * D, -g)
+        except np.linalg.LinAlgError:
+            step = np.full(len(cols), np.nan)
+        if not np.all(np.isfinite(step)):
+            return u, False, "singular normal equations", nfev
+        size = float(np.linalg.norm(step))
+        if size <= _XTOL * (1.0 + float(np.linalg.norm(u[cols]))):
+            u[cols] += step
+            return u, True, "converged: the step fell below xtol", nfev
+        # The decrease of Q the quadratic model predicts: below Q's own rounding (and a model's
+        # quadrature noise) no trial can confirm it, so the step is taken as it is and the fit ends.
+        predicted = -(2.0 * float(g @ step) + float(step @ H @ step))
+        if lam <= 1e-3 and 0.0 <= predicted <= _FTOL * abs(Q):
+            u[cols] += step
+            return u, True, "converged: the predicted decrease fell below ftol", nfev
+        if nfev >= max_nfev:
+            return u, False, f"the maximum number of evaluations ({max_nfev}) was reached", nfev
+        if size > _MAX_STEP:  # a factor e^_MAX_STEP in a parameter at most per step
+            step *= _MAX_STEP / size
+        trial = u.copy()
+        trial[cols] += step
+        try:
+            Qt = passes.objective(trial)
+        except (OverflowError, ZeroDivisionError, FloatingPointError):  # a parameter out of range
+            Qt = math.inf
+        nfev += 1
+        if math.isfinite(Qt) and Qt <= Q:
+            u = trial
+            lam = max(lam / 10.0, 1e-12)
+            Q, g, H = passes.normal_equations(u, cols)
+            if not (np.all(np.isfinite(g)) and np.all(np.isfinite(H))):
+                return u, False, "the Jacobian is not finite", nfev
+        else:
+            lam *= 10.0
+            if lam > 1e20:
+                return u, True, "converged: no step lowers the objective", nfev
+
+
+def _order_statistics(values, n, ks):
+    """The ``ks``-th smallest (0-based, sorted) of ``n`` values that ``values(s)`` gives block by block.
+
+    Exact, in memory bounded by :data:`_BLOCK` (not O(n) as a sort or :func:`numpy.partition` of a
+    copy): each round bins the values still in play into :data:`_BINS` equal bins between their
+    smallest and largest (a monotone map, so a run of bins is an interval of values), keeps the bins
+    that hold the wanted ranks and counts those below; once at most :data:`_GATHER` values remain in
+    play they are gathered and sorted."""
+    lo, hi, below = -math.inf, math.inf, 0
+    cnt, mn, mx = n, math.inf, -math.inf
+    for s in _blocks(n):
+        x = values(s)
+        if x.size:
+            mn, mx = min(mn, float(x.min())), max(mx, float(x.max()))
+    lo, hi = mn, mx
+    while cnt > _GATHER and lo < hi and math.isfinite(hi - lo):
+        scale = _BINS / (hi - lo)
+        hist = np.zeros(_BINS, dtype=np.int64)
+        for s in _blocks(n):
+            x = values(s)
+            x = x[(x >= lo) & (x <= hi)]
+            hist += np.bincount(np.minimum(((x - lo) * scale).astype(np.int64), _BINS - 1), minlength=_BINS)
+        cum = np.cumsum(hist)
+        b0, b1 = (int(np.searchsorted(cum, k - below, side="right")) for k in (ks[0], ks[-1]))
+        below += int(cum[b0 - 1]) if b0 else 0
+        cnt = int(cum[b1] - (cum[b0 - 1] if b0 else 0))
+        nlo, nhi = math.inf, -math.inf
+        for s in _blocks(n):
+            x = values(s)
+            x = x[(x >= lo) & (x <= hi)]
+            idx = np.minimum(((x - lo) * scale).astype(np.int64), _BINS - 1)
+            x = x[(idx >= b0) & (idx <= b1)]
+            if x.size:
+                nlo, nhi = min(nlo, float(x.min())), max(nhi, float(x.max()))
+        lo, hi = nlo, nhi
+    if lo == hi:
+        return [lo for _ in ks]
+    kept = np.sort(np.concatenate([x[(x >= lo) & (x <= hi)] for x in (values(s) for s in _blocks(n))]))
+    return [float(kept[k - below]) for k in ks]
+
+
+def _median(values, n):
+    """``numpy.median`` of the ``n`` values ``values(s)`` gives block by block, in bounded memory."""
+    ks = [n // 2] if n % 2 else [n // 2 - 1, n // 2]
+    a = _order_statistics(values, n, ks)
+    return a[0] if len(a) == 1 else (a[0] + a[1]) / 2.0
+
+
+def _mad_scale(r):
+    """Robust scatter ``1.4826 median |r - median r|`` (consistent with the sd for Gaussian noise).
+
+    Small arrays by :func:`numpy.median`; above :data:`_GATHER` points by :func:`_median` (exact,
+    without a copy of ``r``)."""
+    if not r.size:
+        return 0.0
+    if r.size <= _GATHER:
+        return 1.4826 * float(np.median(np.abs(r - np.median(r))))
+    med = _median(lambda s: r[s], r.size)
+    return 1.4826 * float(_median(lambda s: np.abs(r[s] - med), r.size))
 
 
 def _fit(
@@ -1339,9 +1644,8 @@ def _fit(
     confidence = _check_confidence(confidence)
     V, e, sigma, line_numbers = _check_data(velocity, restitution, sigma, line_numbers)
     mdl = _Model(pair, names, model=model, model_params=model_params, yield_strength=yield_strength)
-    stuck = e == 0.0
-    if stuck.any() and not _model_sticks(model):
-        i = int(np.flatnonzero(stuck)[0])
+    if not _model_sticks(model) and not np.all(e):
+        i = int(np.flatnonzero(e == 0.0)[0])
         raise ValueError(
             f"restitution 0 (stuck) at {_where(i, line_numbers)}: model {model} never sticks "
             "(e > 0 at every finite speed); drop stuck points or choose a model with adhesion"
@@ -1349,24 +1653,25 @@ def _fit(
     if absolute_sigma is None:
         absolute_sigma = sigma is not None
     absolute_sigma = bool(absolute_sigma) and sigma is not None
-    w = np.ones_like(V) if sigma is None else 1.0 / sigma
+    w = None if sigma is None else 1.0 / sigma  # weights; None: all 1 (no array of ones)
     p = len(mdl.names)
     n = V.size
     if n <= p:
         raise ValueError(f"{n} point(s) for {p} free parameter(s): need at least {p + 1}")
 
-    plastic = e < 1.0
-    if mdl.name is not None and plastic.sum() < p + 1:
-        at = ", ".join(_where(i, line_numbers) for i in np.flatnonzero(plastic)[:10]) or "none"
+    n_plastic = sum(int(np.count_nonzero(e[s] < 1.0)) for s in _blocks(n))
+    if mdl.name is not None and n_plastic < p + 1:
+        at = ", ".join(_where(i, line_numbers) for i in np.flatnonzero(e < 1.0)[:10]) or "none"
         raise ValueError(
             f"too few points above the yield velocity for {p} free parameter(s): "
-            f"{int(plastic.sum())} point(s) with e < 1 ({at}); need at least {p + 1}"
+            f"{n_plastic} point(s) with e < 1 ({at}); need at least {p + 1}"
         )
 
     # Robust start: least absolute deviations over a log grid of V_y, on a subset.
     u0 = np.zeros(p)
     sub = _start_subset(V)
-    Vs, es, ws = V[sub], e[sub], w[sub]
+    Vs, es = V[sub], e[sub]
+    ws = 1.0 if w is None else w[sub]
     if mdl.name is not None:
         fast = _fast_restitution(model) if not mdl.own else None
         vy_grid = np.geomspace(Vs.min() * 1e-3, Vs.max() * 2.0, 600 if fast is not None else 60)
@@ -1395,66 +1700,56 @@ def _fit(
         if not (math.isfinite(f_scale) and f_scale > 0):
             raise ValueError(f"f_scale must be positive and finite, got {f_scale!r}")
 
-    def resid(u):
-        return (mdl.restitution(u, V) - e) * w
-
-    if p:
-        kw = {} if max_nfev is None else {"max_nfev": int(max_nfev)}
-        from scipy import optimize  # imported here: keeps `import microimpact` fast
-
-        sol = optimize.least_squares(
-            resid, u0, jac="3-point", loss=loss, f_scale=f_scale, x_scale=1.0, xtol=1e-12, ftol=1e-12, gtol=1e-12, **kw
-        )
-        u = np.asarray(sol.x, dtype=float)
-        success, message, nfev = bool(sol.success), str(sol.message), int(sol.nfev)
-        del sol
-    else:
-        u, success, message, nfev = u0, True, "no free parameter", 0
+    passes = _Passes(mdl, V, e, w, loss, f_scale)
+    u, success, message, nfev = _minimise(passes, u0, max_nfev=max_nfev)
     fitted, params_now = mdl.split(u)
     fitted = fitted.replace(label=(pair.label + " (fitted)").strip() if pair.label else "fitted")
     vy = fitted.yield_velocity
-    e_fit = mdl.restitution(u, V)
-    above = V > vy
-    if mdl.name is not None and above.sum() < p + 1:
-        at = ", ".join(_where(i, line_numbers) for i in np.flatnonzero(above)[:10]) or "none"
+    n_above = sum(int(np.count_nonzero(V[s] > vy)) for s in _blocks(n))
+    if mdl.name is not None and n_above < p + 1:
+        at = ", ".join(_where(i, line_numbers) for i in np.flatnonzero(V > vy)[:10]) or "none"
         raise ValueError(
             f"too few points above the fitted yield velocity V_y = {vy:.4g} m/s for {p} free "
-            f"parameter(s): {int(above.sum())} ({at}); need at least {p + 1}"
+            f"parameter(s): {n_above} ({at}); need at least {p + 1}"
         )
     dof = n - p
-    resid_raw = e - e_fit
-    r_w = resid_raw * w  # weighted residuals, data minus model
-    del e_fit
 
-    # Covariance from the Jacobian of the raw residuals (not least_squares' loss-scaled one).
+    # One pass at the solution: the residuals kept (data minus model), their sums, and J^T J of the
+    # raw residuals for the covariance (not least_squares' loss-scaled Jacobian).
+    resid_raw = np.empty(n)
+    JTJ = np.zeros((p, p))
+    chi2_parts, rss_parts, psi2_parts, d1_parts, d2_parts = [], [], [], [], []
+    cols = list(range(p))
+    for s in _blocks(n):
+        raw = resid_raw[s]
+        np.subtract(e[s], mdl.restitution(u, V[s]), out=raw)
+        r_w = raw if w is None else raw * w[s]  # weighted residuals, data minus model
+        J = passes.jacobian_block(u, s, cols, r=r_w)[1]
+        JTJ += np.einsum("am,bm->ab", J, J)
+        chi2_parts.append(float(np.einsum("m,m->", r_w, r_w)))
+        rss_parts.append(float(np.einsum("m,m->", raw, raw)))
+        if loss != "linear":
+            psi, dpsi = _psi(loss, r_w, f_scale)
+            psi2_parts.append(float(np.einsum("m,m->", psi, psi)))
+            d1_parts.append(float(np.sum(dpsi)))
+            d2_parts.append(float(np.einsum("m,m->", dpsi, dpsi)))
+    chi2, rss = math.fsum(chi2_parts), math.fsum(rss_parts)
     if p:
-        h = 1e-6
-        J = np.empty((n, p))
-        for j in range(p):
-            up, um = u.copy(), u.copy()
-            up[j] += h
-            um[j] -= h
-            J[:, j] = resid(up)
-            J[:, j] -= resid(um)
-            J[:, j] /= 2 * h
-        JTJ = J.T @ J
-        del J
         if not np.all(np.isfinite(JTJ)) or np.linalg.matrix_rank(JTJ) < p:
             raise ValueError("the data do not constrain the free parameters (singular Jacobian at the solution)")
         JTJ_inv = np.linalg.inv(JTJ)
     else:
         JTJ_inv = np.zeros((0, 0))
     if loss == "linear":
-        s2 = 1.0 if absolute_sigma else float(np.sum(r_w**2) / max(dof, 1))
+        s2 = 1.0 if absolute_sigma else chi2 / max(dof, 1)
         m1 = 1.0
     else:
-        psi, dpsi = _psi(loss, r_w, f_scale)
-        m1 = float(np.mean(dpsi))
+        m1 = math.fsum(d1_parts) / n
         if m1 <= 0:  # redescending loss with most points beyond f_scale
             raise ValueError(f"loss {loss!r} with f_scale = {f_scale:g} rejects most points; increase f_scale")
-        kappa2 = 1.0 + (p / n) * float(np.var(dpsi)) / m1**2
-        s2 = kappa2 * float(np.sum(psi**2) / max(dof, 1)) / m1**2
-        del psi, dpsi
+        var_d = max(math.fsum(d2_parts) / n - m1 * m1, 0.0)
+        kappa2 = 1.0 + (p / n) * var_d / m1**2
+        s2 = kappa2 * (math.fsum(psi2_parts) / max(dof, 1)) / m1**2
     cov_u = s2 * JTJ_inv
     known_scale = absolute_sigma and loss == "linear"
     q = _quantile(confidence, dof, known_scale)
@@ -1464,13 +1759,12 @@ def _fit(
     params_ = {nm: float(t) for nm, t in zip(mdl.names, theta)}
     stderr = {nm: float(t * s) for nm, t, s in zip(mdl.names, theta, se_u)}
     wald_u = {nm: (float(uu - q * s), float(uu + q * s)) for nm, uu, s in zip(mdl.names, u, se_u)}
-    n_above = int(above.sum())
     method = interval
     if method == "auto":
         method = "profile" if (p and n_above < PROFILE_BELOW) else "wald"
     ci_u = dict(wald_u)
     if method == "profile" and p and s2 * m1 > 0:  # (a perfect fit has a zero-width interval: Wald's)
-        objective = _Objective(resid, loss, f_scale, s2 * m1, u, q)
+        objective = _Objective(passes, s2 * m1, u, q)
         ci_u = {nm: objective.interval(j, se_u[j]) for j, nm in enumerate(mdl.names)}
 
     def to_theta(ref, a, b):
@@ -1489,10 +1783,15 @@ def _fit(
         se_vy, vy_ci = 0.0, (float(vy), float(vy))
 
     # Points far above 1: more than FAR_ABOVE_ONE standard uncertainties.
-    scale_i = sigma if absolute_sigma else np.full(n, _mad_scale(resid_raw) or math.sqrt(np.sum(resid_raw**2) / n))
-    far = np.flatnonzero(e - 1.0 > FAR_ABOVE_ONE * scale_i)
+    scale = None if absolute_sigma else (_mad_scale(resid_raw) or math.sqrt(rss / n))
+    far = np.concatenate(
+        [
+            s.start + np.flatnonzero(e[s] - 1.0 > FAR_ABOVE_ONE * (sigma[s] if scale is None else scale))
+            for s in _blocks(n)
+        ]
+    )
     if warn and far.size:
-        what = "sigma" if absolute_sigma else f"the residual scatter 1.4826 MAD = {float(scale_i[0]):.3g}"
+        what = "sigma" if absolute_sigma else f"the residual scatter 1.4826 MAD = {scale:.3g}"
         at = ", ".join(f"{_where(i, line_numbers)} (e = {e[i]:.4g})" for i in far[:5])
         more = f" and {far.size - 5} more" if far.size > 5 else ""
         warnings.warn(
@@ -1513,8 +1812,8 @@ def _fit(
         yield_velocity_stderr=float(vy * se_vy),
         yield_velocity_conf_int=vy_ci,
         residuals=resid_raw,
-        chi2=float(np.sum(r_w**2)),
-        rss=float(np.sum(resid_raw**2)),
+        chi2=chi2,
+        rss=rss,
         dof=int(dof),
         n_points=int(n),
         n_elastic=int(n - n_above),
@@ -1544,28 +1843,18 @@ def _fit(
 class _Objective:
     """Profile statistic ``D(u_j) = [Q(u_j) - Q_hat] / s2_eff``, ``Q`` minimised over the other ``u``."""
 
-    def __init__(self, resid, loss, f_scale, s2_eff, u_hat, q):
-        self.resid, self.loss, self.f_scale, self.s2 = resid, loss, f_scale, s2_eff
+    def __init__(self, passes, s2_eff, u_hat, q):
+        self.passes, self.s2 = passes, s2_eff
         self.u_hat = np.asarray(u_hat, dtype=float)
         self.q2 = q * q
-        self.q_hat = _objective(loss, resid(self.u_hat), f_scale)
+        self.q_hat = passes.objective(self.u_hat)
 
     def profile(self, j, t):
         u = self.u_hat.copy()
         u[j] = t
         if u.size > 1:
-            from scipy import optimize
-
-            others = [i for i in range(u.size) if i != j]
-
-            def sub(v):
-                w = u.copy()
-                w[others] = v
-                return self.resid(w)
-
-            sol = optimize.least_squares(sub, u[others], loss=self.loss, f_scale=self.f_scale, x_scale=1.0)
-            u[others] = sol.x
-        q = _objective(self.loss, self.resid(u), self.f_scale)
+            u = _minimise(self.passes, u, cols=[i for i in range(u.size) if i != j])[0]
+        q = self.passes.objective(u)
         return max(q - self.q_hat, 0.0) / self.s2
 
     def interval(self, j, se):

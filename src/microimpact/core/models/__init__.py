@@ -88,6 +88,13 @@ as users name it (``model=NAME``). It declares what it is with module-level name
     ``e`` and call this (:func:`microimpact.impact.restitution_arrays`). Written from the model's
     own functions that :func:`outcome` calls, never a second copy of a formula. (Not
     ``restitution``: the seed's module has a function of that name, ``e`` of ``V/V_y``.)
+``restitution_group(V, E, R, m, p_y, params)`` and ``restitution_of_group(g, params)`` [``None``]
+    Both ``@jitable``, declared together by a law whose ``e`` is one function of one dimensionless
+    number ``g`` (with its ``params``) that costs most to evaluate (an integration of the equation
+    of motion): ``g`` at speed ``V > 0`` exactly as :func:`outcome` computes it, and ``e`` at ``g``,
+    bit for bit the field ``restitution`` of :func:`outcome` at any speed with that ``g``. Fitting
+    evaluates ``e`` once per distinct ``g`` of its data (:mod:`microimpact.fitting`): Hertz-Tsuji's
+    ``g`` is its damping ratio up to rounding: a handful of distinct values for any set of speeds.
 ``sticking_velocity(E, R, m, p_y, params)`` [``None``: none known]
     The speed [m/s] at and below which the particle sticks (``e = 0``), for a law with ``STICKS``
     (:meth:`ContactPair.sticking_velocity <microimpact.pair.ContactPair.sticking_velocity>`).
@@ -279,6 +286,8 @@ class Model:
     ZERO_FORCE_ORDER: float = 1.5
     sticking_velocity: Callable | None = None
     restitution_only: Callable | None = None
+    restitution_group: Callable | None = None
+    restitution_of_group: Callable | None = None
     ADHESION_LIMIT: str | None = None
     work_of_adhesion: Callable | None = None
     module: Any = None
@@ -300,6 +309,8 @@ _HOOKS = (
     "stage_two_approach",
     "sticking_velocity",
     "restitution_only",
+    "restitution_group",
+    "restitution_of_group",
     "work_of_adhesion",
 )
 

@@ -115,10 +115,29 @@ def outcome(V, E, R, m, p_y, params):
     rho = hertz.stiffness(E, R)
     T = hertz.dem_time_scale(V, E, R, m)
     X = V * T
-    # damping term alpha_T (m (4/3) E R^(1/2))^(1/2) alpha^(1/4) alpha_dot, scaled by m X / T^2:
-    kappa = params[0] * math.sqrt(m * rho) * X**0.25 * (X / T) / (m * X / (T * T))
+    kappa = restitution_group(V, E, R, m, p_y, params)
     e, x_max, t_max, p_max, t_end, x_end = scaled_damped_hertz(kappa, params[1] == 1.0, 0.25)
     return dem_outcome(V, e, X * x_max, X * x_end, rho * X * math.sqrt(X) * p_max, R, T * t_max, T * (t_end - t_max))
+
+
+@jitable
+def restitution_group(V, E, R, m, p_y, params):
+    """The damping coefficient ``kappa`` of the scaled equation at speed ``V > 0`` [m/s]: ``alpha_T``
+    up to rounding (module docstring), as :func:`outcome` computes it."""
+    rho = hertz.stiffness(E, R)
+    T = hertz.dem_time_scale(V, E, R, m)
+    X = V * T
+    # damping term alpha_T (m (4/3) E R^(1/2))^(1/2) alpha^(1/4) alpha_dot, scaled by m X / T^2:
+    return params[0] * math.sqrt(m * rho) * X**0.25 * (X / T) / (m * X / (T * T))
+
+
+@jitable
+def restitution_of_group(kappa, params):
+    """``e`` [-] at the scaled damping ``kappa`` (:func:`restitution_group`): the field
+    ``restitution`` of :func:`outcome`, bit for bit; NaN for parameters out of bounds."""
+    if not in_bounds(params, BOUNDS):
+        return math.nan
+    return scaled_damped_hertz(kappa, params[1] == 1.0, 0.25)[0]
 
 
 @jitable
