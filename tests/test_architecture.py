@@ -304,3 +304,24 @@ def test_physics_constants_live_only_in_the_core():
                     if node.value == value or (decimals is not None and round(value, decimals) == node.value):
                         violations.append(f"{rel}:{node.lineno} writes {literal}, the core's {name}")
     assert not violations, "physics constants outside the core:\n" + "\n".join(violations)
+
+
+# ----------------------------------------------------------------------------- the seed's array face
+#: Modules that only name the seed's array functions (re-exports of its face, models/thornton_ning_2016.py).
+SEED_NAME_ROOMS = ("contact.py", "impact.py", "dynamics.py")
+
+
+def test_the_seed_array_face_is_one_room():
+    """Each seed formula's array function is written once, in the seed's face: the modules users know
+    (contact, impact, dynamics) import it from there and generate or wrap nothing of their own."""
+    violations = []
+    for rel in SEED_NAME_ROOMS:
+        tree = ast.parse((SRC / rel).read_text(), filename=rel)
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Call) and getattr(node.func, "id", "") in ("array_function", "outcome_function"):
+                violations.append(f"{rel}:{node.lineno} generates an array function (belongs in the face)")
+            if isinstance(node, ast.FunctionDef) and rel != "dynamics.py":
+                violations.append(f"{rel}:{node.lineno} defines {node.name} (belongs in the face)")
+            if isinstance(node, ast.Attribute) and getattr(node.value, "id", "") == "_seed" and rel != "dynamics.py":
+                violations.append(f"{rel}:{node.lineno} calls the seed's core ({node.attr})")
+    _report("seed array functions outside the seed's face", violations)

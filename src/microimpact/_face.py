@@ -16,11 +16,11 @@ import textwrap
 
 import numpy as np
 
-from ._validation import check_nonnegative, check_positive, check_velocity
+from ._validation import check_nonnegative, check_pair, check_positive, check_velocity
 from .core.arrays import evaluate
-from .core.quantities import QUANTITIES
+from .core.quantities import OUTCOME_FIELDS, QUANTITIES
 
-__all__ = ["array_function", "CHECKS"]
+__all__ = ["array_function", "outcome_function", "outcome_arrays", "restitution_arrays", "CHECKS"]
 
 
 def _positive_or_inf(name, value):
@@ -49,9 +49,13 @@ _ALIASES = {
 }
 
 
+def _unit(q):
+    return q.unit if q.unit not in ("", "1") else "-"
+
+
 def _parameter_doc(param, check, note):
     q = QUANTITIES[_ALIASES.get(param, param)]
-    unit = q.unit if q.unit not in ("", "1") else "-"
+    unit = _unit(q)
     words = q.description.split(",")[0].split(" (")[0].split(" = ")[0]  # "effective modulus E*"
     if q.symbol and words.endswith(" " + q.symbol):
         words = words[: -len(q.symbol)] + f"``{q.symbol}``"
@@ -59,6 +63,23 @@ def _parameter_doc(param, check, note):
         words += f" ``{q.symbol}``"
     text = f"{words} [{unit}], {CHECKS[check][1]}"
     return f"{param} : array_like\n    {text[0].upper()}{text[1:]}{'; ' + note if note else ''}."
+
+
+def _docstring(summary, notes, parameters, returns, examples, source):
+    """A numpydoc docstring of a generated function: summary, notes, parameters, one ndarray
+    returned, the ValueError of a bad argument, examples and where it was generated from."""
+    doc = [summary.strip()]
+    if notes:
+        doc.append(textwrap.dedent(notes).strip())
+    doc.append("Parameters\n----------\n" + "\n".join(parameters))
+    doc.append(f"Returns\n-------\nndarray\n    {returns}")
+    doc.append(
+        "Raises\n------\nValueError\n    If an argument breaks its condition above (the message names it and its value)."
+    )
+    if examples:
+        doc.append("Examples\n--------\n" + textwrap.dedent(examples).strip())
+    doc.append(source)
+    return "\n\n".join(doc) + "\n"
 
 
 def array_function(
@@ -111,17 +132,82 @@ def array_function(
     fn = namespace[name]
     quantity, words = returns
     q = QUANTITIES[quantity]
-    unit = q.unit if q.unit not in ("", "1") else "-"
-    doc = [summary.strip()]
-    if notes:
-        doc.append(textwrap.dedent(notes).strip())
-    doc.append("Parameters\n----------\n" + "\n".join(_parameter_doc(p, c, n) for p, c, n in params))
-    doc.append(f"Returns\n-------\nndarray\n    {words} [{unit}].")
-    doc.append(
-        "Raises\n------\nValueError\n    If an argument breaks its condition above (the message names it and its value)."
+    fn.__doc__ = _docstring(
+        summary,
+        notes,
+        [_parameter_doc(p, c, n) for p, c, n in params],
+        f"{words} [{_unit(q)}].",
+        examples,
+        f"Generated from :func:`{core_function.__module__}.{core_function.__name__}`.",
     )
-    if examples:
-        doc.append("Examples\n--------\n" + textwrap.dedent(examples).strip())
-    doc.append(f"Generated from :func:`{core_function.__module__}.{core_function.__name__}`.")
-    fn.__doc__ = "\n\n".join(doc) + "\n"
     return fn
+
+
+#: The pair's inputs of a model's outcome, with their checks.
+_PAIR = (
+    ("velocity", "velocity"),
+    ("effective_modulus", "positive"),
+    ("effective_radius", "positive"),
+    ("effective_mass", "positive"),
+    ("limiting_pressure", "positive_or_inf", "``inf``: elastic impact"),
+)
+
+
+def outcome_function(namespace, name, model, summary, notes="", returns="", examples="", field=None):
+    """Define ``name`` in ``namespace``: the field ``field`` (default ``name``) of ``model``'s outcome over arrays.
+
+    ``name(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)``
+    checks its inputs, broadcasts them and returns ``outcome_arrays(model, ...)[field]``; the
+    docstring's parameters and units come from :data:`~microimpact.core.quantities.QUANTITIES`,
+    as for :func:`array_function`. ``model`` is a model module, ``returns`` the value's line of the
+    docstring, with its unit (default: the quantity's description and unit).
+    """
+
+    field = field or name
+
+    def fn(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure):
+        V = check_velocity("velocity", velocity)
+        E, R, m, p_y = check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
+        return outcome_arrays(model, V, E, R, m, p_y, ())[field]
+
+    fn.__name__ = fn.__qualname__ = name
+    fn.__module__ = namespace["__name__"]
+    q = QUANTITIES[field]
+    fn.__doc__ = _docstring(
+        summary,
+        notes,
+        [_parameter_doc(*p if len(p) == 3 else (*p, "")) for p in _PAIR],
+        returns or f"{q.description} [{_unit(q)}].",
+        examples,
+        f"The field ``{field}`` of :func:`{model.__name__}.outcome`.",
+    )
+    namespace[name] = fn
+    return fn
+
+
+def outcome_arrays(model, V, E, R, m, p_y, params) -> dict:
+    """Every field of ``model``'s outcome over checked, broadcast float arrays, as a dict of ndarrays
+    (``model`` a :class:`~microimpact.core.models.Model`, ``V`` [m/s], ``E`` [Pa], ``R`` [m], ``m``
+    [kg], ``p_y`` [Pa], ``params`` its tuple; each field in the unit of
+    :data:`~microimpact.core.quantities.QUANTITIES`).
+
+    The array path of :meth:`microimpact.pair.ContactPair.impact`: one compiled (or, for small
+    arrays, Python) loop over the model's scalar ``outcome``; flags become booleans.
+    """
+    values = evaluate(model.outcome, V, E, R, m, p_y, nout=len(OUTCOME_FIELDS), params=tuple(params))
+    out = dict(zip(OUTCOME_FIELDS, values))
+    for name in ("elastic", "large_strain"):
+        out[name] = out[name] == 1.0
+    return out
+
+
+def restitution_arrays(model, V, E, R, m, p_y, params) -> np.ndarray:
+    """The field ``restitution`` of :func:`outcome_arrays` alone, bit for bit, as an ndarray [-].
+
+    Through the model's ``restitution_only`` hook where it declares one (a compiled, or for small
+    arrays Python, loop over that scalar function, as for the outcome), which skips what only
+    the other fields need (a contact time's quadrature); else the outcome's field.
+    """
+    if model.restitution_only is None:
+        return outcome_arrays(model, V, E, R, m, p_y, params)["restitution"]
+    return evaluate(model.restitution_only, V, E, R, m, p_y, params=tuple(params))[0]

@@ -19,6 +19,11 @@ follow from the same integrals by inverting the incomplete beta function
 (stages 1 and 3) and as a sinusoid (stage 2). :func:`integrate_impact`
 integrates Newton's equation with the force law of :mod:`microimpact.contact`
 numerically: the seed's own route, kept as an independent check.
+
+The seed's closed forms (the contact times, :func:`impact_history`) are its array face, written
+once in :mod:`microimpact.models.thornton_ning_2016`; this module names them, beside what every
+model's history shares: :class:`ImpactHistory`, the stage names and the integration of Newton's
+equation (:func:`integrate_impact`, :func:`integrate_model`; the machinery in ``microimpact._history``).
 """
 
 from __future__ import annotations
@@ -27,16 +32,24 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from . import _history, contact
-from ._face import array_function
-from ._validation import check_nonnegative, check_pair, check_positive, check_velocity
-from .core import hertz, quantities
+from . import _history
 from .core import models as _models
-from .core import special as _special
-from .core.arrays import evaluate
+from .core import quantities
 from .core.models import thornton_ning_2016 as _seed
 from .core.special import BETA_25_12, HERTZ_TIME_CONSTANT
-from .impact import elastic_max_approach, impact_outcome, outcome_arrays
+from .models.thornton_ning_2016 import (
+    contact_times,
+    deresiewicz_contact_time,
+    elastic_stage_time,
+    hertz_contact_time,
+    hertz_force_along,
+    impact_history,
+    incomplete_beta,
+    ning_loading_time,
+    plastic_frequency,
+    plastic_stage_time,
+    unloading_time,
+)
 
 __all__ = [
     "BETA_25_12",
@@ -68,295 +81,8 @@ __all__ = [
 CLOSED_FORM_HISTORY = (_seed.NAME,)
 
 
-def incomplete_beta(u, a=0.4, b=0.5):
-    """Non-regularised incomplete beta function ``B(u; a, b) = I_u(a, b) B(a, b)`` [-].
-
-    With the defaults ``a = 2/5``, ``b = 1/2`` it is the Hertz time integral of
-    the stage-1 and stage-3 times (seed eqs. 20, 26).
-
-    Parameters
-    ----------
-    u : array_like
-        Upper limit of the integral, in [0, 1] [-].
-    a, b : array_like, optional
-        Positive shape parameters [-] (default ``2/5`` and ``1/2``).
-
-    Returns
-    -------
-    ndarray
-        ``B(u; a, b) = int_0^u t^(a-1) (1 - t)^(b-1) dt`` [-].
-
-    Examples
-    --------
-    >>> bool(np.isclose(incomplete_beta(1.0), BETA_25_12))
-    True
-    """
-    u = check_nonnegative("u", u)
-    if np.any(u > 1.0):
-        raise ValueError(f"u must lie in [0, 1], got {float(np.max(u))!r}")
-    a = check_positive("a", a)
-    b = check_positive("b", b)
-    return evaluate(_special.incomplete_beta, u, a, b)[0]
-
-
-hertz_contact_time = array_function(
-    globals(),
-    "hertz_contact_time",
-    hertz.contact_time,
-    [
-        ("velocity", "velocity"),
-        ("effective_modulus", "positive"),
-        ("effective_radius", "positive"),
-        ("effective_mass", "positive"),
-    ],
-    ("contact_time", "Contact time ``t_c`` of the elastic impact"),
-    "Duration of a perfectly elastic Hertz impact, ``(4/5) B(2/5,1/2) alpha_m / V`` [s].",
-    notes="""
-        Equals ``2.868 (m*^2/(R* E*^2 V))^(1/5)``: the seed's eq. 30 with its exact
-        constant :data:`HERTZ_TIME_CONSTANT`. ``inf`` at ``V = 0`` (the limit), 0 at
-        ``V = inf``.
-    """,
-    examples="""
-        >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
-        >>> round(float(hertz_contact_time(7.6, 1.31e9, 2.45e-6, m)) * 1e6, 5)  # us
-        0.03347
-    """,
-)
-
-
-def deresiewicz_contact_time(
-    velocity, effective_modulus, effective_radius, effective_mass, constant=_special.HERTZ_TIME_CONSTANT_PRINTED
-):
-    """Deresiewicz's (1968) elastic contact time, ``t_c = 2.87 (m*^2/(R* E*^2 V))^(1/5)`` [s] (seed eq. 30).
-
-    ``constant`` is the seed's printed 2.87 by default; the exact value is
-    :data:`HERTZ_TIME_CONSTANT` (2.8683), which makes this :func:`hertz_contact_time`.
-
-    Parameters
-    ----------
-    velocity : array_like
-        Impact speed ``V`` [m/s], >= 0.
-    effective_modulus : array_like
-        Effective modulus ``E*`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-    effective_mass : array_like
-        Effective mass ``m*`` [kg].
-    constant : float, optional
-        Prefactor [-]; default 2.87, as printed in the seed.
-
-    Returns
-    -------
-    ndarray
-        Elastic contact time ``t_c`` [s].
-
-    Raises
-    ------
-    ValueError
-        If ``velocity`` is negative or a pair property is not positive.
-
-    Examples
-    --------
-    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
-    >>> round(float(deresiewicz_contact_time(7.6, 1.31e9, 2.45e-6, m)) * 1e6, 5)  # us; seed: 0.03348
-    0.03349
-    """
-    V = check_velocity("velocity", velocity)
-    E, R, m, _ = check_pair(effective_modulus, effective_radius, effective_mass, 1.0)
-    with np.errstate(divide="ignore", over="ignore"):  # huge V: the time tends to 0
-        return constant * (m**2 / (R * E**2 * V)) ** 0.2
-
-
-plastic_frequency = array_function(
-    globals(),
-    "plastic_frequency",
-    _seed.plastic_frequency,
-    [("limiting_pressure", "positive_or_inf"), ("effective_radius", "positive"), ("effective_mass", "positive")],
-    ("plastic_frequency", "Angular frequency ``omega``"),
-    "Angular frequency of the plastic stage, ``omega = (pi p_y R*/m*)^(1/2)`` [rad/s].",
-    notes="""
-        The plastic loading force (seed eq. 8) is linear in the approach with
-        stiffness ``pi p_y R*``, so stage 2 is a harmonic oscillation (eqs. 18-23).
-    """,
-)
-
-
-ning_loading_time = array_function(
-    globals(),
-    "ning_loading_time",
-    _seed.ning_loading_time,
-    [("limiting_pressure", "positive_or_inf"), ("effective_radius", "positive"), ("effective_mass", "positive")],
-    ("loading_time", "Loading time ``t_L`` in the limit ``V -> inf``"),
-    "Ning's (1995) loading time at high impact speed, ``t_L = (pi/2)(m*/(pi p_y R*))^(1/2)`` [s] (seed eq. 31).",
-    notes="""
-        The quarter period of the plastic-stage oscillation: the limit of ``t1 + t2`` as ``V -> inf``.
-    """,
-    examples="""
-        >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
-        >>> round(float(ning_loading_time(156e6, 2.45e-6, m)) * 1e6, 5)  # us; seed: 0.01307
-        0.01307
-    """,
-)
-
-
-def elastic_stage_time(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure):
-    """Duration ``t1`` of stage 1, Hertz loading up to yield or to rest [s] (seed eq. 20).
-
-    ``(2/5) (alpha_m/V) B(min(1, (V_y/V)^2); 2/5, 1/2)``, with ``alpha_m`` the
-    maximum approach of a purely elastic impact.
-
-    Parameters
-    ----------
-    velocity : array_like
-        Impact speed ``V`` [m/s], >= 0.
-    effective_modulus : array_like
-        Effective modulus ``E*`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-    effective_mass : array_like
-        Effective mass ``m*`` [kg].
-    limiting_pressure : array_like
-        Limiting contact pressure ``p_y`` [Pa] (``inf``: elastic impact).
-
-    Returns
-    -------
-    ndarray
-        Stage-1 time ``t1`` [s]; ``inf`` at ``V = 0``, 0 at ``V = inf``.
-
-    Raises
-    ------
-    ValueError
-        If ``velocity`` is negative or a pair property is not positive.
-
-    Examples
-    --------
-    Below the yield velocity stage 1 is the whole loading, half the Hertz contact time:
-
-    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
-    >>> t1 = elastic_stage_time(5.0, 1.31e9, 2.45e-6, m, 156e6)
-    >>> bool(np.isclose(2 * t1, hertz_contact_time(5.0, 1.31e9, 2.45e-6, m)))
-    True
-    """
-    return contact_times(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)[
-        "elastic_stage_time"
-    ]
-
-
-def plastic_stage_time(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure):
-    """Duration ``t2`` of stage 2, plastic loading to the maximum approach [s] (seed eq. 23).
-
-    ``(pi/2 - atan2(2 omega alpha_y/3, (V^2 - V_y^2)^(1/2))) / omega``
-    ``= atan2((V^2 - V_y^2)^(1/2), 2 omega alpha_y/3) / omega``; 0 for ``V <= V_y``;
-    tends to Ning's loading time (eq. 31) as ``V -> inf``.
-
-    Parameters
-    ----------
-    velocity : array_like
-        Impact speed ``V`` [m/s], >= 0.
-    effective_modulus : array_like
-        Effective modulus ``E*`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-    effective_mass : array_like
-        Effective mass ``m*`` [kg].
-    limiting_pressure : array_like
-        Limiting contact pressure ``p_y`` [Pa] (``inf``: elastic impact).
-
-    Returns
-    -------
-    ndarray
-        Stage-2 time ``t2`` [s].
-
-    Raises
-    ------
-    ValueError
-        If ``velocity`` is negative or a pair property is not positive.
-
-    Examples
-    --------
-    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
-    >>> float(plastic_stage_time(5.0, 1.31e9, 2.45e-6, m, 156e6))  # elastic impact
-    0.0
-    >>> round(float(plastic_stage_time(20.0, 1.31e9, 2.45e-6, m, 156e6)) * 1e6, 5)  # us
-    0.01012
-    """
-    return contact_times(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)[
-        "plastic_stage_time"
-    ]
-
-
-def unloading_time(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure):
-    """Duration ``t_U`` of stage 3, elastic unloading from ``alpha*`` to ``alpha_p`` [s] (seed eq. 26).
-
-    ``(2/5) B(2/5, 1/2) (alpha* - alpha_p) / V_r``; equals the loading time for ``V <= V_y``.
-
-    Parameters
-    ----------
-    velocity : array_like
-        Impact speed ``V`` [m/s], >= 0.
-    effective_modulus : array_like
-        Effective modulus ``E*`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-    effective_mass : array_like
-        Effective mass ``m*`` [kg].
-    limiting_pressure : array_like
-        Limiting contact pressure ``p_y`` [Pa] (``inf``: elastic impact).
-
-    Returns
-    -------
-    ndarray
-        Unloading time ``t_U`` [s]; 0 at ``V = inf``.
-
-    Raises
-    ------
-    ValueError
-        If ``velocity`` is negative or a pair property is not positive.
-    """
-    return contact_times(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)[
-        "unloading_time"
-    ]
-
-
-def contact_times(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure, outcome=None):
-    """All contact times of an impact, in closed form (seed eqs. 20, 23, 26, 32, 33) [s].
-
-    Parameters
-    ----------
-    velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure : array_like
-        As for :func:`microimpact.impact.impact_outcome`; they broadcast.
-    outcome : dict, optional
-        The result of :func:`~microimpact.impact.impact_outcome` for the same inputs,
-        to avoid computing it again (its velocity and yield velocity are reused, and the
-        inputs, which it checked, are not checked again).
-
-    Returns
-    -------
-    dict of ndarray
-        ``elastic_stage_time`` ``t1``, ``plastic_stage_time`` ``t2``,
-        ``loading_time`` ``t_L = t1 + t2`` (eq. 32), ``unloading_time`` ``t_U``,
-        ``contact_time`` ``t_c = t_L + t_U`` (eq. 33). At ``V = 0`` every time
-        is ``inf`` (the elastic limit ``t ~ V^(-1/5)``); at ``V = inf``,
-        ``t1 = t_U = 0`` and ``t2`` is Ning's time (eq. 31).
-    """
-    if outcome is None or "contact_time" not in outcome:
-        V = check_velocity("velocity", velocity)
-        E, R, m, p_y = check_pair(effective_modulus, effective_radius, effective_mass, limiting_pressure)
-        outcome = outcome_arrays(_seed, V, E, R, m, p_y, ())
-    return {name: outcome[name] for name in TIME_FIELDS}
-
-
-#: The contact times of an impact (seed eqs. 20, 23, 32, 26, 33), in the order of the outcome.
-TIME_FIELDS = ("elastic_stage_time", "plastic_stage_time", "loading_time", "unloading_time", "contact_time")
-
-
 #: Stage codes of a history.
-STAGE_NAMES = {
-    0: "no contact (free flight before first contact or after separation)",
-    1: "Hertz loading (eq. 2)",
-    2: "plastic loading (eq. 8)",
-    3: "elastic unloading (eq. 10)",
-}
+STAGE_NAMES = {0: "no contact (free flight before first contact or after separation)", **_seed.STAGES}
 #: Stage codes of a history of any other model (loading to the maximum approach, then unloading).
 GENERIC_STAGE_NAMES = {0: STAGE_NAMES[0], 1: "loading", 3: "unloading"}
 
@@ -408,171 +134,6 @@ HISTORY_SCALARS: dict[str, tuple[str, str]] = quantities.table(
         "limiting_pressure",
     )
 )
-
-
-def _hertz_fraction(x, xc):
-    """``u = I^-1_x(2/5, 1/2)`` and ``1 - u``, given ``x`` and its complement ``xc = 1 - x`` (both exact).
-
-    The core's :func:`~microimpact.core.special.incomplete_beta_inverse` (no scipy: importing
-    ``scipy.special`` cost more than the rest of ``microimpact history``).
-    """
-    x = np.clip(x, 0.0, 1.0)
-    xc = np.clip(xc, 0.0, 1.0)
-    low = x <= 0.5
-    u = np.empty_like(x)
-    w = np.empty_like(x)
-    B = np.asarray(BETA_25_12)
-    u[low] = evaluate(_special.incomplete_beta_inverse, x[low], np.asarray(0.4), np.asarray(0.5), B)[0]
-    w[low] = 1.0 - u[low]
-    w[~low] = evaluate(_special.incomplete_beta_inverse, xc[~low], np.asarray(0.5), np.asarray(0.4), B)[0]
-    u[~low] = 1.0 - w[~low]
-    return u, w
-
-
-def impact_history(
-    velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure, n=1001, times=None
-):
-    """Time history of one impact in closed form: approach, velocity, force and stage (seed eqs. 17-26).
-
-    Stages 1 (Hertz loading) and 3 (elastic unloading) follow by inverting the
-    incomplete beta function of the contact-time integrals (eqs. 20, 26), stage 2
-    (plastic loading, eq. 8) is a sinusoid about ``alpha_y/3`` (eqs. 21-23). An
-    elastic impact (``V <= V_y``, or ``p_y = inf``: the seed's "equivalent elastic
-    impact") has stages 1 and 3 only, symmetric about ``t_L``.
-
-    Parameters
-    ----------
-    velocity : float
-        Impact speed ``V`` [m/s], positive and finite.
-    effective_modulus, effective_radius, effective_mass, limiting_pressure : float
-        ``E*`` [Pa], ``R*`` [m], ``m*`` [kg], ``p_y`` [Pa] (``inf`` allowed).
-    n : int, optional
-        Number of points spaced uniformly on ``[0, t_c]``; the stage boundaries
-        ``t1`` and ``t_L`` are added to them (so the grid may hold ``n + 2`` points).
-    times : array_like, optional
-        Times [s] since first contact at which to evaluate instead (any order).
-        Outside ``[0, t_c]`` the bodies are apart (stage 0, force 0): the approach is
-        ``V t`` (negative, a gap) before contact and ``alpha_p - V_r (t - t_c)`` after
-        separation, the velocity ``V`` and ``-V_r``.
-
-    Returns
-    -------
-    dict
-        Arrays ``time`` [s], ``approach`` ``alpha`` [m], ``approach_velocity``
-        ``dalpha/dt`` [m/s] (``+V`` at first contact, ``-V_r`` at separation),
-        ``force`` ``P`` [N], ``stage`` (int: 0 no contact, 1 Hertz loading, 2 plastic
-        loading, 3 elastic unloading; a boundary time belongs to the stage it ends),
-        and the scalars of :data:`HISTORY_SCALARS` (``rebound_velocity``,
-        ``max_approach``, ``max_force``, ``loading_time``, ``contact_time``, ...).
-        :class:`ImpactHistory` takes it as keyword arguments.
-
-    Examples
-    --------
-    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350
-    >>> h = impact_history(50.0, 1.31e9, 2.45e-6, m, 156e6, n=5)
-    >>> h["stage"].tolist()
-    [1, 1, 2, 2, 2, 3, 3]
-    >>> round(float(h["approach_velocity"][-1]), 2)  # -V_r; seed: 36.31
-    -36.24
-    """
-    V, E, R, m, p_y = _history.scalar_pair(
-        velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure
-    )
-    outcome = impact_outcome(V, E, R, m, p_y)
-    out = {k: float(np.asarray(v)) for k, v in outcome.items()}
-    tm = contact_times(V, E, R, m, p_y, outcome=outcome)
-    t1, t2, t_L, t_U, t_c = (
-        float(tm[k])
-        for k in ("elastic_stage_time", "plastic_stage_time", "loading_time", "unloading_time", "contact_time")
-    )
-    elastic = bool(out["elastic"])
-    a_star, a_p, P_star, V_r = out["max_approach"], out["plastic_approach"], out["max_force"], out["rebound_velocity"]
-    alpha_m = float(elastic_max_approach(V, E, R, m))
-    T_m = hertz.rise_time(alpha_m, V)  # time of a purely elastic impact to reach alpha_m
-
-    t = _history.time_grid(n, times, (t1, t_L), t_c)
-    stage = _history.stage_of(t, t1, t_L, t_c)
-    approach, vel = _history.free_flight(t, V, t_c, a_p, V_r)
-    force = np.zeros_like(t)
-
-    # Stage 1: Hertz loading (eqs. 2, 17, 20).
-    s1 = stage == 1
-    if elastic:  # x reaches 1 at t_L = T_m
-        u, w = _hertz_fraction(t[s1] / T_m, (t_L - t[s1]) / T_m)
-    else:
-        u, w = _hertz_fraction(t[s1] / T_m, 1.0 - t[s1] / T_m)
-    approach[s1] = alpha_m * u**0.4
-    vel[s1] = V * np.sqrt(w)
-    force[s1] = hertz.force(alpha_m, E, R) * u**0.6  # P = P_m (alpha/alpha_m)^(3/2)
-
-    # Stage 2: plastic loading, harmonic about alpha_y/3 (eqs. 8, 18-23).
-    s2 = stage == 2
-    if np.any(s2):
-        omega = float(plastic_frequency(p_y, R, m))
-        a_y = float(contact.yield_approach(p_y, E, R))
-        amp = a_star - a_y / 3.0
-        phase = omega * (t_L - t[s2])
-        approach[s2] = a_y / 3.0 + amp * np.cos(phase)
-        vel[s2] = amp * omega * np.sin(phase)
-        force[s2] = np.pi * p_y * R * amp * np.cos(phase)
-
-    # Stage 3: elastic unloading, the time reverse of a Hertz impact at V_r (eqs. 10, 24-26).
-    s3 = stage == 3
-    u, w = _hertz_fraction((t_c - t[s3]) / t_U, (t[s3] - t_L) / t_U)
-    approach[s3] = a_p + (a_star - a_p) * u**0.4
-    vel[s3] = -V_r * np.sqrt(w)
-    force[s3] = P_star * u**0.6
-
-    return {
-        "time": t,
-        "approach": approach,
-        "approach_velocity": vel,
-        "force": force,
-        "stage": stage,
-        "velocity": V,
-        "rebound_velocity": V_r,
-        "max_approach": a_star,
-        "plastic_approach": a_p,
-        "max_force": P_star,
-        "elastic_stage_time": t1,
-        "plastic_stage_time": t2,
-        "loading_time": t_L,
-        "unloading_time": t_U,
-        "contact_time": t_c,
-        "yield_velocity": out["yield_velocity"],
-        "effective_modulus": E,
-        "effective_radius": R,
-        "effective_mass": m,
-        "limiting_pressure": p_y,
-    }
-
-
-def hertz_force_along(history, loading_only=True):
-    """Hertz force ``4/3 E* R*^(1/2) alpha^(3/2)`` evaluated along an elastic-plastic history [N] (eq. 2).
-
-    The seed's Fig. 7 "equivalent Hertz force during the loading process": the
-    force the same approach would need if the contact stayed elastic. It exceeds
-    the actual force once the contact yields (``t > t1``).
-
-    Parameters
-    ----------
-    history : ImpactHistory or dict
-        From :func:`impact_history`, :func:`integrate_impact` or :meth:`ContactPair.history`.
-    loading_only : bool
-        If True (default), NaN outside the loading stages 1 and 2.
-
-    Returns
-    -------
-    ndarray
-        Force [N] at each time of the history.
-    """
-    get = history.get if isinstance(history, dict) else (lambda k: getattr(history, k))
-    alpha = np.maximum(np.asarray(get("approach"), dtype=float), 0.0)
-    F = 4.0 / 3.0 * get("effective_modulus") * np.sqrt(get("effective_radius")) * alpha**1.5
-    if loading_only:
-        stage = np.asarray(get("stage"))
-        F = np.where((stage == 1) | (stage == 2), F, np.nan)
-    return F
 
 
 # ============================================================================ the history object

@@ -255,6 +255,12 @@ def yield_approach(p_y, E, R):
 
 
 @jitable
+def yield_force(p_y, E, R):
+    """Force at first yield, ``P_y = 4/3 E* R*^(1/2) alpha_y^(3/2)`` [N] (eq. 7): Hertz at ``alpha_y``."""
+    return hertz.force(yield_approach(p_y, E, R), E, R)
+
+
+@jitable
 def plastic_loading_force(alpha, E, R, p_y):
     """Plastic loading force ``P_y + pi p_y R* (alpha - alpha_y)`` [N] (eqs. 6, 8), for ``alpha >= alpha_y``."""
     a_y = yield_approach(p_y, E, R)
