@@ -61,3 +61,21 @@ def test_universal_data_limits_and_plot():
     assert len(ax.get_lines()) == 3 + 1  # two compliant curves, the rigid one, the zero line
     np.testing.assert_array_equal(ax.get_lines()[0].get_xdata(), psi)
     plt.close(ax.figure)
+
+
+@pytest.mark.parametrize(
+    "models, ncol", [(("mindlin", "rigid"), 2), (("mindlin", "mindlin_deresiewicz", "di_renzo_di_maio"), 1)]
+)
+def test_the_legend_fits_the_figure(models, ncol):
+    # two columns where they fit the 3.5 in figure; a long label (Mindlin-Deresiewicz's) takes one column, not the
+    # page's edge (its two columns ran 0.4 in past the right edge, cutting "Kharaz et al. 2001")
+    axes = fo.plot_oblique(models=models, angle=[5.0, 30.0, 60.0])
+    fig = axes[0].figure
+    try:
+        fig.canvas.draw()  # laid out as when saved
+        (leg,) = fig.legends
+        box = leg.get_window_extent(fig.canvas.get_renderer())
+        assert leg._ncols == ncol
+        assert box.x0 >= 0.0 and box.x1 <= fig.bbox.width
+    finally:
+        plt.close(fig)

@@ -154,7 +154,14 @@ def plot_oblique(pair=None, axes=None, *, measured=True, table=None, labels=None
         axes[-1].set_xlabel("impact angle from the normal [deg]")
         axes[-1].set_xlim(0, 90)
         handles, labels = axes[0].get_legend_handles_labels()
-        axes[0].figure.legend(handles, labels, loc="outside upper center", ncol=2, columnspacing=0.8, handlelength=2.2)
+        fig = axes[0].figure
+        for ncol in (2, 1):  # two columns where they fit the figure's width, else one
+            leg = fig.legend(
+                handles, labels, loc="outside upper center", ncol=ncol, columnspacing=0.8, handlelength=2.2
+            )
+            if ncol == 1 or leg.get_window_extent(fig.canvas.get_renderer()).width <= 0.98 * fig.bbox.width:
+                break
+            leg.remove()
     return axes
 
 
