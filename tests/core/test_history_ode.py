@@ -164,3 +164,25 @@ def test_stages_and_csv_of_a_model_history(tmp_path):
     assert "model luding_hysteretic" in text.splitlines()[1]
     back = np.loadtxt(path, delimiter=",", comments="#", skiprows=1)
     np.testing.assert_array_equal(back[:, 0], h.time)
+    np.testing.assert_array_equal(back[:, 0], h.time)
+
+
+@pytest.mark.parametrize("name", ["thornton_ning_2016", "liggghts_thornton_ning"])
+def test_a_second_loading_stage_is_located_and_timed(name):
+    """A model that declares ``stage_two_approach`` (the seed's loading: Hertz to the yield approach,
+    then plastic) has its integrated history split there: stage 2 begins at the yield approach, and
+    the two stage times are the integration's own, equal to the closed form's."""
+    from microimpact import contact
+
+    closed = SILICON.impact(50.0, model=name, warn=False)
+    h = SILICON.history(50.0, model=name, method="ode", n=201)
+    assert set(np.unique(h.stage)) == {1, 2, 3}
+    for key in ("elastic_stage_time", "plastic_stage_time", "loading_time"):
+        assert getattr(h, key) == pytest.approx(float(getattr(closed, key)), rel=1e-9), key
+    (at,) = np.flatnonzero(h.time == h.elastic_stage_time)  # the boundary is on the grid
+    assert h.stage[at] == 1 and h.stage[at + 1] == 2
+    a_y = float(contact.yield_approach(*SILICON._args[3:], *SILICON._args[:2]))
+    assert h.approach[at] == pytest.approx(a_y, rel=1e-9)
+    # below the yield velocity there is no second stage
+    low = SILICON.history(0.5 * SILICON.yield_velocity, model=name, method="ode", n=51)
+    assert set(np.unique(low.stage)) == {1, 3} and low.plastic_stage_time == 0.0

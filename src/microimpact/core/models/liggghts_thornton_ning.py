@@ -135,6 +135,8 @@ PARAMETERS = ()
 BOUNDS, validate = checks(NAME, PARAMETERS)
 #: Its loading is the seed's, so its history has the seed's stages.
 STAGES = seed.STAGES
+#: Its loading is the seed's: Hertz up to the yield approach, then plastic (the seed's stage 2).
+stage_two_approach = seed.stage_two_approach
 
 
 @jitable
