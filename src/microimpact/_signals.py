@@ -159,10 +159,17 @@ def running_as_command() -> bool:
 
 def _unraisable(unraisable):
     """Python prints an exception raised where it cannot propagate (a weakref callback, a ``__del__``):
-    for our interrupt, say nothing -- it is pending, and :func:`check` or the watchdog acts on it."""
-    if isinstance(unraisable.exc_value, Interrupted):
+    for our interrupt, say nothing -- it is pending, and :func:`check` or the watchdog acts on it. Once
+    an interrupt is pending, say nothing of the others either: they come from what the interrupt cut
+    short (an object half built when it came, whose ``__del__`` then fails: llvmlite's ``PassBuilder``
+    interrupted inside numba's compiler)."""
+    if isinstance(unraisable.exc_value, Interrupted) or _state["pending"] is not None:
         return
     (_state["hook"] or sys.__unraisablehook__)(unraisable)
+
+
+def _silent(unraisable):
+    """The hook of a process leaving after an interrupt (:func:`restore` with ``exiting``)."""
 
 
 def install() -> None:
@@ -182,8 +189,13 @@ def install() -> None:
             pass
 
 
-def restore() -> None:
-    """The handlers from before :func:`install`; the watchdog disarmed; nothing pending."""
+def restore(exiting: bool = False) -> None:
+    """The handlers from before :func:`install`; the watchdog disarmed; nothing pending.
+
+    ``exiting``: the process ends now after an interrupt (the command's entry point): exceptions
+    Python cannot raise (in a ``__del__`` the garbage collector runs on the way out) stay unreported,
+    for they come from what the interrupt cut short.
+    """
     timer = _state["timer"]
     if timer is not None:
         timer.cancel()
@@ -197,5 +209,5 @@ def restore() -> None:
     _state["old"] = {}
     _state["pending"] = None
     if sys.unraisablehook is _unraisable:
-        sys.unraisablehook = _state["hook"] or sys.__unraisablehook__
+        sys.unraisablehook = _silent if exiting else (_state["hook"] or sys.__unraisablehook__)
         _state["hook"] = None

@@ -144,9 +144,10 @@ class _NamedStdout:
         return getattr(self._stream, name)
 
 
-def main(argv=None) -> int:
+def main(argv=None, *, _exiting=False) -> int:
     """Entry point of the ``microimpact`` command; returns the exit status."""
     _signals.install()  # from the start: a signal while parsing is an interrupt too (microimpact._signals)
+    interrupted = False
     try:
         return _main(argv)
     except BaseException as exc:
@@ -157,11 +158,12 @@ def main(argv=None) -> int:
             signum = signal.SIGINT
         if signum is None:
             raise
+        interrupted = True
         _signals.cleanup()
         print(_signals.message(signum), file=sys.stderr)
         return 128 + int(signum)
     finally:
-        _signals.restore()
+        _signals.restore(exiting=_exiting and interrupted)
 
 
 def _main(argv):
@@ -223,7 +225,7 @@ def console_main() -> int:
     keep a SIGTERM'd run alive. (Called in a running program, it leaves SIGINT and SIGTERM
     ignored: use :func:`main` there.)
     """
-    rc = main()
+    rc = main(_exiting=True)
     for sig in (signal.SIGINT, signal.SIGTERM):
         try:
             signal.signal(sig, signal.SIG_IGN)
