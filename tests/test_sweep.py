@@ -427,3 +427,33 @@ def test_core_import_needs_no_extras():
     res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert res.returncode == 0, res.stderr
     assert float(res.stdout) == pytest.approx(0.7248, abs=1e-4)
+
+
+def test_small_cli_sweep_skips_dask_and_a_later_lazy_sweep_still_works(tmp_path):
+    """A sweep of one block is computed and written without importing dask.array (xarray is told
+    no dask array exists while none can); the file equals a chunked sweep's bit for bit, and a lazy
+    sweep afterwards in the same process is lazy and right (the context withdrew its answer)."""
+    code = f"""
+import sys
+from microimpact.cli import main
+assert main(["sweep", "--velocity", "1:120:30", "--density", "1000,2000", "--no-progress",
+             "--out", r"{tmp_path / "eager.nc"}"]) == 0
+assert "dask.array" not in sys.modules
+assert main(["sweep", "--velocity", "1:120:30", "--density", "1000,2000", "--chunks", "7", "--no-progress",
+             "--out", r"{tmp_path / "lazy.nc"}"]) == 0
+import dask.array as da, numpy as np, xarray as xr
+from microimpact.sweep import sweep
+import microimpact as mi
+lazy = sweep(velocity=np.linspace(1, 120, 30), density=[1000.0, 2000.0], base=mi.ContactPair.paper_case("silicon"),
+             chunks=7)
+assert isinstance(lazy["restitution"].data, da.Array)
+with xr.open_dataset(r"{tmp_path / "eager.nc"}") as a, xr.open_dataset(r"{tmp_path / "lazy.nc"}") as b:
+    xr.testing.assert_identical(a, b)
+    for v in a.data_vars:
+        assert a[v].values.tobytes() == b[v].values.tobytes(), v
+    np.testing.assert_array_equal(lazy["restitution"].values, a["restitution"].values)
+print("ok")
+"""
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr[-3000:]
+    assert res.stdout.strip().endswith("ok")
