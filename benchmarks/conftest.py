@@ -27,6 +27,7 @@ are formed from those best times and printed as one table, and written as JSON w
     against ``python -c "import numpy"`` run in turn with it.
 12. ``fit_models``: a fit of each model against the seed's fit on the same data, as the library
     runs it (``e`` alone) and with ``e`` from the full outcome (before issue 25).
+13. ``csv_sweep``: a sweep written to CSV against the same sweep written to NetCDF.
 
 No benchmark asserts a timing; accuracies (closed form against ODE, every path against the
 reference restitution) are asserted.
@@ -67,6 +68,7 @@ TARGETS = {
     "warm_start": "oblique --alumina, a first compliant wall_interaction, export --tangential mindlin: "
     "each <= 0.3 s in a new process with the cache warm",
     "fit_models": "any model's fit <= 5x the seed's on the same data (ranking computes only e)",
+    "csv_sweep": "a sweep (1e7 points at full size) to CSV <= 3x the same sweep to NetCDF",
 }
 
 TITLES = {
@@ -82,6 +84,7 @@ TITLES = {
     "c_wall": "the exported C wall function, in a C loop",
     "warm_start": "warm start of what needs the oblique universal table",
     "fit_models": "a fit of each model vs a fit of the seed (fit --models ranking)",
+    "csv_sweep": "a sweep to CSV vs the same sweep to NetCDF",
 }
 
 ORDER = list(TARGETS)
@@ -387,6 +390,11 @@ def _entry(key, rec: Record) -> dict | None:
                 )
             if over:
                 headline += f"; {len(over)} over 5x"
+    elif key == "csv_sweep" and {"CSV", "NetCDF"} <= set(t):
+        r = t["CSV"] / t["NetCDF"]
+        met = bool(r <= 3.0) if rec.mode == "full" else None  # the goal is set at 1e7 points
+        headline = f"{r:.3g}x NetCDF ({m.get('points', 0):.0e} points)"
+        rows = [("NetCDF", _fmt_t(t["NetCDF"])), ("CSV", f"{_fmt_t(t['CSV'])} = {r:.3g}x NetCDF")]
     elif key == "paper" and "end to end" in t:
         s = t["end to end"]
         met = bool(s < 20.0)
