@@ -94,7 +94,7 @@ SWEEP_VARIABLES: dict[str, tuple[str, str]] = {
 
 
 #: Points per block when ``chunks="auto"`` (about 40 MB of results and temporaries per block).
-_AUTO_BLOCK_POINTS = 1 << 17
+AUTO_BLOCK_POINTS = 1 << 17
 #: Peak memory per evaluated point [bytes]: the ~20 stacked result fields and the kernel's temporaries.
 _BYTES_PER_POINT = 600
 #: Points per slab written to CSV: bounds the memory of :func:`sweep_to_csv` (about 200 MB).
@@ -222,7 +222,7 @@ def _normalize_chunks(chunks, dims, shape):
         if chunks != "auto":
             raise ValueError(f"chunks must be an int, a dict or 'auto', got {chunks!r}")
         da = require("dask.array", "lazy sweeps (chunks=)")
-        norm = da.core.normalize_chunks("auto", shape, limit=_AUTO_BLOCK_POINTS * 8, dtype=np.float64)
+        norm = da.core.normalize_chunks("auto", shape, limit=AUTO_BLOCK_POINTS * 8, dtype=np.float64)
         return {d: c for d, c in zip(dims, norm)}
     if isinstance(chunks, dict):
         unknown = [k for k in chunks if k not in dims]
