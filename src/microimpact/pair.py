@@ -28,6 +28,7 @@ from ._validation import (
 )
 from .core import adhesion as _adhesion
 from .core import models, quantities
+from .core.arrays import evaluate as _evaluate
 from .core.constants import LARGE_STRAIN_RATIO
 from .core.models import thornton_ning_1998_adhesive_plastic as _whole_law
 from .core.models import thornton_ning_2016 as _seed
@@ -1197,7 +1198,9 @@ class ContactPair:
             if not 0.0 <= V < math.inf:
                 check_velocity("velocity", V)
             return np.float64(_seed.restitution_at(V, self.yield_velocity))
-        return _scalar_or_array(impact.restitution_coefficient(velocity, self.yield_velocity))
+        # the pair's own V_y was checked with the pair: only the speeds are (a fixed cost per call)
+        V = check_velocity("velocity", velocity)
+        return _scalar_or_array(_evaluate(_seed.restitution_at, V, self.yield_velocity)[0])
 
     def dem_time_step(self, velocity, *, model: str = models.DEFAULT, steps_per_contact=50, **params) -> float:
         """A DEM time step [s] that resolves the contact: the shortest contact time of ``model`` at
