@@ -71,6 +71,7 @@ _COST: dict = {}  # measured serial time per element [s] of each compiled loop
 _PY_COST: dict = {}  # measured time of one Python call [s] of each function
 
 _KERNELS: dict = {}
+_READY: set = set()  # compiled loops called once already in this process (loaded or compiled)
 _LOCK_NAMES: dict = {}  # compiled loop -> (folder, name) of its file lock
 _LOCK = threading.Lock()  # dask evaluates blocks in threads: one thread builds a loop, the others wait
 
@@ -343,7 +344,11 @@ def _call(kernel, n, inputs, params, out):
     That first call compiles the loop or loads it from numba's cache: processes started together
     on an empty cache so compile it once, the others wait and then load it (:func:`~.cache.locked`).
     """
+    if kernel in _READY:  # (kernel.signatures builds a list of them: 1.7 us a call)
+        kernel(n, *inputs, params, out)
+        return
     if kernel.signatures:
+        _READY.add(kernel)
         kernel(n, *inputs, params, out)
         return
     folder, stem = _LOCK_NAMES.get(kernel, (None, None))
