@@ -30,6 +30,7 @@ __all__ = [
     "ADHESION_RULES",
     "WHOLE_LAW",
     "check_adhesion_rule",
+    "whole_law_correction",
     "whole_law_restitution",
     "WholeLawTable",
     "whole_law_table",
@@ -182,11 +183,7 @@ def adhesive_restitution(velocity, yield_velocity, sticking_velocity):
     >>> adhesive_restitution([0.5, 2.0, 50.0], 7.52, 1.0).round(4)
     array([0.    , 0.866 , 0.7245])
     """
-    V = check_nonnegative("velocity", velocity)
-    if np.any(np.isinf(V)):
-        raise ValueError(f"velocity must be finite, got {float(V[np.isinf(V)].flat[0])!r}")
-    Vy = check_positive("yield_velocity", yield_velocity, allow_inf=True)
-    Vs = check_nonnegative("sticking_velocity", sticking_velocity)
+    V, Vy, Vs = _checked_speeds(velocity, yield_velocity, sticking_velocity)
     return evaluate(_core.restitution, V, Vy, Vs, nout=2)[0]
 
 
@@ -305,11 +302,61 @@ def whole_law_table(*, t_min=-1.0, t_max=3.0, n_t=161, y_max=10.0, n_u=81) -> Wh
     return _whole_law_table(t_min, t_max, int(n_t), y_max, int(n_u))
 
 
+def _checked_speeds(velocity, yield_velocity, sticking_velocity):
+    V = check_nonnegative("velocity", velocity)
+    if np.any(np.isinf(V)):
+        raise ValueError(f"velocity must be finite, got {float(V[np.isinf(V)].flat[0])!r}")
+    Vy = check_positive("yield_velocity", yield_velocity, allow_inf=True)
+    Vs = check_nonnegative("sticking_velocity", sticking_velocity)
+    return V, Vy, Vs
+
+
+def whole_law_correction(velocity, yield_velocity, sticking_velocity):
+    """The whole law's correction ``D`` to the additive rule's ``e^2``, read from its table.
+
+    ``D(V/V_y, V_s/V_y)`` interpolated in :func:`whole_law_table` at the two groups of each point:
+    what the whole adhesive elastic-plastic law of Thornton & Ning (1998) adds to the additive rule,
+    ``e^2 = e_p(V/V_y)^2 - (V_s/V)^2 + D`` (:func:`microimpact.core.adhesion.whole_law_correction`
+    at the nodes). The one lookup behind :func:`whole_law_restitution`, the wall's
+    ``adhesion="thornton_ning_1998_adhesive_plastic"`` (:func:`~microimpact.wall.wall_interaction`)
+    and the C export's tables. Where ``V_y = inf`` (a pair that never yields) both groups are 0
+    (``D = 0``: the whole law is the additive rule there).
+
+    Parameters
+    ----------
+    velocity : array_like
+        Normal impact speed ``V`` [m/s], finite, >= 0.
+    yield_velocity : array_like
+        ``V_y`` [m/s] (seed eq. 28), > 0; ``inf`` for a wall that never yields.
+    sticking_velocity : array_like
+        ``V_s`` [m/s] (Thornton & Ning 1998, eq. 54: :func:`sticking_velocity`), >= 0.
+
+    Returns
+    -------
+    D : ndarray
+        The correction to ``e^2`` [-], broadcast shape of the inputs.
+    outside_table : ndarray of bool
+        True where ``V/V_y`` or ``V_s/V_y`` lies beyond the table (its edge's value was used;
+        flagged, not refused).
+
+    Examples
+    --------
+    >>> D, outside = whole_law_correction([20.0, 50.0, 1e4], 7.52, 1.0)  # V/V_y = 1330: beyond the table
+    >>> D.round(4), outside
+    (array([-0.0065,  0.0062,  0.0009]), array([False, False,  True]))
+    """
+    V, Vy, Vs = np.broadcast_arrays(*_checked_speeds(velocity, yield_velocity, sticking_velocity))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x = np.where(Vy < math.inf, V / Vy, 0.0)
+        y = np.where(Vy < math.inf, Vs / Vy, 0.0)
+    return whole_law_table()(x, y)
+
+
 def whole_law_restitution(velocity, yield_velocity, sticking_velocity):
     """Normal restitution of Thornton & Ning's whole law through its table, as the wall computes it.
 
     ``e^2 = e_p(V/V_y)^2 - (V_s/V)^2 + D(V/V_y, V_s/V_y)`` with ``D`` interpolated in
-    :func:`whole_law_table` and the particle sticking (``e = 0``) where that is not positive
+    :func:`whole_law_table` (:func:`whole_law_correction`) and the particle sticking (``e = 0``) where that is not positive
     (:func:`microimpact.core.adhesion.corrected_restitution`): the operations of
     :func:`~microimpact.wall.wall_interaction` with ``adhesion="thornton_ning_1998_adhesive_plastic"``
     (and of the C export) for a head-on impact, so tables written with it
@@ -338,16 +385,9 @@ def whole_law_restitution(velocity, yield_velocity, sticking_velocity):
     >>> e.round(4), outside
     (array([0.    , 0.866 , 0.7287]), array([False, False, False]))
     """
-    V = check_nonnegative("velocity", velocity)
-    if np.any(np.isinf(V)):
-        raise ValueError(f"velocity must be finite, got {float(V[np.isinf(V)].flat[0])!r}")
-    Vy = check_positive("yield_velocity", yield_velocity, allow_inf=True)
-    Vs = check_nonnegative("sticking_velocity", sticking_velocity)
+    V, Vy, Vs = _checked_speeds(velocity, yield_velocity, sticking_velocity)
     V, Vy, Vs = (np.array(a, dtype=float) for a in np.broadcast_arrays(V, Vy, Vs))
-    with np.errstate(divide="ignore", invalid="ignore"):  # as wall_interaction's prepass
-        x = np.where(Vy < math.inf, V / Vy, 0.0)
-        y = np.where(Vy < math.inf, Vs / Vy, 0.0)
-    D, outside = whole_law_table()(x, y)
+    D, outside = whole_law_correction(V, Vy, Vs)
     e = evaluate(_core.corrected_restitution, V, Vy, Vs, np.asarray(D, dtype=float), nout=2)[0]
     return np.where((V == 0.0) & (Vs > 0.0), 0.0, e), outside
 
