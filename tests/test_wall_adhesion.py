@@ -359,6 +359,45 @@ def test_adhesion_is_checked():
     assert ADHESION_RULES == ("additive", WHOLE_LAW)
 
 
+def test_adhesion_rules_come_from_the_model_declarations(tmp_path, monkeypatch):
+    """The rules are the additive one and each model declaring WALL_ADHESION; a model declaring
+    WALL_REFUSAL is refused with its reason: the DMT law's, and a user's model's, registered from a
+    temporary package with no file of microimpact edited."""
+    import re
+    import textwrap
+
+    from microimpact.adhesion import ADDITIVE_RULE, check_adhesion_rule
+    from microimpact.core import models
+
+    laws = [n for n in models.available() if models.get(n).WALL_ADHESION]
+    assert ADHESION_RULES == (ADDITIVE_RULE, *laws) and laws == [WHOLE_LAW]
+    refused = [n for n in models.available() if models.get(n).WALL_REFUSAL]
+    assert refused  # the DMT law
+    for n in refused:
+        with pytest.raises(ValueError, match=re.escape(f"got {n!r}: {models.get(n).WALL_REFUSAL}")):
+            check_adhesion_rule(n)
+    package = "zoo_wall_refusal"
+    (tmp_path / package).mkdir()
+    (tmp_path / package / "__init__.py").write_text("")
+    (tmp_path / package / "user_law.py").write_text(
+        textwrap.dedent(
+            """
+            NAME = "user_law"
+            TITLE = "a test's law"
+            WALL_REFUSAL = "a test's reason"
+            outcome = force = None
+            """
+        )
+    )
+    monkeypatch.syspath_prepend(str(tmp_path))
+    models.register_path(package)
+    try:
+        with pytest.raises(ValueError, match="--adhesion must be one of .*, got 'user_law': a test's reason$"):
+            check_adhesion_rule("user_law", "--adhesion")
+    finally:
+        models.unregister_path(package)
+
+
 # ----------------------------------------------------------------------------- the C source
 _FLAGGED_DRIVER = r"""
 #include <stdio.h>

@@ -20,13 +20,15 @@ from ._validation import check_nonnegative, check_positive
 from .core import adhesion as _core
 from .core.adhesion import STICKING_CONSTANT  # noqa: F401  (its old home; the core's is the one)
 from .core.arrays import evaluate
-from .core.models import dmt_elastic_adhesive as _dmt
-from .core.models import thornton_ning_1998_adhesive_plastic as _whole_law
+from .core.models import Parameter, declare
 
 __all__ = [
     "work_of_adhesion",
     "sticking_velocity",
     "adhesive_restitution",
+    "ADDITIVE_RULE",
+    "ADDITIVE",
+    "FIT_RULES",
     "ADHESION_RULES",
     "WHOLE_LAW",
     "check_adhesion_rule",
@@ -36,34 +38,100 @@ __all__ = [
     "whole_law_table",
 ]
 
-#: The whole adhesive elastic-plastic law of Thornton & Ning (1998), by its model name
-#: (:mod:`~microimpact.core.models.thornton_ning_1998_adhesive_plastic`).
-WHOLE_LAW = _whole_law.NAME
-#: What ``adhesion=`` of :func:`~microimpact.wall.wall_interaction` and the C export accept:
-#: the additive rule (:func:`adhesive_restitution`, the default) or the whole law (through
-#: :func:`whole_law_table`).
-ADHESION_RULES = ("additive", WHOLE_LAW)
+#: The name of Thornton & Ning's (1998) additive rule (:func:`adhesive_restitution`): the wall's default
+#: ``adhesion=``, and a candidate of :func:`~microimpact.fitting.fit_restitution` and
+#: :func:`~microimpact.fitting.rank_models` beside the models (:data:`ADDITIVE`).
+ADDITIVE_RULE = "additive"
+
+
+class _AdditiveRule:
+    """Thornton & Ning's (1998) additive rule as a candidate of fitting and ranking
+    (:data:`ADDITIVE_RULE`): the seed's ``e_p(V/V_y)`` (eq. 27) with the adhesive loss
+    ``e^2 = e_p^2 - (V_s/V)^2``, stuck where ``e_p V <= V_s`` (:func:`adhesive_restitution`; ``V_s``
+    their eq. 54). It is a rule for ``e``, not a model of the zoo (no force law, no contact times):
+    it is fitted and ranked only. Declared to the model contract for its parameter spec."""
+
+    NAME = ADDITIVE_RULE
+    TITLE = "Thornton & Ning (1998) additive rule: e^2 = e_p^2 - (V_s/V)^2 (seed eq. 27, TN98 eq. 54)"
+    PARAMETERS = (
+        Parameter("work_of_adhesion", "J/m^2", "G >= 0, the work of adhesion (TN98's interface energy)", low=0.0),
+    )
+    STICKS = True
+    outcome = None  # e alone, by restitution_of_pair
+    force = None
+
+    @staticmethod
+    def restitution_of_pair(pair, params, V):
+        """``e`` [-] at speeds ``V`` [m/s] for ``pair`` (a :class:`~microimpact.pair.ContactPair`)
+        and ``params = (G,)``: :func:`adhesive_restitution` with :func:`sticking_velocity`."""
+        Vs = sticking_velocity(float(params[0]), pair.effective_modulus, pair.effective_radius, pair.effective_mass)
+        return adhesive_restitution(V, pair.yield_velocity, Vs)
+
+
+#: The additive rule's declaration (:class:`~microimpact.core.models.Model`): its parameter spec
+#: (``work_of_adhesion`` [J/m^2]), ``STICKS``, and ``restitution_of_pair(pair, params, V)``, its ``e``
+#: [-] over speeds [m/s] (it has no outcome or force law: a rule for ``e``, fitted and ranked only).
+ADDITIVE = declare(_AdditiveRule)
+
+#: The rules for ``e`` that :func:`~microimpact.fitting.fit_restitution` and
+#: :func:`~microimpact.fitting.rank_models` take beside the models, by their declarations (each with
+#: ``restitution_of_pair(pair, params, V)`` in place of an outcome): the additive rule.
+FIT_RULES = (ADDITIVE,)
+
+#: What ``adhesion=`` of :func:`~microimpact.wall.wall_interaction` and the C export accept: the
+#: additive rule (:func:`adhesive_restitution`, the default) and each model that declares
+#: ``WALL_ADHESION`` (the model contract, :mod:`microimpact.core.models`): Thornton & Ning's whole
+#: law, through :func:`whole_law_table`. Derived from the declarations on first use.
+ADHESION_RULES: tuple
+
+#: The whole adhesive elastic-plastic law of Thornton & Ning (1998) by its model name: the model
+#: that declares ``WALL_ADHESION`` (:mod:`~microimpact.core.models.thornton_ning_1998_adhesive_plastic`).
+WHOLE_LAW: str
+
+
+def _wall_laws() -> tuple:
+    from .core import models
+
+    return tuple(n for n in models.available() if models.get(n).WALL_ADHESION)
+
+
+def __getattr__(name):  # ADHESION_RULES and WHOLE_LAW: read from the models' declarations once, when asked
+    if name == "ADHESION_RULES":
+        value = (ADDITIVE_RULE, *_wall_laws())
+    elif name == "WHOLE_LAW":
+        laws = _wall_laws()
+        if len(laws) != 1:  # the wall's table is one law's (core.adhesion.whole_law_correction)
+            raise RuntimeError(f"exactly one model must declare WALL_ADHESION, got {laws!r}")
+        value = laws[0]
+    else:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = value
+    return value
 
 
 def check_adhesion_rule(adhesion, name="adhesion"):
     """``adhesion`` if it is one of :data:`ADHESION_RULES`; else a ValueError naming ``name``, the value
     and the allowed values.
 
-    The DMT elastic adhesive law (:mod:`~microimpact.core.models.dmt_elastic_adhesive`) is refused
-    with its reason: it is conservative (``e = 1`` at every speed, as LAMMPS' ``dmt``), so as the
-    wall's normal law it would never capture a particle and would drop the plastic loss, and no
-    source read here combines DMT adhesion with yield (the additive rule adds TN98's JKR loss,
-    eq. 54, which DMT does not have).
+    A model that declares why it cannot be the wall's adhesion law (``WALL_REFUSAL`` of the model
+    contract) is refused with that reason: the DMT elastic adhesive law
+    (:mod:`~microimpact.core.models.dmt_elastic_adhesive`) is conservative (``e = 1`` at every
+    speed, as LAMMPS' ``dmt``), so as the wall's normal law it would never capture a particle and
+    would drop the plastic loss, and no source read here combines DMT adhesion with yield (the
+    additive rule adds TN98's JKR loss, eq. 54, which DMT does not have).
     """
-    if isinstance(adhesion, str) and adhesion in ADHESION_RULES:
+    rules = globals().get("ADHESION_RULES") or __getattr__("ADHESION_RULES")
+    if isinstance(adhesion, str) and adhesion in rules:
         return adhesion
-    allowed = ", ".join(repr(r) for r in ADHESION_RULES)
-    if adhesion == _dmt.NAME:
-        raise ValueError(
-            f"{name} must be one of {allowed}, got {adhesion!r}: the DMT elastic adhesive law returns all the "
-            "energy (e = 1 at every speed, as LAMMPS' dmt), so at the wall it would never capture a particle and "
-            "would drop the plastic loss (use it with pair.impact(model=...) for the contact itself)"
-        )
+    allowed = ", ".join(repr(r) for r in rules)
+    reason = None
+    if isinstance(adhesion, str):
+        from .core import models
+
+        if adhesion in models.available():
+            reason = models.get(adhesion).WALL_REFUSAL
+    if reason:
+        raise ValueError(f"{name} must be one of {allowed}, got {adhesion!r}: {reason}")
     raise ValueError(f"{name} must be one of {allowed}, got {adhesion!r}")
 
 
