@@ -86,11 +86,11 @@ def test_model(timed, data, model, before, size, monkeypatch):
     free, params = MODELS[model]
     if before:
         monkeypatch.setattr(
-            fitting,
+            fitting._models,
             "restitution_arrays",
             lambda mod, V, E, R, m, p_y, p: outcome_arrays(mod, V, E, R, m, p_y, p)["restitution"],
         )
-        monkeypatch.setattr(fitting, "_group_hooks", lambda mod: None)  # e once per point, not per group
+        monkeypatch.setattr(fitting._models, "_group_hooks", lambda mod: None)  # e once per point, not per group
     fit = timed(KEY, model + (BEFORE if before else ""), _fit(data, model, free, params), rounds=3)
     other = _FITTED.setdefault(model, {}).setdefault(not before, None)
     _FITTED[model][before] = fit
