@@ -5,8 +5,8 @@ case) with :func:`microimpact.fitting.fit_restitution`, its free parameter as li
 where the model depends on it), and timed against the seed's fit of ``p_y`` in the same run. Two
 variants per model, side by side: as the library runs it (``e`` alone, through the model's
 ``restitution_only`` hook where it has one, once per distinct group where it declares
-``restitution_group``; compiled loops where its Python loop would cost the fit more than the array
-layer's budget), and ``e`` taken from the full outcome at every point (18 fields, contact-time
+``restitution_group``; compiled loops where its declared cost class says its Python loop would cost
+the fit more than the array layer's budget), and ``e`` taken from the full outcome at every point (18 fields, contact-time
 quadratures included: how fitting ran before issue 25). Target (issue 25): any model's fit at most
 5x the seed's.
 """
