@@ -308,7 +308,7 @@ class FitResult:
         half = q * np.sqrt(self._quadratic(g))
         return np.clip(e - half, 0.0, 1.0), np.clip(e + half, 0.0, 1.0)
 
-    def t_quantile(self, confidence):
+    def _quantile(self, confidence):
         confidence = check_confidence(confidence)
         return t_quantile(confidence, self.dof, self.absolute_sigma and self.loss == "linear")
 
