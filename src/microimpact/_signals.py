@@ -13,6 +13,8 @@ and checks for a pending interrupt before it renames anything into place) and
   a watchdog: if the command has not ended :data:`GRACE` seconds later (a deadlock in a library's
   lock, a blocking call), the registered temporary files are removed and the process exits with
   ``128 + signal``. A second signal ends it at once the same way.
+  Inside a section of :mod:`microimpact.core._defer` (compiling a loop) the signal is only
+  recorded, and raised when the section ends.
 * :func:`restore` -- the previous handlers back, the watchdog disarmed.
 
 A signal the process was started with ignored stays ignored in every stage, as Python itself
@@ -26,6 +28,8 @@ from __future__ import annotations
 import os
 import signal
 import sys
+
+from .core import _defer
 
 try:  # already imported by the interpreter's start in most programs; cheap
     import _thread
@@ -131,6 +135,8 @@ def _raise(signum, frame):
     timer.daemon = True
     timer.start()
     _state["timer"] = timer
+    if _defer.active():  # compiling a loop: raised when the section ends (core._defer), or the watchdog ends it
+        return
     raise Interrupted(signum)
 
 
@@ -177,6 +183,7 @@ def install() -> None:
     if not _in_main_thread():
         return
     _state["pending"] = None
+    _defer.on_leave = check
     if sys.unraisablehook is not _unraisable:
         _state["hook"] = sys.unraisablehook
         sys.unraisablehook = _unraisable
@@ -208,6 +215,7 @@ def restore(exiting: bool = False) -> None:
                 pass
     _state["old"] = {}
     _state["pending"] = None
+    _defer.on_leave = None
     if sys.unraisablehook is _unraisable:
         sys.unraisablehook = _silent if exiting else (_state["hook"] or sys.__unraisablehook__)
         _state["hook"] = None
