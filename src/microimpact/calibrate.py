@@ -31,6 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import _calibration_cache
 from . import models as _models
 from .core.quantities import OUTCOME_FIELDS
 
@@ -92,8 +93,9 @@ class CalibrationWarning(UserWarning):
     (its ``e(V)`` rises and falls between a tenth of the lowest and ten times the highest speed)."""
 
 
-def _check_monotonic(model, params, V, pv):
-    """Warn (:class:`CalibrationWarning`) when the law's ``e(V)`` is not monotonic from ``min(V)/10`` to ``10 max(V)``."""
+def _monotonic_note(model, params, V, pv):
+    """The text of the :class:`CalibrationWarning` to give when the law's ``e(V)`` is not monotonic from
+    ``min(V)/10`` to ``10 max(V)``, or None."""
     grid = np.geomspace(float(np.min(V)) / 10.0, float(np.max(V)) * 10.0, 41)
     e, _ = _run(model, grid, pv, params)
     ok = np.isfinite(e)
@@ -105,14 +107,13 @@ def _check_monotonic(model, params, V, pv):
         first = sign[0]
         k = int(np.flatnonzero(np.sign(d) == -first)[0])  # the first step the other way: e turns at g[k]
         way = ("falls", "rises") if first < 0 else ("rises", "falls")
-        warnings.warn(
+        return (
             f"the calibrated {model} law's e(V) is not monotonic: it {way[0]} from {e[0]:.4g} at {g[0]:.4g} m/s "
             f"to {e[k]:.4g} at {g[k]:.4g} m/s, then {way[1]} ({e[-1]:.4g} at {g[-1]:.4g} m/s); it was calibrated "
             f"at {', '.join(f'{v:.4g}' for v in np.atleast_1d(V)[:5])} m/s and does not follow the target "
-            "away from there",
-            CalibrationWarning,
-            stacklevel=3,
+            "away from there"
         )
+    return None
 
 
 @dataclass(frozen=True)
@@ -327,9 +328,18 @@ def calibrate(
     bad = ~((t_t > 0.0) & np.isfinite(t_t))
     if bad.any():
         raise ValueError(f"target_contact_time must be positive and finite, got {float(t_t[bad][0])!r}")
-    params = face.calibrate(pv, V, e_t, t_t, **options)
-    e_c, t_c = _run(model, V, pv, params)
-    _check_monotonic(model, params, V, pv)
+    # kept on disk by its inputs and the sources computing it (microimpact._calibration_cache)
+    name = _calibration_cache.key(face, pv, V, e_t, t_t, options)
+    found = _calibration_cache.load(name, len(face.model.PARAMETERS), V.size)
+    if found is None:
+        params = face.calibrate(pv, V, e_t, t_t, **options)
+        e_c, t_c = _run(model, V, pv, params)
+        note = _monotonic_note(model, params, V, pv)
+        _calibration_cache.store(name, params, e_c, t_c, note)
+    else:
+        params, e_c, t_c, note = found
+    if note is not None:
+        warnings.warn(note, CalibrationWarning, stacklevel=2)
     return Calibration(
         model=model,
         params=tuple(float(p) for p in params),

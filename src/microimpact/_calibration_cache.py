@@ -1,0 +1,146 @@
+"""The calibrations of :func:`microimpact.calibrate.calibrate` kept on disk, so that a new process reads them.
+
+A calibration costs a root search or a least-squares fit over integrated impacts (``compare``
+calibrates four DEM laws: about a second, and the import of :mod:`scipy.optimize`), and its result
+depends only on its inputs and on the code that computes it. It is kept in the cache folder of the
+compiled loops and tables (:func:`microimpact.core.cache.cache_dir`, ``calibrations/``), named by
+the same rule as they are: a SHA-256 of
+
+* the inputs: the model's name, the pair's four effective values, the calibration speeds, the
+  targets ``e`` and contact time at them (their float64 bytes) and the options;
+* the sources that compute it: the core's (:func:`microimpact.core.cache.core_hash`, every model's
+  physics), the faces' (``microimpact/models/*.py``: each law's inverse, the generic least
+  squares), :mod:`microimpact.calibrate` (the driver and its monotonicity check), this module, and
+  the files of a model added from outside the package;
+* the versions of what else enters the numbers: Python, NumPy and SciPy.
+
+What is kept is everything :func:`~microimpact.calibrate.calibrate` computes: the parameters, the
+law's ``e`` and contact time at the speeds (float64, bit for bit) and the text of the warning it
+gives (or none), so that a cached call returns and warns exactly as a computed one.
+
+A cache is an optimisation: an entry that is missing, unreadable, truncated, corrupt (its SHA-256
+is checked), of another layout or of the wrong sizes is computed again, and a folder that cannot
+be written is left alone; nothing here raises. Entries are written atomically (a temporary file
+beside them, then renamed), so processes writing the same entry at once leave one whole file.
+Set ``MICROIMPACT_CACHE_DIR`` to move the folder; delete it to clear the cache.
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from .core import cache as _cache
+
+__all__ = ["key", "load", "store"]
+
+#: Bumped when the layout of an entry changes.
+_FORMAT = "microimpact-calibration-1"
+_HERE = Path(__file__).resolve().parent
+#: The option values a key can name exactly; a calibration with any other is not cached.
+_PLAIN = (bool, int, float, str, type(None))
+
+
+@functools.lru_cache(maxsize=1)
+def _code_hash() -> str:
+    h = hashlib.sha256(_cache.core_hash().encode())
+    for path in [_HERE / "calibrate.py", Path(__file__).resolve(), *sorted((_HERE / "models").glob("*.py"))]:
+        h.update(path.name.encode())
+        h.update(path.read_bytes())
+    import scipy
+
+    h.update(f"{sys.version}|{np.__version__}|{scipy.__version__}".encode())
+    return h.hexdigest()
+
+
+def _outside_files(face) -> list:
+    """The files of a model (and its face) added from outside the package: their source enters the key."""
+    files = []
+    for module in (face.model, face.module):
+        name = getattr(module, "__file__", None)
+        if name is None:
+            continue
+        path = Path(name).resolve()
+        if _HERE not in path.parents:
+            files.append(path)
+    return files
+
+
+def key(face, pair_values, velocity, target_restitution, target_contact_time, options):
+    """The name of the calibration of ``face``'s law with these inputs, or None when it is not to be cached
+    (an option that is not a plain number, string or bool, or a source file that cannot be read)."""
+    if not all(type(v) in _PLAIN for v in options.values()):
+        return None
+    try:
+        h = hashlib.sha256(_code_hash().encode())
+        for path in _outside_files(face):
+            h.update(path.read_bytes())
+    except OSError:
+        return None
+    h.update(repr((face.name, tuple(float(x).hex() for x in pair_values))).encode())
+    h.update(repr(sorted((k, type(v).__name__, repr(v)) for k, v in options.items())).encode())
+    for arr in (velocity, target_restitution, target_contact_time):
+        arr = np.ascontiguousarray(arr, dtype=np.float64)
+        h.update(repr(arr.shape).encode())
+        h.update(arr.tobytes())
+    return h.hexdigest()[:32]
+
+
+def _path(name: str) -> Path:
+    return _cache.cache_dir() / "calibrations" / f"{name}.json"
+
+
+def _floats(values, size=None):
+    out = [float.fromhex(v) for v in values]
+    if size is not None and len(out) != size:
+        raise ValueError("wrong size")
+    return out
+
+
+def load(name, n_params, n_speeds):
+    """``(params, restitution, contact_time, warning)`` stored under ``name``, or None (absent, unreadable,
+    corrupt or not of ``n_params`` parameters and ``n_speeds`` speeds)."""
+    if name is None:
+        return None
+    try:
+        data = _path(name).read_bytes()
+        digest, _, body = data.partition(b"\n")
+        if hashlib.sha256(body).hexdigest().encode() != digest:
+            return None
+        entry = json.loads(body)
+        if entry["format"] != _FORMAT or entry["key"] != name:
+            return None
+        params = tuple(_floats(entry["params"], n_params))
+        e = np.array(_floats(entry["restitution"], n_speeds), dtype=np.float64)
+        t = np.array(_floats(entry["contact_time"], n_speeds), dtype=np.float64)
+        warning = entry["warning"]
+        if warning is not None and not isinstance(warning, str):
+            return None
+    except (OSError, ValueError, TypeError, KeyError, AttributeError):
+        return None
+    return params, e, t, warning
+
+
+def store(name, params, restitution, contact_time, warning) -> bool:
+    """Keep a calibration under ``name`` (atomically); False, and nothing raised, where it cannot."""
+    if name is None:
+        return False
+    entry = {
+        "format": _FORMAT,
+        "key": name,
+        "params": [float(p).hex() for p in params],
+        "restitution": [float(x).hex() for x in np.ravel(restitution)],
+        "contact_time": [float(x).hex() for x in np.ravel(contact_time)],
+        "warning": warning,
+    }
+    body = json.dumps(entry).encode()
+    try:
+        _cache.write_atomic(_path(name), hashlib.sha256(body).hexdigest().encode() + b"\n" + body)
+    except OSError:
+        return False
+    return True
