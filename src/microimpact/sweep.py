@@ -20,7 +20,6 @@ xarray and dask are optional: ``pip install 'microimpact[sweep]'``.
 
 from __future__ import annotations
 
-import contextlib
 import math
 import sys
 import warnings
@@ -28,7 +27,7 @@ import warnings
 import numpy as np
 
 from . import impact
-from ._optional import require
+from ._optional import require, without_dask_probe  # noqa: F401  (the CLI's sweep takes it from here)
 from ._validation import check_pair, check_poisson, check_positive, check_velocity
 from .core import models, quantities
 from .io import atomic_write, check_memory, progress_bar, write_netcdf
@@ -101,38 +100,6 @@ _BYTES_PER_POINT = 600
 _CSV_SLAB_POINTS = 1 << 18
 #: Rows formatted per call of polars' CSV writer (about 15 MB of text).
 _CSV_FORMAT_ROWS = 1 << 15
-
-
-@contextlib.contextmanager
-def without_dask_probe():
-    """While dask.array is not imported, tell xarray that no dask array exists (true then).
-
-    xarray asks, for every variable it builds, whether the data are a dask array, and imports
-    :mod:`dask.array` to know (``xarray.namedarray.pycompat.array_type("dask")``): about half a
-    second, more than a small eager sweep costs altogether (issue 25). No object can be a dask array
-    before that module is imported, so inside this context xarray's cached answer is "dask absent";
-    it is withdrawn on the way out (a later lazy sweep imports dask as before). A no-op once
-    dask.array is imported, or where xarray keeps no such cache.
-    """
-    try:
-        from xarray.namedarray import pycompat
-    except ImportError:  # pragma: no cover - another xarray layout: nothing to skip
-        yield
-        return
-    cache = getattr(pycompat, "_cached_duck_array_modules", None)
-    known = isinstance(cache, dict) and hasattr(pycompat, "DuckArrayModule") and hasattr(pycompat, "Version")
-    if "dask.array" in sys.modules or not known or "dask" in cache:
-        yield
-        return
-    absent = object.__new__(pycompat.DuckArrayModule)
-    absent.module, absent.type, absent.available = None, (), False
-    absent.version = pycompat.Version("0.0.0")  # what xarray records for a module it cannot import
-    cache["dask"] = absent
-    try:
-        yield
-    finally:
-        if cache.get("dask") is absent:
-            del cache["dask"]
 
 
 # --------------------------------------------------------------------------- kernel
