@@ -40,7 +40,12 @@ def _describe(value) -> str:
     return text if len(text) <= 60 else text[:57] + "..."
 
 
+_F64 = np.dtype(np.float64)
+
+
 def _as_float_array(name: str, value) -> np.ndarray:
+    if type(value) is np.ndarray and value.dtype is _F64:  # the common case, as below at once (0.4 us)
+        return value
     if value is None:
         raise ValueError(f"{name} must be a number, got None")
     if isinstance(value, (bool, np.bool_)):
@@ -87,7 +92,7 @@ def _extremes(arr: np.ndarray):
     """
     if arr.size == 0:
         return None
-    return arr.min(), arr.max()
+    return np.minimum.reduce(arr, axis=None), np.maximum.reduce(arr, axis=None)  # arr.min(), arr.max() less a wrapper
 
 
 def _scalar(name: str, arr: np.ndarray, value):
@@ -152,13 +157,30 @@ def check_velocity(name: str, value, *, scalar: bool = False):
     contradicts ``V_r = e V``), so it is an error rather than a result.
     """
     arr = _as_float_array(name, value)
-    ext = _extremes(arr)
-    if ext is not None and not (ext[0] >= 0 and ext[1] < np.inf):
+    if arr.size and not _nonnegative_finite(arr):
         bad = ~(arr >= 0) | np.isinf(arr)
-        x = _first_bad(arr, bad)
-        why = "non-negative and not NaN" if not x > 0 else "finite (an infinite impact speed has no outcome)"
-        raise ValueError(f"{name} must be {why}, got {x!r}")
+        if bad.any():  # not only -0.0, which the bit test below sends here
+            x = _first_bad(arr, bad)
+            why = "non-negative and not NaN" if not x > 0 else "finite (an infinite impact speed has no outcome)"
+            raise ValueError(f"{name} must be {why}, got {x!r}")
     return _scalar(name, arr, value) if scalar else arr
+
+
+#: The bits of float64 ``+inf`` as an unsigned integer.
+_INF_BITS = np.uint64(0x7FF0000000000000)
+
+
+def _nonnegative_finite(arr: np.ndarray) -> bool:
+    """True when every element of the float64 ``arr`` lies in ``[+0, inf)``, in one read-only pass.
+
+    IEEE 754: read as unsigned integers, the bit patterns of exactly those numbers (sign bit clear,
+    exponent not all ones) lie below that of ``+inf``; a negative number (sign bit set), ``inf`` and
+    every NaN lie at or above it. One integer maximum instead of a float minimum and maximum (1 us
+    of the fixed cost of an array call, issue 25). ``-0.0`` reads as False: callers check again
+    element by element.
+    """
+    bits = arr.view(np.uint64)
+    return bool((np.maximum.reduce(bits) if bits.ndim == 1 else np.maximum.reduce(bits, axis=None)) < _INF_BITS)
 
 
 #: Below this ``p_y`` [Pa] the yield velocity is checked for underflow (no real material comes near it).

@@ -72,13 +72,17 @@ _COST: dict = {}  # measured serial time per element [s] of each compiled loop
 _PY_COST: dict = {}  # measured time of one Python call [s] of each function
 
 _KERNELS: dict = {}
+_JITABLE_SET: set = set()  # JITABLE's functions as evaluate has met them (JITABLE is a list, in order)
 _READY: set = set()  # compiled loops called once already in this process (loaded or compiled)
 _LOCK_NAMES: dict = {}  # compiled loop -> (folder, name) of its file lock
 _LOCK = threading.Lock()  # dask evaluates blocks in threads: one thread builds a loop, the others wait
 
 
 def _forced() -> str:
-    forced = os.environ.get("MICROIMPACT_BACKEND", "").strip().lower()
+    forced = os.environ.get("MICROIMPACT_BACKEND")
+    if not forced:
+        return ""
+    forced = forced.strip().lower()
     if forced and forced not in BACKENDS:
         raise ValueError(f"MICROIMPACT_BACKEND must be one of {', '.join(BACKENDS)}; got {forced!r}")
     return forced
@@ -372,28 +376,43 @@ def _shape(arrays):
 #: Scalars :func:`evaluate` takes as they are (``np.float64`` is a ``float``): asking a numpy scalar
 #: for ``size``, ``strides`` or ``flat`` builds an array each time (5 us per call of 1e3 speeds).
 _SCALARS = (float, np.floating)
+_F64 = np.dtype(np.float64)  # native float64 arrays share this descriptor: "is" before "==" (0.15 us)
+_USUAL: dict = {}  # number of arguments -> (steps, kinds) of the usual call (evaluate)
 
 
 def _flat(arrays, shape):
     """Each array as a float over ``shape`` (step 0: one value, or one broadcast to many) or a 1-D
-    float64 view (or copy) of it (step 1), with the steps."""
+    float64 view (or copy) of it (step 1), with the steps and their kinds (``"s"`` per step 0,
+    ``"a"`` per step 1: the compiled loop's signature)."""
     n = math.prod(shape)  # Python ints: np.prod cost 5 us a call
-    flats, steps = [], []
+    flats, steps, kinds = [], [], ""
     for a in arrays:
         if isinstance(a, _SCALARS):
             flats.append(float(a))
             steps.append(0)
+            kinds += "s"
         elif a.size == 1 or (a.size > 1 and not any(a.strides)):  # one value, or one broadcast to many
             flats.append(float(np.array([a.flat[0]], dtype=np.float64)[0]))
             steps.append(0)
-        elif a.ndim == 1 and a.shape == shape and a.dtype == np.float64:
+            kinds += "s"
+        elif a.ndim == 1 and a.shape == shape and (a.dtype is _F64 or a.dtype == _F64):
             flats.append(a)  # a column of a table, say: the loop reads it in place, strided
             steps.append(1)
+            kinds += "a"
         else:
             b = np.broadcast_to(a, shape) if a.shape != shape else a
             flats.append(np.ascontiguousarray(b, dtype=np.float64).reshape(n))
             steps.append(1)
-    return n, flats, steps
+            kinds += "a"
+    return n, flats, steps, kinds
+
+
+def _jitable(fn) -> bool:
+    """``fn in JITABLE`` (a scan of the list), remembered in a set when true (a look-up next time)."""
+    if fn in JITABLE:
+        _JITABLE_SET.add(fn)
+        return True
+    return False
 
 
 def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None, out=None) -> np.ndarray:
@@ -423,8 +442,23 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
     ndarray
         Shape ``(nout,) + broadcast shape``, float64.
     """
-    shape = _shape(arrays)
-    n, flats, steps = _flat(arrays, shape)
+    first = arrays[0] if arrays else None
+    usual = type(first) is np.ndarray and first.ndim == 1 and first.dtype is _F64 and first.size > 1
+    if usual:  # the usual call: speeds as a 1-D float64 array (not a broadcast one), the rest floats
+        for a in arrays[1:]:
+            if type(a) is not float:
+                usual = False
+                break
+        usual = usual and first.strides[0] != 0
+    if usual:
+        shape = first.shape
+        n, flats = first.size, [*arrays]
+        steps, kinds = _USUAL.get(len(arrays)) or _USUAL.setdefault(
+            len(arrays), ((1,) + (0,) * (len(arrays) - 1), "a" + "s" * (len(arrays) - 1))
+        )
+    else:  # the general case, which gives the same for the usual call
+        shape = _shape(arrays)
+        n, flats, steps, kinds = _flat(arrays, shape)
     if out is None:
         out = np.empty((nout, n))
     else:
@@ -446,11 +480,12 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
     # a function not marked @jitable (a user's model, say) can only run in Python
     if backend:
         engine = backend
-    elif fn not in JITABLE:
+    elif fn not in _JITABLE_SET and not _jitable(fn):
         engine = "python"
     else:
-        engine = backend_for(n)
-        if engine == "python" and not _forced() and n > 8:
+        forced = _forced()
+        engine = forced or ("numba" if (n >= SMALL or "numba" in sys.modules) else "python")  # backend_for(n)
+        if engine == "python" and not forced and n > 8:
             # A small array in Python only pays while the function is cheap: time one element once
             # per function (the same numbers either way) and compile when the loop would take longer.
             cost = _PY_COST.get(fn)
@@ -465,19 +500,20 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
                 engine = "numba"
     with_params = params is not None
     if engine == "numba":
-        kinds = "".join("s" if s == 0 else "a" for s in steps)
-        serial, parallel = _kernels(fn, kinds, nout, with_params)
+        serial, parallel = _KERNELS.get((fn, kinds, nout, with_params)) or _kernels(fn, kinds, nout, with_params)
         cost = _COST.get(serial)
         threads = n >= PARALLEL_MIN or (cost is not None and n >= 2048 and n * cost >= PARALLEL_WORK)
-        inputs = flats
+        p = tuple(params) if with_params else ()
         if threads:
-            _call(parallel, n, inputs, tuple(params) if with_params else (), out)
-        else:
-            measure = cost is None and n >= 256 and bool(serial.signatures)  # compiled already: time it
+            _call(parallel, n, flats, p, out)
+        elif cost is not None and serial in _READY:  # the usual call: straight to the loop (what _call ends in)
+            serial(n, *flats, p, out)
+        elif cost is None and n >= 256 and bool(serial.signatures):  # compiled already: time it
             t0 = time.perf_counter()
-            _call(serial, n, inputs, tuple(params) if with_params else (), out)
-            if measure:
-                _COST[serial] = (time.perf_counter() - t0) / n
+            _call(serial, n, flats, p, out)
+            _COST[serial] = (time.perf_counter() - t0) / n
+        else:
+            _call(serial, n, flats, p, out)
     elif engine == "python":
         cols = [itertools.repeat(f, n) if s == 0 else f.tolist() for f, s in zip(flats, steps)]
         if with_params:
@@ -488,7 +524,7 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
         out[...] = np.array(res, dtype=np.float64).reshape(n, nout).T if nout > 1 else np.array(res, dtype=np.float64)
     else:
         raise ValueError(f"backend must be one of {', '.join(BACKENDS)}; got {engine!r}")
-    return out.reshape((nout,) + shape)
+    return out if len(shape) == 1 else out.reshape((nout,) + shape)  # out is (nout, n) here
 
 
 def registered() -> list:
