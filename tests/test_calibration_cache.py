@@ -209,3 +209,22 @@ def test_writers_racing_on_one_entry_leave_one_whole_file(cache_in):
             t.join()
     assert not errors and seen > 0
     assert [p.name for p in (cache_in / "calibrations").iterdir()] == [f"{name}.json"]  # no temporary left
+
+
+def test_a_model_from_outside_is_keyed_by_its_file(tmp_path):
+    import dataclasses
+    import types
+
+    face = mi.models.face("linear_spring_dashpot")
+    args = ((1e9, 1e-6, 1e-12, 1e8), np.array([50.0]), np.array([0.7]), np.array([1e-7]), {})
+    source = tmp_path / "my_law.py"
+    source.write_text("# a law added with register_path\n")
+    outside = types.ModuleType("my_law")
+    outside.__file__ = str(source)
+    added = dataclasses.replace(face, model=dataclasses.replace(face.model, module=outside))
+    first = cc.key(added, *args)
+    assert first is not None and first != cc.key(face, *args)
+    source.write_text("# a law added with register_path, edited\n")
+    assert cc.key(added, *args) != first  # an edited law is calibrated again
+    in_memory = dataclasses.replace(face, model=dataclasses.replace(face.model, module=types.ModuleType("in_memory")))
+    assert cc.key(in_memory, *args) is None  # no source to hash: never cached

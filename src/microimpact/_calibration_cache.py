@@ -58,13 +58,16 @@ def _code_hash() -> str:
     return h.hexdigest()
 
 
-def _outside_files(face) -> list:
-    """The files of a model (and its face) added from outside the package: their source enters the key."""
+def _outside_files(face):
+    """The files of a model (and its face) added from outside the package, whose source enters the key;
+    None when the model has no source file to hash (one built in memory): then nothing is cached."""
     files = []
-    for module in (face.model, face.module):
-        name = getattr(module, "__file__", None)
-        if name is None:
+    for module in (getattr(face.model, "module", face.model), face.module):  # a Model's module, its face's
+        if module is None:  # no face file: the defaults of models/_base.py, hashed with the package
             continue
+        name = getattr(module, "__file__", None)
+        if not name:
+            return None
         path = Path(name).resolve()
         if _HERE not in path.parents:
             files.append(path)
@@ -73,12 +76,16 @@ def _outside_files(face) -> list:
 
 def key(face, pair_values, velocity, target_restitution, target_contact_time, options):
     """The name of the calibration of ``face``'s law with these inputs, or None when it is not to be cached
-    (an option that is not a plain number, string or bool, or a source file that cannot be read)."""
+    (an option that is not a plain number, string or bool, a model without a source file, or a source
+    file that cannot be read)."""
     if not all(type(v) in _PLAIN for v in options.values()):
+        return None
+    files = _outside_files(face)
+    if files is None:
         return None
     try:
         h = hashlib.sha256(_code_hash().encode())
-        for path in _outside_files(face):
+        for path in files:
             h.update(path.read_bytes())
     except OSError:
         return None
