@@ -132,6 +132,41 @@ def test_an_adhesive_model_fits_its_own_data_with_stuck_points(name):
         assert fit.params[param] == pytest.approx(true, rel=1e-8)
 
 
+def test_the_fit_compiles_by_the_declared_cost_class_not_by_a_clock():
+    """Whether a fit imports numba (its loops then run compiled, the same numbers bit for bit) follows
+    the model's declared cost class and the number of points, never a timing: a cheap law's e on 500
+    points stays in Python, one point more compiles; the LIGGGHTS law's e (cheap, its hook) on 31
+    points stays in Python, its outcome (OUTCOME_COST slow: the contact times' quadrature) compiles."""
+    import os
+    import subprocess
+    import sys
+
+    code = """
+import sys
+from microimpact import fitting
+from microimpact.core import models
+limit = fitting._arrays().PYTHON_BUDGET / (models.COST_CLASSES["cheap"] * fitting._FIT_CALLS)
+seed, liggghts = models.get(models.DEFAULT), models.get("liggghts_thornton_ning")
+fitting._compile_if_costly(seed, int(limit), outcome=False)
+fitting._compile_if_costly(liggghts, 31, outcome=False)
+print(int(limit), "numba" in sys.modules)
+fitting._compile_if_costly(liggghts, 31, outcome=True)
+print("numba" in sys.modules)
+"""
+    env = {k: v for k, v in os.environ.items() if k != "MICROIMPACT_BACKEND"}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env).stdout
+    assert out.split() == ["500", "False", "True"]
+    code2 = code.replace("int(limit)", "int(limit) + 1").split("fitting._compile_if_costly(liggghts")[0]
+    out = subprocess.run(
+        [sys.executable, "-c", code2 + "print('numba' in sys.modules)"],
+        capture_output=True,
+        text=True,
+        check=True,
+        env=env,
+    )
+    assert out.stdout.split() == ["True"]
+
+
 def test_a_model_that_never_sticks_refuses_stuck_points():
     with pytest.raises(ValueError, match="never sticks"):
         fit_restitution([10.0, 20.0, 30.0, 40.0], [0.9, 0.0, 0.7, 0.6], SILICON)

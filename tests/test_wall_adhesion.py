@@ -20,7 +20,7 @@ from hypothesis import strategies as st
 from test_coupling import _compiler, _random_cases, build_driver
 
 import microimpact as mi
-from microimpact.adhesion import ADHESION_RULES, WHOLE_LAW, whole_law_table
+from microimpact.adhesion import ADHESION_RULES, WHOLE_LAW, whole_law_correction, whole_law_table
 from microimpact.cexport import generate_c_source, write_c_source
 from microimpact.core import adhesion as core_adh
 from microimpact.core import wall as wall_core
@@ -226,6 +226,34 @@ def test_table_arguments_are_checked():
         whole_law_table(y_max=-1.0)
 
 
+def test_whole_law_correction_is_the_table_at_the_two_groups():
+    """The public lookup in physical units is the table at the groups V/V_y, V_s/V_y, bit for bit, and at
+    the nodes the model's correction (core.adhesion.whole_law_correction; to the rounding of the nodes'
+    log10 and 3/5 power); V_y = inf (never yields) is D = 0; arrays broadcast; bad input names its
+    parameter."""
+    tab = whole_law_table()
+    rng = np.random.default_rng(5)
+    i, j = rng.integers(0, tab.t.size, 40), rng.integers(0, tab.u.size, 40)
+    x = np.array([10.0 ** float(tab.t[k]) for k in i])
+    y = np.array([float(tab.u[k]) ** (5.0 / 3.0) for k in j])
+    for Vy in (1.0, 4.0, 0.25):  # powers of two: V/V_y and V_s/V_y are the nodes' x and y exactly
+        D, outside = whole_law_correction(x * Vy, Vy, y * Vy)
+        exact = [core_adh.whole_law_correction(float(a), float(b)) for a, b in zip(x, y)]
+        assert D.tolist() == tab(x, y)[0].tolist() and not outside.any()
+        assert D == pytest.approx(exact, rel=1e-13, abs=1e-15)
+    D, outside = whole_law_correction([[0.5], [3.0]], [7.52, math.inf], [1.0, 2.0])
+    assert D.shape == outside.shape == (2, 2) and D[0, 1] == D[1, 1] == 0.0
+    assert D[1, 0] == whole_law_table()(3.0 / 7.52, 1.0 / 7.52)[0]
+    for kw, msg in (
+        ({"velocity": -1.0}, "velocity must be non-negative"),
+        ({"velocity": math.inf}, "velocity must be finite, got inf"),
+        ({"yield_velocity": 0.0}, "yield_velocity must be positive, got 0.0"),
+        ({"sticking_velocity": math.nan}, "sticking_velocity must be non-negative and not NaN, got nan"),
+    ):
+        with pytest.raises(ValueError, match=msg):
+            whole_law_correction(**{"velocity": 1.0, "yield_velocity": 1.0, "sticking_velocity": 0.5, **kw})
+
+
 # ----------------------------------------------------------------------------- wall_interaction
 def _cases(rng, N):
     """Random particles whose (V/V_y, V_s/V_y) mostly fall inside the table, a few beyond it."""
@@ -329,6 +357,45 @@ def test_adhesion_is_checked():
         with pytest.raises(ValueError, match="adhesion must be one of"):
             generate_c_source(effective_modulus=1e9, limiting_pressure=1e8, adhesion=bad)
     assert ADHESION_RULES == ("additive", WHOLE_LAW)
+
+
+def test_adhesion_rules_come_from_the_model_declarations(tmp_path, monkeypatch):
+    """The rules are the additive one and each model declaring WALL_ADHESION; a model declaring
+    WALL_REFUSAL is refused with its reason: the DMT law's, and a user's model's, registered from a
+    temporary package with no file of microimpact edited."""
+    import re
+    import textwrap
+
+    from microimpact.adhesion import ADDITIVE_RULE, check_adhesion_rule
+    from microimpact.core import models
+
+    laws = [n for n in models.available() if models.get(n).WALL_ADHESION]
+    assert ADHESION_RULES == (ADDITIVE_RULE, *laws) and laws == [WHOLE_LAW]
+    refused = [n for n in models.available() if models.get(n).WALL_REFUSAL]
+    assert refused  # the DMT law
+    for n in refused:
+        with pytest.raises(ValueError, match=re.escape(f"got {n!r}: {models.get(n).WALL_REFUSAL}")):
+            check_adhesion_rule(n)
+    package = "zoo_wall_refusal"
+    (tmp_path / package).mkdir()
+    (tmp_path / package / "__init__.py").write_text("")
+    (tmp_path / package / "user_law.py").write_text(
+        textwrap.dedent(
+            """
+            NAME = "user_law"
+            TITLE = "a test's law"
+            WALL_REFUSAL = "a test's reason"
+            outcome = force = None
+            """
+        )
+    )
+    monkeypatch.syspath_prepend(str(tmp_path))
+    models.register_path(package)
+    try:
+        with pytest.raises(ValueError, match="--adhesion must be one of .*, got 'user_law': a test's reason$"):
+            check_adhesion_rule("user_law", "--adhesion")
+    finally:
+        models.unregister_path(package)
 
 
 # ----------------------------------------------------------------------------- the C source

@@ -20,49 +20,118 @@ from ._validation import check_nonnegative, check_positive
 from .core import adhesion as _core
 from .core.adhesion import STICKING_CONSTANT  # noqa: F401  (its old home; the core's is the one)
 from .core.arrays import evaluate
-from .core.models import dmt_elastic_adhesive as _dmt
-from .core.models import thornton_ning_1998_adhesive_plastic as _whole_law
+from .core.models import Parameter, declare
 
 __all__ = [
     "work_of_adhesion",
     "sticking_velocity",
     "adhesive_restitution",
+    "ADDITIVE_RULE",
+    "ADDITIVE",
+    "FIT_RULES",
     "ADHESION_RULES",
     "WHOLE_LAW",
     "check_adhesion_rule",
+    "whole_law_correction",
     "whole_law_restitution",
     "WholeLawTable",
     "whole_law_table",
 ]
 
-#: The whole adhesive elastic-plastic law of Thornton & Ning (1998), by its model name
-#: (:mod:`~microimpact.core.models.thornton_ning_1998_adhesive_plastic`).
-WHOLE_LAW = _whole_law.NAME
-#: What ``adhesion=`` of :func:`~microimpact.wall.wall_interaction` and the C export accept:
-#: the additive rule (:func:`adhesive_restitution`, the default) or the whole law (through
-#: :func:`whole_law_table`).
-ADHESION_RULES = ("additive", WHOLE_LAW)
+#: The name of Thornton & Ning's (1998) additive rule (:func:`adhesive_restitution`): the wall's default
+#: ``adhesion=``, and a candidate of :func:`~microimpact.fitting.fit_restitution` and
+#: :func:`~microimpact.fitting.rank_models` beside the models (:data:`ADDITIVE`).
+ADDITIVE_RULE = "additive"
+
+
+class _AdditiveRule:
+    """Thornton & Ning's (1998) additive rule as a candidate of fitting and ranking
+    (:data:`ADDITIVE_RULE`): the seed's ``e_p(V/V_y)`` (eq. 27) with the adhesive loss
+    ``e^2 = e_p^2 - (V_s/V)^2``, stuck where ``e_p V <= V_s`` (:func:`adhesive_restitution`; ``V_s``
+    their eq. 54). It is a rule for ``e``, not a model of the zoo (no force law, no contact times):
+    it is fitted and ranked only. Declared to the model contract for its parameter spec."""
+
+    NAME = ADDITIVE_RULE
+    TITLE = "Thornton & Ning (1998) additive rule: e^2 = e_p^2 - (V_s/V)^2 (seed eq. 27, TN98 eq. 54)"
+    PARAMETERS = (
+        Parameter("work_of_adhesion", "J/m^2", "G >= 0, the work of adhesion (TN98's interface energy)", low=0.0),
+    )
+    STICKS = True
+    outcome = None  # e alone, by restitution_of_pair
+    force = None
+
+    @staticmethod
+    def restitution_of_pair(pair, params, V):
+        """``e`` [-] at speeds ``V`` [m/s] for ``pair`` (a :class:`~microimpact.pair.ContactPair`)
+        and ``params = (G,)``: :func:`adhesive_restitution` with :func:`sticking_velocity`."""
+        Vs = sticking_velocity(float(params[0]), pair.effective_modulus, pair.effective_radius, pair.effective_mass)
+        return adhesive_restitution(V, pair.yield_velocity, Vs)
+
+
+#: The additive rule's declaration (:class:`~microimpact.core.models.Model`): its parameter spec
+#: (``work_of_adhesion`` [J/m^2]), ``STICKS``, and ``restitution_of_pair(pair, params, V)``, its ``e``
+#: [-] over speeds [m/s] (it has no outcome or force law: a rule for ``e``, fitted and ranked only).
+ADDITIVE = declare(_AdditiveRule)
+
+#: The rules for ``e`` that :func:`~microimpact.fitting.fit_restitution` and
+#: :func:`~microimpact.fitting.rank_models` take beside the models, by their declarations (each with
+#: ``restitution_of_pair(pair, params, V)`` in place of an outcome): the additive rule.
+FIT_RULES = (ADDITIVE,)
+
+#: What ``adhesion=`` of :func:`~microimpact.wall.wall_interaction` and the C export accept: the
+#: additive rule (:func:`adhesive_restitution`, the default) and each model that declares
+#: ``WALL_ADHESION`` (the model contract, :mod:`microimpact.core.models`): Thornton & Ning's whole
+#: law, through :func:`whole_law_table`. Derived from the declarations on first use.
+ADHESION_RULES: tuple
+
+#: The whole adhesive elastic-plastic law of Thornton & Ning (1998) by its model name: the model
+#: that declares ``WALL_ADHESION`` (:mod:`~microimpact.core.models.thornton_ning_1998_adhesive_plastic`).
+WHOLE_LAW: str
+
+
+def _wall_laws() -> tuple:
+    from .core import models
+
+    return tuple(n for n in models.available() if models.get(n).WALL_ADHESION)
+
+
+def __getattr__(name):  # ADHESION_RULES and WHOLE_LAW: read from the models' declarations once, when asked
+    if name == "ADHESION_RULES":
+        value = (ADDITIVE_RULE, *_wall_laws())
+    elif name == "WHOLE_LAW":
+        laws = _wall_laws()
+        if len(laws) != 1:  # the wall's table is one law's (core.adhesion.whole_law_correction)
+            raise RuntimeError(f"exactly one model must declare WALL_ADHESION, got {laws!r}")
+        value = laws[0]
+    else:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = value
+    return value
 
 
 def check_adhesion_rule(adhesion, name="adhesion"):
     """``adhesion`` if it is one of :data:`ADHESION_RULES`; else a ValueError naming ``name``, the value
     and the allowed values.
 
-    The DMT elastic adhesive law (:mod:`~microimpact.core.models.dmt_elastic_adhesive`) is refused
-    with its reason: it is conservative (``e = 1`` at every speed, as LAMMPS' ``dmt``), so as the
-    wall's normal law it would never capture a particle and would drop the plastic loss, and no
-    source read here combines DMT adhesion with yield (the additive rule adds TN98's JKR loss,
-    eq. 54, which DMT does not have).
+    A model that declares why it cannot be the wall's adhesion law (``WALL_REFUSAL`` of the model
+    contract) is refused with that reason: the DMT elastic adhesive law
+    (:mod:`~microimpact.core.models.dmt_elastic_adhesive`) is conservative (``e = 1`` at every
+    speed, as LAMMPS' ``dmt``), so as the wall's normal law it would never capture a particle and
+    would drop the plastic loss, and no source read here combines DMT adhesion with yield (the
+    additive rule adds TN98's JKR loss, eq. 54, which DMT does not have).
     """
-    if isinstance(adhesion, str) and adhesion in ADHESION_RULES:
+    rules = globals().get("ADHESION_RULES") or __getattr__("ADHESION_RULES")
+    if isinstance(adhesion, str) and adhesion in rules:
         return adhesion
-    allowed = ", ".join(repr(r) for r in ADHESION_RULES)
-    if adhesion == _dmt.NAME:
-        raise ValueError(
-            f"{name} must be one of {allowed}, got {adhesion!r}: the DMT elastic adhesive law returns all the "
-            "energy (e = 1 at every speed, as LAMMPS' dmt), so at the wall it would never capture a particle and "
-            "would drop the plastic loss (use it with pair.impact(model=...) for the contact itself)"
-        )
+    allowed = ", ".join(repr(r) for r in rules)
+    reason = None
+    if isinstance(adhesion, str):
+        from .core import models
+
+        if adhesion in models.available():
+            reason = models.get(adhesion).WALL_REFUSAL
+    if reason:
+        raise ValueError(f"{name} must be one of {allowed}, got {adhesion!r}: {reason}")
     raise ValueError(f"{name} must be one of {allowed}, got {adhesion!r}")
 
 
@@ -182,11 +251,7 @@ def adhesive_restitution(velocity, yield_velocity, sticking_velocity):
     >>> adhesive_restitution([0.5, 2.0, 50.0], 7.52, 1.0).round(4)
     array([0.    , 0.866 , 0.7245])
     """
-    V = check_nonnegative("velocity", velocity)
-    if np.any(np.isinf(V)):
-        raise ValueError(f"velocity must be finite, got {float(V[np.isinf(V)].flat[0])!r}")
-    Vy = check_positive("yield_velocity", yield_velocity, allow_inf=True)
-    Vs = check_nonnegative("sticking_velocity", sticking_velocity)
+    V, Vy, Vs = _checked_speeds(velocity, yield_velocity, sticking_velocity)
     return evaluate(_core.restitution, V, Vy, Vs, nout=2)[0]
 
 
@@ -305,11 +370,61 @@ def whole_law_table(*, t_min=-1.0, t_max=3.0, n_t=161, y_max=10.0, n_u=81) -> Wh
     return _whole_law_table(t_min, t_max, int(n_t), y_max, int(n_u))
 
 
+def _checked_speeds(velocity, yield_velocity, sticking_velocity):
+    V = check_nonnegative("velocity", velocity)
+    if np.any(np.isinf(V)):
+        raise ValueError(f"velocity must be finite, got {float(V[np.isinf(V)].flat[0])!r}")
+    Vy = check_positive("yield_velocity", yield_velocity, allow_inf=True)
+    Vs = check_nonnegative("sticking_velocity", sticking_velocity)
+    return V, Vy, Vs
+
+
+def whole_law_correction(velocity, yield_velocity, sticking_velocity):
+    """The whole law's correction ``D`` to the additive rule's ``e^2``, read from its table.
+
+    ``D(V/V_y, V_s/V_y)`` interpolated in :func:`whole_law_table` at the two groups of each point:
+    what the whole adhesive elastic-plastic law of Thornton & Ning (1998) adds to the additive rule,
+    ``e^2 = e_p(V/V_y)^2 - (V_s/V)^2 + D`` (:func:`microimpact.core.adhesion.whole_law_correction`
+    at the nodes). The one lookup behind :func:`whole_law_restitution`, the wall's
+    ``adhesion="thornton_ning_1998_adhesive_plastic"`` (:func:`~microimpact.wall.wall_interaction`)
+    and the C export's tables. Where ``V_y = inf`` (a pair that never yields) both groups are 0
+    (``D = 0``: the whole law is the additive rule there).
+
+    Parameters
+    ----------
+    velocity : array_like
+        Normal impact speed ``V`` [m/s], finite, >= 0.
+    yield_velocity : array_like
+        ``V_y`` [m/s] (seed eq. 28), > 0; ``inf`` for a wall that never yields.
+    sticking_velocity : array_like
+        ``V_s`` [m/s] (Thornton & Ning 1998, eq. 54: :func:`sticking_velocity`), >= 0.
+
+    Returns
+    -------
+    D : ndarray
+        The correction to ``e^2`` [-], broadcast shape of the inputs.
+    outside_table : ndarray of bool
+        True where ``V/V_y`` or ``V_s/V_y`` lies beyond the table (its edge's value was used;
+        flagged, not refused).
+
+    Examples
+    --------
+    >>> D, outside = whole_law_correction([20.0, 50.0, 1e4], 7.52, 1.0)  # V/V_y = 1330: beyond the table
+    >>> D.round(4), outside
+    (array([-0.0065,  0.0062,  0.0009]), array([False, False,  True]))
+    """
+    V, Vy, Vs = np.broadcast_arrays(*_checked_speeds(velocity, yield_velocity, sticking_velocity))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x = np.where(Vy < math.inf, V / Vy, 0.0)
+        y = np.where(Vy < math.inf, Vs / Vy, 0.0)
+    return whole_law_table()(x, y)
+
+
 def whole_law_restitution(velocity, yield_velocity, sticking_velocity):
     """Normal restitution of Thornton & Ning's whole law through its table, as the wall computes it.
 
     ``e^2 = e_p(V/V_y)^2 - (V_s/V)^2 + D(V/V_y, V_s/V_y)`` with ``D`` interpolated in
-    :func:`whole_law_table` and the particle sticking (``e = 0``) where that is not positive
+    :func:`whole_law_table` (:func:`whole_law_correction`) and the particle sticking (``e = 0``) where that is not positive
     (:func:`microimpact.core.adhesion.corrected_restitution`): the operations of
     :func:`~microimpact.wall.wall_interaction` with ``adhesion="thornton_ning_1998_adhesive_plastic"``
     (and of the C export) for a head-on impact, so tables written with it
@@ -338,16 +453,9 @@ def whole_law_restitution(velocity, yield_velocity, sticking_velocity):
     >>> e.round(4), outside
     (array([0.    , 0.866 , 0.7287]), array([False, False, False]))
     """
-    V = check_nonnegative("velocity", velocity)
-    if np.any(np.isinf(V)):
-        raise ValueError(f"velocity must be finite, got {float(V[np.isinf(V)].flat[0])!r}")
-    Vy = check_positive("yield_velocity", yield_velocity, allow_inf=True)
-    Vs = check_nonnegative("sticking_velocity", sticking_velocity)
+    V, Vy, Vs = _checked_speeds(velocity, yield_velocity, sticking_velocity)
     V, Vy, Vs = (np.array(a, dtype=float) for a in np.broadcast_arrays(V, Vy, Vs))
-    with np.errstate(divide="ignore", invalid="ignore"):  # as wall_interaction's prepass
-        x = np.where(Vy < math.inf, V / Vy, 0.0)
-        y = np.where(Vy < math.inf, Vs / Vy, 0.0)
-    D, outside = whole_law_table()(x, y)
+    D, outside = whole_law_correction(V, Vy, Vs)
     e = evaluate(_core.corrected_restitution, V, Vy, Vs, np.asarray(D, dtype=float), nout=2)[0]
     return np.where((V == 0.0) & (Vs > 0.0), 0.0, e), outside
 

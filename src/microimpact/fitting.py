@@ -141,7 +141,6 @@ import io
 import math
 import os
 import sys
-import time
 import warnings
 from dataclasses import dataclass, field
 
@@ -150,8 +149,9 @@ import numpy as np
 from . import quantities
 from ._optional import require
 from ._validation import is_number_text
+from .adhesion import ADDITIVE_RULE as _ADDITIVE_RULE
+from .adhesion import FIT_RULES
 from .core.models import DEFAULT as _DEFAULT_MODEL
-from .core.models import Parameter, declare
 from .impact import outcome_arrays, restitution_arrays
 from .materials import DEFAULT_K, sphere_mass
 from .pair import ContactPair
@@ -232,7 +232,7 @@ _START_POINTS = 2048
 _SORT_POINTS = 1 << 20
 
 #: About how many times a fit evaluates its model (start grid, steps, Jacobians, band): see
-#: :meth:`_Model._timed`.
+#: :func:`_compile_if_costly`.
 _FIT_CALLS = 50
 
 #: Points per block of the fit's passes over the data: its working memory is a few such blocks.
@@ -466,39 +466,24 @@ def available_models() -> list[str]:
 _MODULES: dict = {}
 
 
-class _AdditiveRule:
-    """Thornton & Ning's (1998) additive rule as a candidate of :func:`fit_restitution` and
-    :func:`rank_models` (:data:`ADDITIVE_RULE`): the seed's ``e_p(V/V_y)`` (eq. 27) with the adhesive
-    loss ``e^2 = e_p^2 - (V_s/V)^2``, stuck where ``e_p V <= V_s``
-    (:func:`~microimpact.adhesion.adhesive_restitution`; ``V_s`` their eq. 54). It is a rule for
-    ``e``, not a model of the zoo (no force law, no contact times): it is fitted and ranked only.
-    Declared to the model contract (:func:`microimpact.core.models.declare`) for its parameter spec."""
-
-    NAME = "additive"
-    TITLE = "Thornton & Ning (1998) additive rule: e^2 = e_p^2 - (V_s/V)^2 (seed eq. 27, TN98 eq. 54)"
-    PARAMETERS = (
-        Parameter("work_of_adhesion", "J/m^2", "G >= 0, the work of adhesion (TN98's interface energy)", low=0.0),
-    )
-    STICKS = True
-    outcome = None  # e alone, by :func:`microimpact.adhesion.adhesive_restitution` (see _outcome_of)
-    force = None
-
-
-_ADDITIVE = declare(_AdditiveRule)
-
-
 #: The name under which :func:`fit_restitution` and :func:`rank_models` take Thornton & Ning's
 #: additive rule (``e^2 = e_p^2 - (V_s/V)^2``; free parameters ``limiting_pressure`` and
 #: ``work_of_adhesion`` like the whole law's), to rank it against the whole law on data with stuck
-#: points.
-ADDITIVE_RULE = _AdditiveRule.NAME
+#: points (:data:`microimpact.adhesion.ADDITIVE_RULE`, where it is declared).
+ADDITIVE_RULE = _ADDITIVE_RULE
+
+
+def _rules() -> dict:
+    """The rules for ``e`` taken beside the models (:data:`microimpact.adhesion.FIT_RULES`), by name."""
+    return {rule.NAME: rule for rule in FIT_RULES}
 
 
 def _model_module(name):
     """The :class:`~microimpact.core.models.Model` declaration of ``name`` (ValueError naming it if
-    unknown); the additive rule's for :data:`ADDITIVE_RULE`."""
-    if name == ADDITIVE_RULE:
-        return _ADDITIVE
+    unknown); a rule's of :data:`microimpact.adhesion.FIT_RULES` for its name."""
+    rule = _rules().get(name) if isinstance(name, str) else None
+    if rule is not None:
+        return rule
     if not isinstance(name, str):
         raise ValueError(f"model must be a model's name (one of {', '.join(available_models())}), got {name!r}")
     zoo = _zoo()
@@ -513,7 +498,7 @@ def _model_module(name):
 def _fast_restitution(name):
     """The face's ``e(V, V_y)`` of a model whose ``e`` depends on the pair only through ``V_y`` (the
     seed's eq. 27), else None (:func:`microimpact.models.face`)."""
-    if name == ADDITIVE_RULE:
+    if name in _rules():
         return None
     from .models import face
 
@@ -533,11 +518,9 @@ def _outcome_of(model_name, pair, params, V, fields=("restitution", "rebound_vel
     by the model's ``restitution_only`` hook where it has one (:func:`microimpact.impact.restitution_arrays`).
     """
     V = np.asarray(V, dtype=float)
-    if model_name == ADDITIVE_RULE:  # e alone: the rule has no contact times
-        from .adhesion import adhesive_restitution, sticking_velocity
-
-        Vs = sticking_velocity(float(params[0]), pair.effective_modulus, pair.effective_radius, pair.effective_mass)
-        e = adhesive_restitution(V, pair.yield_velocity, Vs)
+    rule = _rules().get(model_name)
+    if rule is not None:  # e alone: a rule has no contact times
+        e = rule.restitution_of_pair(pair, params, V)
         out = {"restitution": e, "rebound_velocity": e * V, "contact_time": np.full(V.shape, math.nan)}
         return {f: out[f] for f in fields}
     fast = _fast_restitution(model_name)
@@ -552,7 +535,9 @@ def _outcome_of(model_name, pair, params, V, fields=("restitution", "rebound_vel
     if fields == ("restitution",):  # what fitting and ranking compare: e alone (the model's hook)
         if _group_hooks(module) is not None and np.all(V > 0):
             return {"restitution": _restitution_by_group(module, V, E, R, m, p_y, params)}
+        _compile_if_costly(module, V.size, outcome=module.restitution_only is None)
         return {"restitution": np.asarray(restitution_arrays(module, V.ravel(), E, R, m, p_y, params)).reshape(V.shape)}
+    _compile_if_costly(module, V.size, outcome=True)
     out = outcome_arrays(module, V.ravel(), E, R, m, p_y, params)
     return {f: np.asarray(out[f], dtype=float).reshape(V.shape) for f in fields}
 
@@ -572,7 +557,24 @@ def _restitution_by_group(module, V, E, R, m, p_y, params):
     arrays = _arrays()
     g = arrays.evaluate(group, V.ravel(), E, R, m, p_y, params=params)[0]
     distinct, where = np.unique(g, return_inverse=True)
+    _compile_if_costly(module, distinct.size, outcome=False)
     return arrays.evaluate(of_group, distinct, params=params)[0][where.ravel()].reshape(V.shape)
+
+
+def _compile_if_costly(module, n, outcome):
+    """Import numba (from then on the array layer runs compiled loops:
+    :func:`microimpact.core.arrays.backend_for`; bit for bit the same numbers) where a fit's
+    :data:`_FIT_CALLS` evaluations of ``n`` points in Python loops would exceed the array layer's
+    budget for one call (:data:`microimpact.core.arrays.PYTHON_BUDGET`), at the nominal time per
+    point of the model's declared cost class (:data:`microimpact.core.models.COST_CLASSES`: its
+    ``OUTCOME_COST`` for the whole outcome, else its ``COST``). Deterministic: no timing decides. A
+    model that integrates its equation of motion for ``e`` costs ~0.5-2 ms a point in Python,
+    ~10-50 us compiled."""
+    if "numba" in sys.modules or os.environ.get("MICROIMPACT_BACKEND"):
+        return
+    cost = _zoo().COST_CLASSES[module.OUTCOME_COST if outcome else module.COST]
+    if cost * n * _FIT_CALLS > _arrays().PYTHON_BUDGET:
+        import numba  # noqa: F401  (the array layer compiles its loops once numba is imported)
 
 
 def _restitution_of(model_name, pair, params, V):
@@ -700,7 +702,6 @@ class _Model:
             if not math.isfinite(v):
                 raise ValueError(f"model {model} needs a value of its parameter {n}: give model_params={{{n!r}: ...}}")
         self.values = values
-        self.engine_checked = set()
         self.name = pair_names[0] if pair_names else None
         self.yield_strength = None
         finite_py = math.isfinite(pair.limiting_pressure)
@@ -789,27 +790,11 @@ class _Model:
             u0 = float(np.atleast_1d(u)[0])
             return _restitution_of(self.model, _YieldOnly(self.ref_vy * math.exp(self.exponent * u0)), (), V)
         pair, params = self.split(u)
-        return self._timed(_restitution_of, self.model, pair, params, V)
+        return _restitution_of(self.model, pair, params, V)
 
     def outcome(self, u, V, fields=("restitution", "rebound_velocity", "contact_time")):
         pair, params = self.split(u)
-        return self._timed(_outcome_of, self.model, pair, params, V, fields)
-
-    def _timed(self, fn, *args):
-        """``fn(*args)``; the first call is timed, and where a fit's :data:`_FIT_CALLS` such calls
-        in Python loops would exceed the array layer's budget for one call
-        (:data:`microimpact.core.arrays.PYTHON_BUDGET`), numba is imported: from then on the array
-        layer runs compiled loops (:func:`microimpact.core.arrays.backend_for`; bit for bit the
-        same numbers). A model that integrates its equation of motion for ``e`` costs ~5 ms a point
-        in Python, ~50 us compiled."""
-        if fn in self.engine_checked or "numba" in sys.modules or os.environ.get("MICROIMPACT_BACKEND"):
-            return fn(*args)
-        t0 = time.perf_counter()
-        out = fn(*args)
-        self.engine_checked.add(fn)  # e alone and the whole outcome (a band's contact times) apart
-        if (time.perf_counter() - t0) * _FIT_CALLS > _arrays().PYTHON_BUDGET:
-            import numba  # noqa: F401  (the array layer compiles its loops once numba is imported)
-        return out
+        return _outcome_of(self.model, pair, params, V, fields)
 
     def u_of_yield_velocity(self, vy):
         """Inverse of the power law ``V_y = V_y,ref exp(c u)`` (start values)."""

@@ -57,7 +57,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._validation import check_nonnegative, check_positive
-from .adhesion import check_adhesion_rule, whole_law_table
+from .adhesion import check_adhesion_rule, whole_law_correction
 from .core import wall as _wall
 from .core.arrays import evaluate
 from .core.tangential_laws import ALL_LAWS as LAWS
@@ -423,16 +423,16 @@ def _capture_speeds(d, rho, E, p_y, G):
 
 
 def _whole_law_correction(vT, nT, wT, d, rho, E, p_y, G):
-    """``(D, outside)`` per particle: the whole law's table at ``(V/V_y, V_s/V_y)`` (0 and False
-    where the particle does not approach the wall)."""
+    """``(D, outside)`` per particle: the whole law's table at ``(V/V_y, V_s/V_y)``
+    (:func:`~microimpact.adhesion.whole_law_correction`; 0 and False where the particle does not
+    approach the wall)."""
     from .core import adhesion as _adh
 
     V, _, Vy = evaluate(_wall.approach_and_slip, *vT, *nT, *wT, d, rho, E, p_y, nout=3)
+    if np.isnan(V).any():  # a zero normal (refused below as well, after the interaction)
+        raise ValueError("normal must not be a zero vector")
     Vs = evaluate(_adh.sticking_velocity, G, E, 0.5 * d, evaluate(_wall.sphere_mass, 0.5 * d, rho)[0])[0]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        x = np.where(Vy < math.inf, V / Vy, 0.0)
-        y = np.where(Vy < math.inf, Vs / Vy, 0.0)
-    D, outside = whole_law_table()(x, y)
+    D, outside = whole_law_correction(V, Vy, Vs)
     approaching = V > 0.0
     return np.where(approaching, D, 0.0), outside & approaching
 

@@ -108,6 +108,27 @@ def test_a_bare_model_gets_the_defaults():
     assert out["energy_loss"] == 0.0 and out["contact_time"] == 3.0 and out["large_strain"] == 0.0
     with pytest.raises(ValueError, match="does not define force"):
         models.declare(types.SimpleNamespace(NAME="x", TITLE="t", outcome=outcome))
+    assert bare.WALL_ADHESION is False and bare.WALL_REFUSAL is None
+    assert bare.COST == bare.OUTCOME_COST == "cheap"
+
+
+def test_cost_classes_are_declared():
+    """``COST`` and ``OUTCOME_COST`` take a class of :data:`COST_CLASSES`; the outcome's defaults to
+    ``e``'s; anything else is refused with the model's name."""
+
+    def make(**kw):
+        return models.declare(types.SimpleNamespace(NAME="c", TITLE="t", outcome=None, force=None, **kw))
+
+    assert make(COST="slow").OUTCOME_COST == "slow"
+    both = make(OUTCOME_COST="slow")
+    assert (both.COST, both.OUTCOME_COST) == ("cheap", "slow")
+    with pytest.raises(ValueError, match="model 'c': COST must be one of cheap, slow, got 'fast'"):
+        make(COST="fast")
+    with pytest.raises(ValueError, match="model 'c': OUTCOME_COST must be one of cheap, slow, got 1"):
+        make(OUTCOME_COST=1)
+    # a law whose e integrates its equation of motion declares it; a closed form does not
+    assert models.get("hertz_viscoelastic").COST == "slow" and models.get(models.DEFAULT).COST == "cheap"
+    assert models.COST_CLASSES["slow"] > 10 * models.COST_CLASSES["cheap"]
 
 
 def test_old_style_parameters_are_still_read():

@@ -15,7 +15,7 @@ from ..adhesion import (
     whole_law_restitution,
     whole_law_table,
 )
-from ..core.models import thornton_ning_1998_adhesive_plastic as _whole_law
+from ..core import models as _models
 from ._common import check_size_names, comment_text, sized_pair
 
 __all__ = ["restitution_table", "write_tables", "DEFAULT_V_OVER_VY", "DEFAULT_VS_OVER_VY", "DEFAULT_SPEEDS"]
@@ -224,7 +224,7 @@ def write_size_table(path, pair, d, p, V, G, extra=(), adhesion="additive"):
     else:
         e, outside = whole_law_restitution(V, Vy, Vs)
         Vc = float(
-            _whole_law.sticking_velocity(
+            _models.get(adhesion).sticking_velocity(
                 p.effective_modulus, p.effective_radius, p.effective_mass, p.limiting_pressure, (G,)
             )
         )

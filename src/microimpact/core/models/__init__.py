@@ -98,6 +98,25 @@ as users name it (``model=NAME``). It declares what it is with module-level name
 ``sticking_velocity(E, R, m, p_y, params)`` [``None``: none known]
     The speed [m/s] at and below which the particle sticks (``e = 0``), for a law with ``STICKS``
     (:meth:`ContactPair.sticking_velocity <microimpact.pair.ContactPair.sticking_velocity>`).
+``WALL_ADHESION`` [``False``]
+    True for the adhesive law the wall interaction can take as its normal law: ``adhesion=NAME`` of
+    :func:`~microimpact.wall.wall_interaction`, of the C export and of its tables (the rules
+    :data:`microimpact.adhesion.ADHESION_RULES` lists), through the table of the law's correction to
+    the additive rule (:func:`microimpact.core.adhesion.whole_law_correction`, which that law
+    computes). Declared by Thornton & Ning's whole law.
+``WALL_REFUSAL`` [``None``]
+    Why the law cannot be the wall's adhesion law, for a law a user may expect there (one clause:
+    :func:`microimpact.adhesion.check_adhesion_rule` gives it after refusing the name).
+``COST`` [``"cheap"``]
+    The cost class of the model's ``e`` over a data set in Python loops (what fitting evaluates):
+    ``"cheap"``, closed forms or a short root search, microseconds a point; ``"slow"``, an
+    integration of the equation of motion or a quadrature per point, about a millisecond. Its
+    nominal time per point is :data:`COST_CLASSES`; fitting compiles its loops where that, times
+    the points and the evaluations of a fit, exceeds the array layer's budget (deterministic: no
+    timing decides).
+``OUTCOME_COST`` [``COST``]
+    The same for the whole outcome (a fit's predictions with contact times): ``"slow"`` where the
+    contact times take a quadrature though ``e`` is cheap.
 ``ADHESION_LIMIT`` [``None``: no adhesion]
     ``"JKR"`` or ``"DMT"``: the adhesion limit the law is written for; with
     ``work_of_adhesion(params)`` (the work of adhesion ``G`` [J/m^2] its parameters give),
@@ -131,6 +150,7 @@ __all__ = [
     "unregister_path",
     "DEFAULT",
     "GENERIC_STAGES",
+    "COST_CLASSES",
     "Parameter",
     "LIMIT_FORCE",
     "Model",
@@ -146,6 +166,11 @@ __all__ = [
 
 #: The seed's model (Aerosol Sci. Tech. 50(4), 2016), used when no model is named.
 DEFAULT = "thornton_ning_2016"
+
+#: Nominal time [s] per point of a model's ``e`` (or outcome) in Python loops, by cost class
+#: (``COST``, ``OUTCOME_COST``): the orders of magnitude measured on the zoo (closed forms 3-50 us a
+#: point; integrations and quadratures 0.1-2.3 ms a point).
+COST_CLASSES = {"cheap": 1e-5, "slow": 1e-3}
 
 #: Stage names of a history of a law without stages of its own: loading to the maximum approach,
 #: then unloading (codes 1 and 3; 0 is "no contact").
@@ -290,6 +315,10 @@ class Model:
     restitution_of_group: Callable | None = None
     ADHESION_LIMIT: str | None = None
     work_of_adhesion: Callable | None = None
+    WALL_ADHESION: bool = False
+    WALL_REFUSAL: str | None = None
+    COST: str = "cheap"
+    OUTCOME_COST: str = "cheap"
     module: Any = None
 
     def __getattr__(self, name):  # the model's own helpers (e.g. a calibration's inverse)
@@ -331,6 +360,11 @@ def declare(module) -> Model:
         spec.append(p)
     spec = tuple(spec)
     defaults = tuple(float(d) for d in old_defaults) if old_defaults is not None else tuple(p.default for p in spec)
+    cost = ns.get("COST", "cheap")
+    outcome_cost = ns.get("OUTCOME_COST", cost)
+    for what, value in (("COST", cost), ("OUTCOME_COST", outcome_cost)):
+        if value not in COST_CLASSES:
+            raise ValueError(f"model {name!r}: {what} must be one of {', '.join(COST_CLASSES)}, got {value!r}")
     hooks = {h: ns.get(h) for h in _HOOKS}
     if hooks["signed_force"] is None:
         hooks["signed_force"] = ns["force"]
@@ -347,6 +381,10 @@ def declare(module) -> Model:
         LABEL=ns.get("LABEL") or name,
         ADHESION_LIMIT=ns.get("ADHESION_LIMIT"),
         ZERO_FORCE_ORDER=float(ns.get("ZERO_FORCE_ORDER", 1.5)),
+        WALL_ADHESION=bool(ns.get("WALL_ADHESION", False)),
+        WALL_REFUSAL=ns.get("WALL_REFUSAL"),
+        COST=cost,
+        OUTCOME_COST=outcome_cost,
         module=module,
         **hooks,
     )

@@ -60,6 +60,12 @@ TITLE = "DMT elastic adhesion: Hertz minus 4 pi gamma R while in contact (LAMMPS
 LABEL = "DMT adhesive"
 #: The particle never sticks (the law is conservative: ``e = 1``).
 STICKS = False
+#: Not the wall's adhesion law (:func:`microimpact.adhesion.check_adhesion_rule` gives the reason).
+WALL_REFUSAL = (
+    "the DMT elastic adhesive law returns all the energy (e = 1 at every speed, as LAMMPS' dmt), so at the wall "
+    "it would never capture a particle and would drop the plastic loss (use it with pair.impact(model=...) for "
+    "the contact itself)"
+)
 PARAMETERS = (Parameter("surface_energy", "J/m^2", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)", low=0.0),)
 BOUNDS, validate = checks(NAME, PARAMETERS)
 

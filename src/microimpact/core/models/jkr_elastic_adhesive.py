@@ -59,6 +59,9 @@ LABEL = "JKR adhesive"
 STICKS = True
 PARAMETERS = (Parameter("surface_energy", "J/m^2", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)", low=0.0),)
 BOUNDS, validate = checks(NAME, PARAMETERS)
+#: Cost class of the outcome (the contract's ``OUTCOME_COST``): its contact times' quadrature, 1.0 ms a
+#: point in Python (``e`` alone: 4 us).
+OUTCOME_COST = "slow"
 
 #: ``g(c_F) - g(c_0)``: the pull-off work in units of ``E* R*^(4/3) (pi gamma/E*)^(5/3)``.
 WORK_CONSTANT = (

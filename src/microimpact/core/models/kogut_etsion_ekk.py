@@ -98,6 +98,9 @@ PARAMETERS = (
     ),
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
+#: Cost class of the outcome (the contract's ``OUTCOME_COST``): its contact times' quadrature, 0.12 ms a
+#: point in Python (``e`` alone: 18 us).
+OUTCOME_COST = "slow"
 
 #: ``E/Y`` range of Kogut & Etsion's finite elements.
 VALID_MODULUS_RATIO = (100.0, 1000.0)
