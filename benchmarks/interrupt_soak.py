@@ -6,7 +6,9 @@ folder holding an earlier output, and sends SIGINT or SIGTERM (chosen at random)
 moment of the run. Every run must end within 5 s of the signal with exit status 130/143 and one
 line on stderr naming the interrupt (or, when the signal came after the command finished, exit
 0 with a complete new output), leave the earlier output byte for byte as it was, and leave no
-temporary file. The moment is drawn uniformly over the command's typical duration, counted from
+temporary file. The moment is drawn uniformly over most (``SPAN``) of the command's duration on this
+machine, measured first by one uninterrupted run of each command (a fixed number of seconds would
+let a faster machine finish most runs before their signal), counted from
 when microimpact's handlers are installed (read from ``/proc/PID/status``: the few tens of ms the
 interpreter itself takes to start, before any of microimpact's code runs, are not the command's
 to handle; ``--from-exec`` counts from the process start instead and reports those runs apart).
@@ -34,7 +36,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 OLD = "an earlier output, to be kept byte for byte\n"
 DATA = "velocity,restitution\n" + "".join(f"{v},{e}\n" for v, e in ((5, 1.0), (20, 0.86), (50, 0.72), (80, 0.64)))
-#: name -> (argv, output, kind, typical seconds after the handlers are installed)
+#: name -> (argv, output, kind, seconds after the handlers are installed on the machine it was written on;
+#: only a fallback: ``measure`` times each command where the soak runs)
 CASES = {
     "sweep-nc": (
         ["sweep", "--velocity", "1:120:2000", "--density", "1000:3000:400", "--out", "out.nc", "--chunks", "200"],
@@ -60,6 +63,7 @@ CASES = {
     "impact-stdout": (["impact", "1:100:1000000"], None, "stdout", 1.5),
 }
 LIMIT = 5.0  # seconds from the signal to the end of the process
+SPAN = 0.8  # the signal comes within the first SPAN of the command's measured duration
 
 
 def _env():
@@ -119,11 +123,41 @@ def _temporaries(folder: Path):
     return found
 
 
-def one_run(name: str, seed: int, from_exec: bool = False) -> dict:
-    """One interrupted run of ``name``; a dict saying what happened (``ok`` True when all held)."""
+def measure(name: str) -> float:
+    """Seconds ``name`` takes here, uninterrupted, from the moment its handlers are installed."""
+    argv, out, kind, typical = CASES[name]
+    folder = Path(tempfile.mkdtemp(prefix="soak-"))
+    try:
+        _prepare(folder, name)
+        proc = subprocess.Popen(
+            [sys.executable, "-m", "microimpact", *argv],
+            cwd=folder,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+            env=_env(),
+        )
+        t0 = time.monotonic()
+        while not _handlers_installed(proc.pid) and proc.poll() is None and time.monotonic() - t0 < 30:
+            time.sleep(0.002)
+        t1 = time.monotonic()
+        rc = proc.wait(timeout=300)
+        if rc != 0:
+            return typical  # the run itself will say what is wrong
+        return time.monotonic() - t1
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def one_run(name: str, seed: int, from_exec: bool = False, typical: float | None = None) -> dict:
+    """One interrupted run of ``name``; a dict saying what happened (``ok`` True when all held).
+
+    The signal comes at a moment drawn uniformly over ``SPAN * typical`` seconds (``typical``: the
+    command's measured duration; the fixed figure of ``CASES`` when not given).
+    """
     rng = random.Random(seed)
     sig = rng.choice([signal.SIGINT, signal.SIGTERM])
-    argv, out, kind, typical = CASES[name]
+    argv, out, kind, fallback = CASES[name]
+    typical = SPAN * (fallback if typical is None else typical)
     folder = Path(tempfile.mkdtemp(prefix="soak-"))
     try:
         before = _prepare(folder, name)
@@ -154,7 +188,8 @@ def one_run(name: str, seed: int, from_exec: bool = False) -> dict:
         err = err.decode("utf-8", "replace")
         lines = [ln for ln in err.strip().splitlines() if not ln.startswith(("sweep:", "warning:"))]
         rc = proc.returncode
-        res = {"case": name, "signal": int(sig), "delay": round(delay, 3), "rc": rc, "seconds": round(took, 3)}
+        res = {"case": name, "signal": int(sig), "delay": round(delay, 3), "span": round(typical, 3), "rc": rc}
+        res["seconds"] = round(took, 3)
         res["handlers"] = installed
         if rc == 0:  # the command ended before the signal reached it: a complete new output
             res["outcome"] = "completed"
@@ -185,7 +220,8 @@ def soak(runs: int, workers: int = 2, seed: int = 0, cases=None, from_exec: bool
     names = list(cases or CASES)
     jobs = [(names[i % len(names)], seed * 1_000_003 + i) for i in range(runs)]
     with concurrent.futures.ThreadPoolExecutor(max_workers=workers) as pool:
-        return list(pool.map(lambda job: one_run(*job, from_exec=from_exec), jobs))
+        typical = dict(zip(names, pool.map(measure, names)))  # under the same load as the soak
+        return list(pool.map(lambda job: one_run(*job, from_exec=from_exec, typical=typical[job[0]]), jobs))
 
 
 def summary(results) -> dict:

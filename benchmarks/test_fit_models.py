@@ -5,8 +5,8 @@ case) with :func:`microimpact.fitting.fit_restitution`, its free parameter as li
 where the model depends on it), and timed against the seed's fit of ``p_y`` in the same run. Two
 variants per model, side by side: as the library runs it (``e`` alone, through the model's
 ``restitution_only`` hook where it has one, once per distinct group where it declares
-``restitution_group``; compiled loops where its Python loop would cost the fit more than the array
-layer's budget), and ``e`` taken from the full outcome at every point (18 fields, contact-time
+``restitution_group``; compiled loops where its declared cost class says its Python loop would cost
+the fit more than the array layer's budget), and ``e`` taken from the full outcome at every point (18 fields, contact-time
 quadratures included: how fitting ran before issue 25). Target (issue 25): any model's fit at most
 5x the seed's.
 """
@@ -86,11 +86,11 @@ def test_model(timed, data, model, before, size, monkeypatch):
     free, params = MODELS[model]
     if before:
         monkeypatch.setattr(
-            fitting,
+            fitting._models,
             "restitution_arrays",
             lambda mod, V, E, R, m, p_y, p: outcome_arrays(mod, V, E, R, m, p_y, p)["restitution"],
         )
-        monkeypatch.setattr(fitting, "_group_hooks", lambda mod: None)  # e once per point, not per group
+        monkeypatch.setattr(fitting._models, "_group_hooks", lambda mod: None)  # e once per point, not per group
     fit = timed(KEY, model + (BEFORE if before else ""), _fit(data, model, free, params), rounds=3)
     other = _FITTED.setdefault(model, {}).setdefault(not before, None)
     _FITTED[model][before] = fit

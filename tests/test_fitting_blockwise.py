@@ -18,7 +18,8 @@ from scipy import optimize
 import microimpact as mi
 from microimpact import fitting
 from microimpact.adhesion import adhesive_restitution, sticking_velocity
-from microimpact.fitting import LOSSES, FitWarning, fit_restitution
+from microimpact.core.arrays import evaluate
+from microimpact.fitting import LOSSES, FitWarning, _models, _solver, fit_restitution
 
 SILICON = mi.ContactPair.paper_case("silicon")
 
@@ -126,8 +127,8 @@ def test_the_result_does_not_depend_on_the_block_size(monkeypatch, loss, sigma):
         return fit, [str(w.message) for w in caught]
 
     one, said = run()
-    monkeypatch.setattr(fitting, "_BLOCK", 7)
-    monkeypatch.setattr(fitting, "_GATHER", 50)
+    monkeypatch.setattr(_solver, "_BLOCK", 7)
+    monkeypatch.setattr(_solver, "_GATHER", 50)
     many, said_many = run()
     assert said == said_many and one.n_far_above_one == many.n_far_above_one > 0
     p = "limiting_pressure"
@@ -141,8 +142,8 @@ def test_the_result_does_not_depend_on_the_block_size(monkeypatch, loss, sigma):
 @pytest.mark.parametrize("kind", ["normal", "ties", "mostly zero", "heavy tails"])
 @pytest.mark.parametrize("n", [1001, 5000, 12345])
 def test_the_median_by_selection_is_numpys(monkeypatch, kind, n):
-    monkeypatch.setattr(fitting, "_BLOCK", 777)
-    monkeypatch.setattr(fitting, "_GATHER", 1000)
+    monkeypatch.setattr(_solver, "_BLOCK", 777)
+    monkeypatch.setattr(_solver, "_GATHER", 1000)
     rng = np.random.default_rng(n)
     r = {
         "normal": lambda: rng.normal(size=n),
@@ -150,8 +151,8 @@ def test_the_median_by_selection_is_numpys(monkeypatch, kind, n):
         "mostly zero": lambda: np.where(np.arange(n) < 10, 1.0, 0.0),
         "heavy tails": lambda: rng.standard_cauchy(n) * 1e10,
     }[kind]()
-    assert fitting._median(lambda s: r[s], n) == np.median(r)
-    assert fitting._mad_scale(r) == 1.4826 * float(np.median(np.abs(r - np.median(r))))
+    assert _solver._median(lambda s: r[s], n) == np.median(r)
+    assert _solver.mad_scale(r) == 1.4826 * float(np.median(np.abs(r - np.median(r))))
 
 
 def test_max_nfev_stops_the_fit_with_a_warning():
@@ -226,7 +227,7 @@ def test_e_by_distinct_groups_is_the_outcomes_field_bit_for_bit(monkeypatch, par
         np.asarray(x) for x in (SILICON.effective_modulus, SILICON.effective_radius, SILICON.effective_mass, 1e8)
     )
     full = outcome_arrays(mod, V, E, R, m, p_y, params)["restitution"]
-    g = fitting._arrays().evaluate(mod.restitution_group, V, E, R, m, p_y, params=params)[0]
-    e = fitting._restitution_by_group(mod, V, E, R, m, p_y, params)
+    g = evaluate(mod.restitution_group, V, E, R, m, p_y, params=params)[0]
+    e = _models._restitution_by_group(mod, V, E, R, m, p_y, params)
     np.testing.assert_array_equal(e, full)
     assert np.unique(g).size <= 10 < V.size  # the point of it: a handful of integrations, not one per speed

@@ -366,6 +366,7 @@ def test_adhesion_rules_come_from_the_model_declarations(tmp_path, monkeypatch):
     import re
     import textwrap
 
+    from microimpact import adhesion as adhesion_module
     from microimpact.adhesion import ADDITIVE_RULE, check_adhesion_rule
     from microimpact.core import models
 
@@ -396,6 +397,18 @@ def test_adhesion_rules_come_from_the_model_declarations(tmp_path, monkeypatch):
             check_adhesion_rule("user_law", "--adhesion")
     finally:
         models.unregister_path(package)
+    # a second law claiming the wall's table (which is the whole law's) is refused, not used silently
+    (tmp_path / package / "user_law.py").write_text(
+        'NAME = "user_law"\nTITLE = "t"\nWALL_ADHESION = True\noutcome = force = None\n'
+    )
+    package2 = "zoo_wall_claim"
+    (tmp_path / package).rename(tmp_path / package2)
+    models.register_path(package2)
+    try:
+        with pytest.raises(ValueError, match="one model may declare WALL_ADHESION .*, got .*, user_law"):
+            adhesion_module._wall_laws()
+    finally:
+        models.unregister_path(package2)
 
 
 # ----------------------------------------------------------------------------- the C source

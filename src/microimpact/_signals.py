@@ -13,6 +13,8 @@ and checks for a pending interrupt before it renames anything into place) and
   a watchdog: if the command has not ended :data:`GRACE` seconds later (a deadlock in a library's
   lock, a blocking call), the registered temporary files are removed and the process exits with
   ``128 + signal``. A second signal ends it at once the same way.
+  Inside a section of :mod:`microimpact.core._defer` (compiling a loop) the signal is only
+  recorded, and raised when the section ends.
 * :func:`restore` -- the previous handlers back, the watchdog disarmed.
 
 A signal the process was started with ignored stays ignored in every stage, as Python itself
@@ -27,6 +29,8 @@ import os
 import signal
 import sys
 
+from .core import _defer
+
 try:  # already imported by the interpreter's start in most programs; cheap
     import _thread
 except ImportError:  # pragma: no cover
@@ -38,7 +42,15 @@ __all__ = ["GRACE", "Interrupted", "install_early", "install", "restore", "check
 GRACE = 3.0
 SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
-_state = {"pending": None, "timer": None, "old": {}, "prefix": "microimpact", "hook": None}
+_state = {
+    "pending": None,
+    "timer": None,
+    "old": {},
+    "prefix": "microimpact",
+    "hook": None,
+    "committed": False,
+    "late": False,
+}
 _live: dict = {}  # temporary path -> "file" or "dir", while it is being written
 _lock = _thread.allocate_lock()
 
@@ -95,6 +107,28 @@ def cleanup() -> None:
             pass
 
 
+def committed() -> None:
+    """An output was renamed into place (:mod:`microimpact.io`, with signals held).
+
+    From then on a signal no longer interrupts the command where it is: the output in place is
+    complete and new, and an exit status of ``128 + signal`` would say the old one was kept. The
+    signal is remembered (:func:`late`), the watchdog armed, and the command goes on to its end
+    (exit 0) -- or to its next output, which :func:`check` then refuses to put in place.
+    """
+    _state["committed"] = True
+
+
+def late() -> bool:
+    """True if the pending signal came after an output was put in place (see :func:`committed`)."""
+    return _state["late"]
+
+
+def _leave() -> None:
+    """A deferred section ended (:mod:`microimpact.core._defer`): raise a signal it held."""
+    if not _state["late"]:
+        check()
+
+
 def pending():
     """The signal number received during the command and not yet reported, or None."""
     return _state["pending"]
@@ -131,6 +165,11 @@ def _raise(signum, frame):
     timer.daemon = True
     timer.start()
     _state["timer"] = timer
+    if _state["committed"]:  # an output is in place, complete: see committed()
+        _state["late"] = True
+        return
+    if _defer.active():  # compiling a loop: raised when the section ends (core._defer), or the watchdog ends it
+        return
     raise Interrupted(signum)
 
 
@@ -177,6 +216,8 @@ def install() -> None:
     if not _in_main_thread():
         return
     _state["pending"] = None
+    _state["committed"] = _state["late"] = False
+    _defer.on_leave = _leave
     if sys.unraisablehook is not _unraisable:
         _state["hook"] = sys.unraisablehook
         sys.unraisablehook = _unraisable
@@ -208,6 +249,8 @@ def restore(exiting: bool = False) -> None:
                 pass
     _state["old"] = {}
     _state["pending"] = None
+    _state["committed"] = _state["late"] = False
+    _defer.on_leave = None
     if sys.unraisablehook is _unraisable:
         sys.unraisablehook = _silent if exiting else (_state["hook"] or sys.__unraisablehook__)
         _state["hook"] = None

@@ -92,17 +92,17 @@ WHOLE_LAW: str
 def _wall_laws() -> tuple:
     from .core import models
 
-    return tuple(n for n in models.available() if models.get(n).WALL_ADHESION)
+    laws = tuple(n for n in models.available() if models.get(n).WALL_ADHESION)
+    if len(laws) > 1:  # the wall's table is one law's (core.adhesion.whole_law_correction): never another's
+        raise ValueError(f"one model may declare WALL_ADHESION (the wall's table is one law's), got {', '.join(laws)}")
+    return laws
 
 
 def __getattr__(name):  # ADHESION_RULES and WHOLE_LAW: read from the models' declarations once, when asked
     if name == "ADHESION_RULES":
         value = (ADDITIVE_RULE, *_wall_laws())
     elif name == "WHOLE_LAW":
-        laws = _wall_laws()
-        if len(laws) != 1:  # the wall's table is one law's (core.adhesion.whole_law_correction)
-            raise RuntimeError(f"exactly one model must declare WALL_ADHESION, got {laws!r}")
-        value = laws[0]
+        value = _wall_laws()[0]
     else:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     globals()[name] = value

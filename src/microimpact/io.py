@@ -315,6 +315,7 @@ def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newli
         with _signals_deferred():
             os.replace(tmp, target)
             _signals.untrack(tmp)
+            _signals.committed()
     except BaseException as exc:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
@@ -505,6 +506,7 @@ def owned_directory(path, command: str, *, inputs=()):
                     raise _oserror(errno.EEXIST, "appeared while the output was written", target)
                 os.rename(stage, target)
                 _signals.untrack(stage)
+                _signals.committed()
             stage = None
             _fsync_dir(target.parent)
         else:
@@ -517,6 +519,7 @@ def owned_directory(path, command: str, *, inputs=()):
                     if name not in names:
                         with contextlib.suppress(FileNotFoundError):
                             os.unlink(target / name)
+                _signals.committed()
             _fsync_dir(target)
     finally:
         if stage is not None:
@@ -796,6 +799,7 @@ def write_netcdf(ds, path, *, engine=None, progress=False):
         with _signals_deferred():
             os.replace(tmp, target)
             _signals.untrack(tmp)
+            _signals.committed()
     except BaseException:
         with contextlib.suppress(OSError):
             os.unlink(tmp)

@@ -131,6 +131,6 @@ def test_fitting_evaluates_a_hooked_model_without_its_outcome(monkeypatch):
     def refuse(*a, **k):
         raise AssertionError("fitting computed the whole outcome to get e")
 
-    monkeypatch.setattr(fitting, "outcome_arrays", refuse)
-    got = fitting._restitution_of("liggghts_thornton_ning", pair, (), V)
+    monkeypatch.setattr(fitting._models, "outcome_arrays", refuse)
+    got = fitting._models.restitution_of("liggghts_thornton_ning", pair, (), V)
     assert _same(got, want).all()

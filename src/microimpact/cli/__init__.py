@@ -194,7 +194,8 @@ def _main(argv):
             sys.stdout.flush()
         finally:
             sys.stdout = stdout
-        _signals.check()  # an interrupt whose exception was swallowed on the way (in a __del__, a callback)
+        if not _signals.late():  # a signal after the output was put in place: the run is complete
+            _signals.check()  # an interrupt whose exception was swallowed on the way (in a __del__, a callback)
     except KeyboardInterrupt:
         raise
     except BrokenPipeError:  # e.g. piped into head: stop quietly

@@ -38,6 +38,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import _defer
 from . import cache as _cache
 from ._jit import JITABLE
 
@@ -187,7 +188,8 @@ def _kernels(fn, kinds: str, nout: int, with_params: bool):
     with _LOCK:
         found = _KERNELS.get(key)
         if found is None:
-            found = _KERNELS[key] = _build(fn, kinds, nout, with_params)
+            with _defer.section():  # imports numba (llvmlite) and defines the loops
+                found = _KERNELS[key] = _build(fn, kinds, nout, with_params)
     return found
 
 
@@ -332,15 +334,17 @@ def _call(kernel, n, inputs, params, out):
     That first call compiles the loop or loads it from numba's cache: processes started together
     on an empty cache so compile it once, the others wait and then load it (:func:`~.cache.locked`).
     """
-    if kernel.signatures:
-        kernel(n, *inputs, params, out)
-        return
-    folder, stem = _LOCK_NAMES.get(kernel, (None, None))
-    if folder is None:  # compiled in memory (the cache folder could not be used)
-        _heal_call(kernel, n, *inputs, params, out)
-        return
-    with _cache.locked(folder, stem):
-        _heal_call(kernel, n, *inputs, params, out)
+    if not kernel.signatures:
+        # compiled (or loaded) by a call over no element, in a section a signal does not cut
+        # (core._defer: an interrupt inside numba's compiler leaves llvmlite objects half built)
+        folder, stem = _LOCK_NAMES.get(kernel, (None, None))
+        with _defer.section():
+            if folder is None:  # compiled in memory (the cache folder could not be used)
+                _heal_call(kernel, 0, *inputs, params, out)
+            else:
+                with _cache.locked(folder, stem):
+                    _heal_call(kernel, 0, *inputs, params, out)
+    kernel(n, *inputs, params, out)
 
 
 def _flat(arrays, shape):

@@ -103,7 +103,7 @@ as users name it (``model=NAME``). It declares what it is with module-level name
     :func:`~microimpact.wall.wall_interaction`, of the C export and of its tables (the rules
     :data:`microimpact.adhesion.ADHESION_RULES` lists), through the table of the law's correction to
     the additive rule (:func:`microimpact.core.adhesion.whole_law_correction`, which that law
-    computes). Declared by Thornton & Ning's whole law.
+    computes). Declared by Thornton & Ning's whole law, and by one model only: that table is its.
 ``WALL_REFUSAL`` [``None``]
     Why the law cannot be the wall's adhesion law, for a law a user may expect there (one clause:
     :func:`microimpact.adhesion.check_adhesion_rule` gives it after refusing the name).
