@@ -1,37 +1,37 @@
-"""6. ``microimpact paper`` end to end, in a subprocess writing to a temporary directory, and
-``python -c "import matplotlib.pyplot"`` (what it cannot avoid) timed right after it."""
+"""6. ``microimpact paper`` end to end, in a subprocess writing to a temporary directory, run in turn
+with ``python -c "import matplotlib.pyplot"`` (what it cannot avoid): A B A B, best of each, so that
+the ratio holds on a loaded machine."""
 
 import os
 import subprocess
 import sys
+import time
 
 import pytest
 
 KEY = "paper"
 
 
-def test_paper_end_to_end(timed, record, size, tmp_path):
+def _time(argv):
+    t0 = time.perf_counter()
+    proc = subprocess.run(argv, capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    return time.perf_counter() - t0
+
+
+def test_paper_end_to_end(record, size, tmp_path):
     if not size["paper"]:
         pytest.skip("not run in tiny mode")
     pytest.importorskip("matplotlib")
-
-    def run():
-        proc = subprocess.run(
-            [sys.executable, "-m", "microimpact", "paper", "--out", str(tmp_path)],
-            capture_output=True,
-            text=True,
-            timeout=600,
-        )
-        assert proc.returncode == 0, proc.stderr[-2000:]
-
-    timed(KEY, "end to end", run, rounds=1, warmup_rounds=0)
-    timed(
-        KEY,
-        "python -c 'import matplotlib.pyplot'",
-        lambda: subprocess.run([sys.executable, "-c", "import matplotlib.pyplot"], check=True, capture_output=True),
-        rounds=3,
-        warmup_rounds=1,
-    )
+    paper = [sys.executable, "-m", "microimpact", "paper", "--out", str(tmp_path)]
+    mpl = [sys.executable, "-c", "import matplotlib.pyplot"]
+    _time(mpl)  # bytecode and matplotlib's font cache, as on a user's machine
+    best = {}
+    for _ in range(2):
+        for label, argv in (("end to end", paper), ("python -c 'import matplotlib.pyplot'", mpl)):
+            best[label] = min(best.get(label, float("inf")), _time(argv))
+    for label, seconds in best.items():
+        record.time(KEY, label, seconds)
     files = sum(len(f) for _, _, f in os.walk(tmp_path))
     record.metric(KEY, "files", files)
     assert files >= 20

@@ -248,3 +248,57 @@ def test_result_and_pair_show_their_values_with_units():
     assert "V_y" in card and f"{pair.yield_velocity:.6g}" in card and "kg/m^3" in card
     elastic = pair.elastic_equivalent()
     assert "V_y" not in elastic._repr_html_()  # p_y = inf: no yield point to show
+
+
+def test_one_impact_fields_are_the_array_paths_numpy_scalars_whatever_is_read_first():
+    """pair.impact(float) keeps the core's tuple until a field is read; every field, read first or
+    later, is then the numpy scalar (flags numpy booleans) the array path gives, bit for bit."""
+    import copy
+    import pickle
+
+    from microimpact.core.quantities import FLAG_FIELDS, OUTCOME_FIELDS
+
+    pair = mi.ContactPair.paper_case("silicon")
+    for V in (0.5 * pair.yield_velocity, 50.0):
+        many = pair.impact(np.array([V]), warn=False)
+        for first in OUTCOME_FIELDS:
+            one = pair.impact(V, warn=False)
+            kept = pickle.loads(pickle.dumps(one)), copy.copy(one)  # before any field is read
+            for res in (one, *kept):
+                getattr(res, first)
+                for name in OUTCOME_FIELDS:
+                    x = getattr(res, name)
+                    assert type(x) is (np.bool_ if name in FLAG_FIELDS else np.float64), name
+                    assert x.tobytes() == np.asarray(getattr(many, name))[0].tobytes(), name
+    assert not hasattr(mi.ImpactResult, "velocity")  # a field, no class attribute
+    with pytest.raises(AttributeError, match="no_such_field"):
+        pair.impact(50.0, warn=False).no_such_field
+
+
+def test_large_strain_warning_under_each_first_filter():
+    """The warning is skipped only where the first filter ignores it whatever its text: an "error"
+    first, a message pattern, or an ignore of another category still see it."""
+    import warnings
+
+    pair = mi.ContactPair.paper_case("silicon")  # 50 m/s is flagged large_strain
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        pair.impact(50.0)  # nothing, no error
+        warnings.simplefilter("error", mi.LargeStrainWarning)
+        with pytest.raises(mi.LargeStrainWarning, match="from V = 50 m/s"):
+            pair.impact(50.0)
+    for ignore in (
+        dict(category=DeprecationWarning),
+        dict(category=mi.LargeStrainWarning, message="no such text"),
+        dict(category=mi.LargeStrainWarning, module="no_such_module"),
+    ):
+        with warnings.catch_warnings(record=True) as seen:
+            warnings.simplefilter("always")
+            warnings.filterwarnings("ignore", **ignore)
+            pair.impact(50.0)
+        assert [w.category for w in seen] == [mi.LargeStrainWarning], ignore
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        warnings.filterwarnings("ignore", category=mi.LargeStrainWarning)
+        assert pair.impact(50.0).large_strain
+    assert seen == []

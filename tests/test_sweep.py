@@ -427,3 +427,61 @@ def test_core_import_needs_no_extras():
     res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert res.returncode == 0, res.stderr
     assert float(res.stdout) == pytest.approx(0.7248, abs=1e-4)
+
+
+def test_small_cli_sweep_skips_dask_and_a_later_lazy_sweep_still_works(tmp_path):
+    """A sweep of one block is computed and written without importing dask.array (xarray is told
+    no dask array exists while none can); the file equals a chunked sweep's bit for bit, and a lazy
+    sweep afterwards in the same process is lazy and right (the context withdrew its answer)."""
+    code = f"""
+import sys
+from microimpact.cli import main
+assert main(["sweep", "--velocity", "1:120:30", "--density", "1000,2000", "--no-progress",
+             "--out", r"{tmp_path / "eager.nc"}"]) == 0
+assert "dask.array" not in sys.modules
+assert main(["sweep", "--velocity", "1:120:30", "--density", "1000,2000", "--chunks", "7", "--no-progress",
+             "--out", r"{tmp_path / "lazy.nc"}"]) == 0
+import dask.array as da, numpy as np, xarray as xr
+from microimpact.sweep import sweep
+import microimpact as mi
+lazy = sweep(velocity=np.linspace(1, 120, 30), density=[1000.0, 2000.0], base=mi.ContactPair.paper_case("silicon"),
+             chunks=7)
+assert isinstance(lazy["restitution"].data, da.Array)
+with xr.open_dataset(r"{tmp_path / "eager.nc"}") as a, xr.open_dataset(r"{tmp_path / "lazy.nc"}") as b:
+    xr.testing.assert_identical(a, b)
+    for v in a.data_vars:
+        assert a[v].values.tobytes() == b[v].values.tobytes(), v
+    np.testing.assert_array_equal(lazy["restitution"].values, a["restitution"].values)
+print("ok")
+"""
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr[-3000:]
+    assert res.stdout.strip().endswith("ok")
+
+
+def test_csv_rows_read_back_bit_for_bit_nan_inf_and_flags_spelled_as_before(tmp_path):
+    """The CSV writer's numbers read back bit for bit with Python's float() (random bit patterns,
+    subnormals, the extremes, signed zeros), NaN as ``nan``, infinities as ``inf``/``-inf``,
+    booleans 0/1; and more rows than one formatting call takes."""
+    import io
+
+    rng = np.random.default_rng(25)
+    x = rng.integers(0, 2**64 - 1, 70_000, dtype=np.uint64, endpoint=True).view(np.float64)
+    x[:8] = [0.0, -0.0, 5e-324, -5e-324, 1.7976931348623157e308, 2.2250738585072014e-308, 1e-5, 1e16]
+    flags = rng.random(x.size) < 0.5
+    ints = rng.integers(-(2**40), 2**40, x.size)
+    buf = io.StringIO()
+    msweep._write_rows(buf, [x, flags, ints])
+    lines = buf.getvalue().split("\n")
+    assert lines[-1] == "" and len(lines) == x.size + 1 > msweep._CSV_FORMAT_ROWS
+    cells = [line.split(",") for line in lines[:-1]]
+    back = np.array([float(c[0]) for c in cells])
+    finite = np.isfinite(x)
+    assert back[finite].tobytes() == x[finite].tobytes()
+    for c, v in zip(cells, x):
+        if np.isnan(v):
+            assert c[0] == "nan"
+        elif np.isinf(v):
+            assert c[0] == ("inf" if v > 0 else "-inf")
+    assert [c[1] for c in cells] == ["1" if f else "0" for f in flags]
+    assert [int(c[2]) for c in cells] == ints.tolist()

@@ -11,6 +11,7 @@ _EXTRA_OF = {
     "xarray": "sweep",
     "dask": "sweep",
     "netCDF4": "sweep",
+    "polars": "sweep",
 }
 
 

@@ -49,7 +49,6 @@ _state = {
     "prefix": "microimpact",
     "hook": None,
     "committed": False,
-    "late": False,
 }
 _live: dict = {}  # temporary path -> "file" or "dir", while it is being written
 _lock = _thread.allocate_lock()
@@ -119,13 +118,17 @@ def committed() -> None:
 
 
 def late() -> bool:
-    """True if the pending signal came after an output was put in place (see :func:`committed`)."""
-    return _state["late"]
+    """True if the pending signal came after an output was put in place (see :func:`committed`).
+
+    A signal pending before that is raised before the rename (:func:`check`), so an output is
+    never committed with a signal already pending: pending and committed means late.
+    """
+    return _state["committed"] and _state["pending"] is not None
 
 
 def _leave() -> None:
     """A deferred section ended (:mod:`microimpact.core._defer`): raise a signal it held."""
-    if not _state["late"]:
+    if not late():
         check()
 
 
@@ -165,8 +168,7 @@ def _raise(signum, frame):
     timer.daemon = True
     timer.start()
     _state["timer"] = timer
-    if _state["committed"]:  # an output is in place, complete: see committed()
-        _state["late"] = True
+    if _state["committed"]:  # an output is in place, complete: see committed() and late()
         return
     if _defer.active():  # compiling a loop: raised when the section ends (core._defer), or the watchdog ends it
         return
@@ -216,7 +218,7 @@ def install() -> None:
     if not _in_main_thread():
         return
     _state["pending"] = None
-    _state["committed"] = _state["late"] = False
+    _state["committed"] = False
     _defer.on_leave = _leave
     if sys.unraisablehook is not _unraisable:
         _state["hook"] = sys.unraisablehook
@@ -249,7 +251,7 @@ def restore(exiting: bool = False) -> None:
                 pass
     _state["old"] = {}
     _state["pending"] = None
-    _state["committed"] = _state["late"] = False
+    _state["committed"] = False
     _defer.on_leave = None
     if sys.unraisablehook is _unraisable:
         sys.unraisablehook = _silent if exiting else (_state["hook"] or sys.__unraisablehook__)

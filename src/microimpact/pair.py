@@ -28,6 +28,7 @@ from ._validation import (
 )
 from .core import adhesion as _adhesion
 from .core import models, quantities
+from .core.arrays import evaluate as _evaluate
 from .core.constants import LARGE_STRAIN_RATIO
 from .core.models import thornton_ning_1998_adhesive_plastic as _whole_law
 from .core.models import thornton_ning_2016 as _seed
@@ -100,6 +101,31 @@ _LARGE = OUTCOME_FIELDS.index("large_strain")
 _FLAG_INDEX = tuple((OUTCOME_FIELDS.index(k), k) for k in FLAG_FIELDS)
 
 
+class _OneImpactField:
+    """A field of :class:`ImpactResult` not yet read (a one-impact result, ``ImpactResult._of_one``).
+
+    A non-data descriptor: Python reaches it only when the instance does not hold the name. The
+    first read writes all 18 numpy scalars (flags numpy booleans) into the instance, so that every
+    later read is a plain look-up; on the class itself it is no attribute (as a dataclass field
+    without a default).
+    """
+
+    __slots__ = ("name",)
+
+    def __init__(self, name):
+        self.name = name
+
+    def __get__(self, obj, owner=None):
+        one = None if obj is None else obj.__dict__.pop("_one", None)
+        if one is None:
+            raise AttributeError(f"{(owner or type(obj)).__name__!r} object has no attribute {self.name!r}")
+        d = obj.__dict__
+        d.update(zip(OUTCOME_FIELDS, map(np.float64, one)))
+        for i, flag in _FLAG_INDEX:
+            d[flag] = _TRUE if one[i] == 1.0 else _FALSE
+        return d[self.name]
+
+
 def _adhesion_range_text(name, limit, mu):
     """The warning of a pair outside its adhesive model's limit."""
     if limit == "JKR":
@@ -111,6 +137,21 @@ def _adhesion_range_text(name, limit, mu):
         if mu > _adhesion.TABOR_JKR:
             where += " (the JKR limit does)"
     return f"Tabor parameter {mu:.3g} (z0 = 0.3 nm) {where}; results flagged in .outside_adhesion_range"
+
+
+def _ignored(category) -> bool:
+    """True when the first of :data:`warnings.filters` ignores every ``category`` warning.
+
+    :func:`warnings.warn` then shows nothing, whatever the text or the caller; this test costs a
+    tenth of it (its frame look-up, registry and filter walk, and formatting the text first), the
+    warning of ``pair.impact(50.0)`` under ``warnings.simplefilter("ignore")`` (issue 25). Any other
+    first filter (an ``"error"``, a message or module pattern) leaves the decision to ``warnings``.
+    """
+    filters = warnings.filters
+    if not filters:
+        return False
+    action, message, cat, module, lineno = filters[0]
+    return action == "ignore" and message is None and module is None and not lineno and issubclass(category, cat)
 
 
 def _scalar_or_array(x):
@@ -210,13 +251,11 @@ class ImpactResult:
 
     @classmethod
     def _of_one(cls, values: tuple) -> ImpactResult:
-        """One impact from the core's tuple (in the order of ``OUTCOME_FIELDS``): numpy scalars, flags as
-        numpy booleans, written straight into the instance (the hot path of ``pair.impact(50.0)``)."""
+        """One impact from the core's tuple (in the order of ``OUTCOME_FIELDS``), kept as it is until a
+        field is read: then all 18 become numpy scalars (flags numpy booleans) at once, written into the
+        instance (the hot path of ``pair.impact(50.0)``: building them cost about half the outcome)."""
         obj = object.__new__(cls)
-        d = obj.__dict__
-        d.update(zip(OUTCOME_FIELDS, map(np.float64, values)))
-        for i, name in _FLAG_INDEX:
-            d[name] = _TRUE if values[i] == 1.0 else _FALSE
+        obj.__dict__["_one"] = values
         return obj
 
     @property
@@ -270,6 +309,11 @@ class ImpactResult:
             "</caption><tr><th>field</th><th>value</th><th>unit</th><th>meaning</th></tr>"
             f"{body}</table>"
         )
+
+
+for _name in OUTCOME_FIELDS:  # after the dataclass took its fields: no defaults, the same __init__
+    setattr(ImpactResult, _name, _OneImpactField(_name))
+del _name
 
 
 @dataclass(frozen=True)
@@ -903,7 +947,7 @@ class ContactPair:
             res = ImpactResult._trusted({k: _scalar_or_array(v) for k, v in out.items()})
             flagged = res.any_large_strain
             vmin = None
-        if warn and flagged:
+        if warn and flagged and not _ignored(LargeStrainWarning):
             if vmin is None:
                 vmin = np.min(np.asarray(res.velocity)[np.asarray(res.large_strain)])
             warnings.warn(
@@ -917,7 +961,7 @@ class ContactPair:
             mu, outside = self._adhesion_range(mod, limit, p, _adhesion.EQUILIBRIUM_SEPARATION)
             res.__dict__["tabor_parameter"] = mu
             res.__dict__["outside_adhesion_range"] = _TRUE if outside else _FALSE
-            if warn and outside:
+            if warn and outside and not _ignored(AdhesionRangeWarning):
                 warnings.warn(_adhesion_range_text(mod.NAME, limit, mu), AdhesionRangeWarning, stacklevel=2)
         return res
 
@@ -1154,7 +1198,9 @@ class ContactPair:
             if not 0.0 <= V < math.inf:
                 check_velocity("velocity", V)
             return np.float64(_seed.restitution_at(V, self.yield_velocity))
-        return _scalar_or_array(impact.restitution_coefficient(velocity, self.yield_velocity))
+        # the pair's own V_y was checked with the pair: only the speeds are (a fixed cost per call)
+        V = check_velocity("velocity", velocity)
+        return _scalar_or_array(_evaluate(_seed.restitution_at, V, self.yield_velocity)[0])
 
     def dem_time_step(self, velocity, *, model: str = models.DEFAULT, steps_per_contact=50, **params) -> float:
         """A DEM time step [s] that resolves the contact: the shortest contact time of ``model`` at

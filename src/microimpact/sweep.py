@@ -20,6 +20,7 @@ xarray and dask are optional: ``pip install 'microimpact[sweep]'``.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import sys
 import warnings
@@ -93,11 +94,45 @@ SWEEP_VARIABLES: dict[str, tuple[str, str]] = {
 
 
 #: Points per block when ``chunks="auto"`` (about 40 MB of results and temporaries per block).
-_AUTO_BLOCK_POINTS = 1 << 17
+AUTO_BLOCK_POINTS = 1 << 17
 #: Peak memory per evaluated point [bytes]: the ~20 stacked result fields and the kernel's temporaries.
 _BYTES_PER_POINT = 600
 #: Points per slab written to CSV: bounds the memory of :func:`sweep_to_csv` (about 200 MB).
 _CSV_SLAB_POINTS = 1 << 18
+#: Rows formatted per call of polars' CSV writer (about 15 MB of text).
+_CSV_FORMAT_ROWS = 1 << 15
+
+
+@contextlib.contextmanager
+def without_dask_probe():
+    """While dask.array is not imported, tell xarray that no dask array exists (true then).
+
+    xarray asks, for every variable it builds, whether the data are a dask array, and imports
+    :mod:`dask.array` to know (``xarray.namedarray.pycompat.array_type("dask")``): about half a
+    second, more than a small eager sweep costs altogether (issue 25). No object can be a dask array
+    before that module is imported, so inside this context xarray's cached answer is "dask absent";
+    it is withdrawn on the way out (a later lazy sweep imports dask as before). A no-op once
+    dask.array is imported, or where xarray keeps no such cache.
+    """
+    try:
+        from xarray.namedarray import pycompat
+    except ImportError:  # pragma: no cover - another xarray layout: nothing to skip
+        yield
+        return
+    cache = getattr(pycompat, "_cached_duck_array_modules", None)
+    known = isinstance(cache, dict) and hasattr(pycompat, "DuckArrayModule") and hasattr(pycompat, "Version")
+    if "dask.array" in sys.modules or not known or "dask" in cache:
+        yield
+        return
+    absent = object.__new__(pycompat.DuckArrayModule)
+    absent.module, absent.type, absent.available = None, (), False
+    absent.version = pycompat.Version("0.0.0")  # what xarray records for a module it cannot import
+    cache["dask"] = absent
+    try:
+        yield
+    finally:
+        if cache.get("dask") is absent:
+            del cache["dask"]
 
 
 # --------------------------------------------------------------------------- kernel
@@ -187,7 +222,7 @@ def _normalize_chunks(chunks, dims, shape):
         if chunks != "auto":
             raise ValueError(f"chunks must be an int, a dict or 'auto', got {chunks!r}")
         da = require("dask.array", "lazy sweeps (chunks=)")
-        norm = da.core.normalize_chunks("auto", shape, limit=_AUTO_BLOCK_POINTS * 8, dtype=np.float64)
+        norm = da.core.normalize_chunks("auto", shape, limit=AUTO_BLOCK_POINTS * 8, dtype=np.float64)
         return {d: c for d, c in zip(dims, norm)}
     if isinstance(chunks, dict):
         unknown = [k for k in chunks if k not in dims]
@@ -637,7 +672,8 @@ def sweep_to_csv(ds, path, *, progress=False, rows_per_block=None):
     Columns: each swept input, then each data variable (broadcast over the
     swept inputs), named ``name [unit]`` (the project's CSV layout,
     :mod:`microimpact.io`, with no comment lines); floats in their shortest
-    exact form (they read back exactly); booleans as 0/1. Rows run over the
+    exact form (they read back exactly; formatted by polars, ``nan``, ``inf``
+    and ``-inf`` as such); booleans as 0/1. Rows run over the
     last dimension fastest. A lazy sweep is computed one block of the first
     dimension at a time (split further when a block would exceed about 2.6e5
     points), so memory stays bounded; ``progress=True`` draws a bar on stderr
@@ -664,8 +700,6 @@ def sweep_to_csv(ds, path, *, progress=False, rows_per_block=None):
     """
     import pathlib
 
-    from .io import csv_rows
-
     path = pathlib.Path(path)
     dims = list(ds.dims)
     variables = list(ds.data_vars)
@@ -676,15 +710,44 @@ def sweep_to_csv(ds, path, *, progress=False, rows_per_block=None):
         fh.write(",".join(header) + "\n")
         if not dims:
             sub = ds.compute()
-            fh.write(next(csv_rows([_csv_value(sub[c].values) for c in columns])) + "\n")
+            _write_rows(fh, [np.atleast_1d(np.asarray(sub[c].values)) for c in columns])
             return path
         with progress_bar(len(slabs), "sweep to CSV", unit="block", disable=not progress) as bar:
             for outer, inner in slabs:
                 part = ds.isel(outer).compute()  # one block of the first dimension at a time
                 for sel in inner:
-                    fh.writelines(row + "\n" for row in csv_rows(_piece_columns(part.isel(sel), dims, variables)))
+                    _write_rows(fh, _piece_columns(part.isel(sel), dims, variables))
                 bar.update(1)
     return path
+
+
+def _write_rows(fh, cols):
+    """Write the CSV rows of equal-length columns (numpy arrays) to the text file ``fh``.
+
+    Numbers go through polars' compiled CSV writer, :data:`_CSV_FORMAT_ROWS` rows at a time: floats
+    in their shortest exact form (they read back bit for bit; the same digits as Python's ``repr``,
+    positional notation down to 1e-5), NaN written ``nan`` (as a null), infinities ``inf`` and
+    ``-inf``, booleans 0/1. Python's ``repr`` cost about 2 us a number, 20x the NetCDF write of the
+    same sweep (issue 25). Text columns (a ``model`` dimension) take :func:`microimpact.io.csv_rows`.
+    """
+    from .io import csv_rows
+
+    if not all(c.dtype.kind in "biuf" for c in cols):
+        fh.writelines(row + "\n" for row in csv_rows(cols))
+        return
+    pl = require("polars", "CSV sweeps")
+    names = [f"c{j}" for j in range(len(cols))]
+    floats = [name for name, c in zip(names, cols) if c.dtype.kind == "f"]
+    n = len(cols[0]) if cols else 0
+    for i in range(0, n, _CSV_FORMAT_ROWS):
+        part = {
+            name: (c[i : i + _CSV_FORMAT_ROWS].astype(np.int8) if c.dtype.kind == "b" else c[i : i + _CSV_FORMAT_ROWS])
+            for name, c in zip(names, cols)
+        }
+        frame = pl.DataFrame(part)
+        if floats:
+            frame = frame.with_columns(pl.col(floats).fill_nan(None))
+        fh.write(frame.write_csv(include_header=False, null_value="nan", line_terminator="\n"))
 
 
 def _piece_columns(sub, dims, variables):
@@ -748,8 +811,3 @@ def _slabs(ds, dims, rows_per_block=None):
                 sel[first] = slice(start + sel[first].start, start + sel[first].stop)
                 yield sel, [{}]
         start += size
-
-
-def _csv_value(x):
-    x = np.asarray(x)
-    return int(x) if x.dtype == bool else x[()]

@@ -40,6 +40,8 @@ BENCHMARKS = [
     "c_wall",
     "warm_start",
     "fit_models",
+    "csv_sweep",
+    "small_arrays",
 ]
 #: The file of the suite that holds each.
 FILES = {
@@ -55,6 +57,8 @@ FILES = {
     "c_wall": "test_c_wall.py",
     "warm_start": "test_warm_start.py",
     "fit_models": "test_fit_models.py",
+    "csv_sweep": "test_csv_sweep.py",
+    "small_arrays": "test_small_arrays.py",
 }
 
 
@@ -197,7 +201,7 @@ def register(sub) -> None:
     size = p.add_mutually_exclusive_group()
     size.add_argument("--quick", action="store_true", help="sizes 100x smaller (about a minute)")
     size.add_argument("--tiny", action="store_true", help="smallest sizes, no paper run (a smoke test)")
-    p.add_argument("--only", default=None, metavar="N,N", help="comma-separated benchmark numbers (1-12); default all")
+    p.add_argument("--only", default=None, metavar="N,N", help="comma-separated benchmark numbers (1-14); default all")
     p.add_argument(
         "--json",
         default="microimpact-bench.json",

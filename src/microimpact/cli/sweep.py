@@ -20,7 +20,7 @@ from .. import models, quantities
 from .._validation import check_positive
 from ..materials import DEFAULT_K, PAPER_CASES, limiting_pressure, list_materials
 from ..pair import ContactPair
-from ..sweep import SWEEP_DIMENSIONS
+from ..sweep import AUTO_BLOCK_POINTS, SWEEP_DIMENSIONS, without_dask_probe
 from ._common import (
     add_model_arguments,
     check_outputs,
@@ -159,8 +159,6 @@ def _count_large_strain(path, kind) -> int:
 
 
 def run(args) -> int:
-    from ..sweep import sweep, sweep_to_csv, sweep_to_netcdf
-
     out = pathlib.Path(args.out)
     kind = out.suffix.lower()
     if kind not in (".nc", ".csv"):
@@ -185,6 +183,16 @@ def run(args) -> int:
     pair = _base_pair(args, values)
     if names is not None:  # two or more models make a dimension; one is a scalar coordinate
         values["model"] = names if len(names) > 1 else names[0]
+    if args.chunks is None and npoints <= AUTO_BLOCK_POINTS:
+        # one block either way: computed now, and written without dask's import (issue 25)
+        with without_dask_probe():
+            return _sweep_and_write(args, out, kind, values, pair, params, None, npoints)
+    return _sweep_and_write(args, out, kind, values, pair, params, chunks, npoints)
+
+
+def _sweep_and_write(args, out, kind, values, pair, params, chunks, npoints) -> int:
+    from ..sweep import sweep, sweep_to_csv, sweep_to_netcdf
+
     ds = sweep(**values, base=pair, model_params=params or None, chunks=chunks)
     progress = show_progress(args)
     if not args.no_progress:

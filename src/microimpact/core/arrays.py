@@ -30,6 +30,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import itertools
+import math
 import os
 import sys
 import threading
@@ -71,6 +72,7 @@ _COST: dict = {}  # measured serial time per element [s] of each compiled loop
 _PY_COST: dict = {}  # measured time of one Python call [s] of each function
 
 _KERNELS: dict = {}
+_READY: set = set()  # compiled loops called once already in this process (loaded or compiled)
 _LOCK_NAMES: dict = {}  # compiled loop -> (folder, name) of its file lock
 _LOCK = threading.Lock()  # dask evaluates blocks in threads: one thread builds a loop, the others wait
 
@@ -334,26 +336,45 @@ def _call(kernel, n, inputs, params, out):
     That first call compiles the loop or loads it from numba's cache: processes started together
     on an empty cache so compile it once, the others wait and then load it (:func:`~.cache.locked`).
     """
-    if not kernel.signatures:
-        # compiled (or loaded) by a call over no element, in a section a signal does not cut
-        # (core._defer: an interrupt inside numba's compiler leaves llvmlite objects half built)
-        folder, stem = _LOCK_NAMES.get(kernel, (None, None))
-        with _defer.section():
-            if folder is None:  # compiled in memory (the cache folder could not be used)
-                _heal_call(kernel, 0, *inputs, params, out)
-            else:
-                with _cache.locked(folder, stem):
+    if kernel not in _READY:  # a set look-up: kernel.signatures builds a list of them (1.7 us a call)
+        if not kernel.signatures:
+            # compiled (or loaded) by a call over no element, in a section a signal does not cut
+            # (core._defer: an interrupt inside numba's compiler leaves llvmlite objects half built)
+            folder, stem = _LOCK_NAMES.get(kernel, (None, None))
+            with _defer.section():
+                if folder is None:  # compiled in memory (the cache folder could not be used)
                     _heal_call(kernel, 0, *inputs, params, out)
+                else:
+                    with _cache.locked(folder, stem):
+                        _heal_call(kernel, 0, *inputs, params, out)
+        _READY.add(kernel)
     kernel(n, *inputs, params, out)
 
 
+def _shape(arrays):
+    """The broadcast shape of ``arrays``; scalars (Python or numpy floats) add nothing to it."""
+    shapes = [a.shape for a in arrays if not isinstance(a, _SCALARS)]
+    if not shapes:
+        return ()
+    return shapes[0] if len(shapes) == 1 else np.broadcast_shapes(*shapes)
+
+
+#: Scalars :func:`evaluate` takes as they are (``np.float64`` is a ``float``): asking a numpy scalar
+#: for ``size``, ``strides`` or ``flat`` builds an array each time (5 us per call of 1e3 speeds).
+_SCALARS = (float, np.floating)
+
+
 def _flat(arrays, shape):
-    """1-D float64 views (or copies) of each array over the broadcast ``shape``, with their steps."""
-    n = int(np.prod(shape, dtype=np.int64))
+    """Each array as a float over ``shape`` (step 0: one value, or one broadcast to many) or a 1-D
+    float64 view (or copy) of it (step 1), with the steps."""
+    n = math.prod(shape)  # Python ints: np.prod cost 5 us a call
     flats, steps = [], []
     for a in arrays:
-        if a.size == 1 or (a.size > 1 and not any(a.strides)):  # one value, or one broadcast to many
-            flats.append(np.array([a.flat[0]], dtype=np.float64))
+        if isinstance(a, _SCALARS):
+            flats.append(float(a))
+            steps.append(0)
+        elif a.size == 1 or (a.size > 1 and not any(a.strides)):  # one value, or one broadcast to many
+            flats.append(float(np.array([a.flat[0]], dtype=np.float64)[0]))
             steps.append(0)
         elif a.ndim == 1 and a.shape == shape and a.dtype == np.float64:
             flats.append(a)  # a column of a table, say: the loop reads it in place, strided
@@ -392,7 +413,7 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
     ndarray
         Shape ``(nout,) + broadcast shape``, float64.
     """
-    shape = np.broadcast_shapes(*(a.shape for a in arrays))
+    shape = _shape(arrays)
     n, flats, steps = _flat(arrays, shape)
     if out is None:
         out = np.empty((nout, n))
@@ -425,7 +446,10 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
             cost = _PY_COST.get(fn)
             if cost is None:
                 t0 = time.perf_counter()
-                fn(*(float(f[0]) for f in flats), *((tuple(params),) if params is not None else ()))
+                fn(
+                    *(f if s == 0 else float(f[0]) for f, s in zip(flats, steps)),
+                    *((tuple(params),) if params is not None else ()),
+                )
                 cost = _PY_COST[fn] = time.perf_counter() - t0
             if cost * n > PYTHON_BUDGET:
                 engine = "numba"
@@ -435,7 +459,7 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
         serial, parallel = _kernels(fn, kinds, nout, with_params)
         cost = _COST.get(serial)
         threads = n >= PARALLEL_MIN or (cost is not None and n >= 2048 and n * cost >= PARALLEL_WORK)
-        inputs = [float(f[0]) if s == 0 else f for f, s in zip(flats, steps)]
+        inputs = flats
         if threads:
             _call(parallel, n, inputs, tuple(params) if with_params else (), out)
         else:
@@ -445,7 +469,7 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
             if measure:
                 _COST[serial] = (time.perf_counter() - t0) / n
     elif engine == "python":
-        cols = [itertools.repeat(float(f[0]), n) if s == 0 else f.tolist() for f, s in zip(flats, steps)]
+        cols = [itertools.repeat(f, n) if s == 0 else f.tolist() for f, s in zip(flats, steps)]
         if with_params:
             p = tuple(params)
             res = [fn(*xs, p) for xs in zip(*cols)]

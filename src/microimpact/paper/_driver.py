@@ -183,6 +183,33 @@ def _normalize_data(data):
     return out
 
 
+def _render(fig, formats) -> dict:
+    """``{format: bytes}`` of one figure: ``png`` (always, for the report) and each of ``formats``.
+
+    The constrained layout is computed once, by the first vector format's drawing, then kept for
+    the others (``set_layout_engine("none")``): each savefig ran it again (two passes of text
+    layout, about a third of ``paper``'s time). A vector format first, because its text extents
+    are the larger: with them the raster's text keeps inside the figure (the other order pushed
+    a label of Fig. 5 0.6 pt past the PDF's top edge). PNGs at zlib level 1: the same pixels,
+    about 13 % larger, encoded several times faster.
+    """
+    from ..figures import style
+
+    meta = {"pdf": {"CreationDate": None}, "svg": {"Date": None}}
+    order = [f for f in formats if f != "png"] + ["png"]
+    images = {}
+    for i, fmt in enumerate(order):
+        buf = io.BytesIO()
+        if fmt == "png":
+            fig.savefig(buf, format="png", dpi=style.DPI, pil_kwargs={"compress_level": 1})
+        else:
+            fig.savefig(buf, format=fmt, metadata=meta.get(fmt))
+        images[fmt] = buf.getvalue()
+        if i == 0:
+            fig.set_layout_engine("none")
+    return images
+
+
 def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progress=True) -> PaperReport:
     """Regenerate Section 3 of the seed paper: Figures 2-10, their data, and a report.
 
@@ -249,17 +276,12 @@ def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progre
                 ax = draw(table)
                 fig = (np.ravel(ax)[0]).figure
                 try:
-                    buf = io.BytesIO()
-                    fig.savefig(buf, format="png", dpi=_style.DPI)
-                    pngs[stem] = buf.getvalue()
+                    images = _render(fig, formats)
+                    pngs[stem] = images["png"]
                     files = []
                     for fmt in formats:
                         with atomic_write(tmp / f"{stem}.{fmt}", "wb") as fh:
-                            if fmt == "png":
-                                fh.write(pngs[stem])
-                            else:
-                                meta = {"pdf": {"CreationDate": None}, "svg": {"Date": None}}.get(fmt, {})
-                                fig.savefig(fh, format=fmt, metadata=meta or None)
+                            fh.write(images[fmt])
                         files.append(out / f"{stem}.{fmt}")
                 finally:
                     plt.close(fig)
