@@ -185,19 +185,14 @@ def test_no_model_name_as_a_string_outside_its_two_files():
     _report("model names written outside their two files", violations)
 
 
-#: Modules outside the core that still import a model other than the seed by its module, and why.
-MODEL_IMPORT_ALLOWED = {
-    ("microimpact.pair", "thornton_ning_1998_adhesive_plastic"): "the default model= of pair.sticking_velocity",
-    ("microimpact.stick", "thornton_ning_1998_adhesive_plastic"): "the whole law the stick/bounce maps compare",
-}
-
-
 def test_no_model_module_imported_outside_the_core():
     """Outside the core (where physics composes physics: the wall's table is the whole law's correction)
     and a model's two rooms, a model other than the seed (whose array face is the library's own) is
     reached through the registry and its declaration (``models.get(name)``, its hooks and flags such as
     ``WALL_ADHESION`` or ``COST``), never by importing its module: what a room does with a model then
-    follows the model's declarations, and a new model needs no edit there."""
+    follows the model's declarations, and a new model needs no edit there (the whole adhesive law of
+    ``pair.sticking_velocity`` and of the stick/bounce maps is the model declaring ``WALL_ADHESION``,
+    :func:`microimpact.core.models.whole_law`). No exceptions."""
     from microimpact.core import models
 
     names = set(models.available()) - {models.DEFAULT}
@@ -210,8 +205,7 @@ def test_no_model_module_imported_outside_the_core():
             full.rsplit(".", 1)[-1] if full.startswith(("microimpact.core.models.", "microimpact.models.")) else None
         )
         if reached in names and not importer.endswith("models." + reached):
-            if (importer, reached) not in MODEL_IMPORT_ALLOWED:
-                violations.append(f"{importer} imports the model module {full} at line {line}")
+            violations.append(f"{importer} imports the model module {full} at line {line}")
     _report("model modules imported outside the core", violations)
 
 

@@ -30,7 +30,6 @@ from .core import adhesion as _adhesion
 from .core import models, quantities
 from .core.arrays import evaluate as _evaluate
 from .core.constants import LARGE_STRAIN_RATIO
-from .core.models import thornton_ning_1998_adhesive_plastic as _whole_law
 from .core.models import thornton_ning_2016 as _seed
 from .core.quantities import FLAG_FIELDS, OUTCOME_FIELDS
 from .core.wall import sphere_mass as _sphere_mass
@@ -1101,7 +1100,7 @@ class ContactPair:
             data = dynamics.integrate_model(mod.NAME, velocity, *self._args, params, n=n, times=times)
         return dynamics.ImpactHistory.from_dict(data, method=method)
 
-    def sticking_velocity(self, diameter=None, *, model: str = _whole_law.NAME, **params):
+    def sticking_velocity(self, diameter=None, *, model: str | None = None, **params):
         """The capture (sticking) velocity [m/s]: the particle sticks (``e = 0``) at and below it.
 
         Parameters
@@ -1112,8 +1111,9 @@ class ContactPair:
             this pair's particle.
         model : str, optional
             An adhesive model of :func:`microimpact.models.available` that defines its sticking
-            velocity (``"thornton_ning_1998_adhesive_plastic"``, the default, Thornton & Ning's whole
-            law; ``"thornton_ning_1998_elastic_adhesive"``; ``"jkr_elastic_adhesive"``), or
+            velocity (``"thornton_ning_1998_adhesive_plastic"``, Thornton & Ning's whole law, the
+            default: the model that declares ``WALL_ADHESION``, :func:`microimpact.core.models.whole_law`;
+            ``"thornton_ning_1998_elastic_adhesive"``; ``"jkr_elastic_adhesive"``), or
             ``"additive"``: Thornton & Ning's additive rule (their eq. 78, the seed's plastic loss
             plus the elastic adhesive one, :func:`microimpact.core.adhesion.restitution`), which
             takes ``work_of_adhesion``.
@@ -1139,6 +1139,8 @@ class ContactPair:
         >>> pair.sticking_velocity([0.1e-6, 0.2e-6], work_of_adhesion=1.0).round(1)
         array([253.5,  94.5])
         """
+        if model is None:
+            model = models.whole_law()
         if model == "additive":
             from .core import adhesion as _adh
 

@@ -166,3 +166,26 @@ def test_seed_stage_models_is_deprecated():
     assert models.DEFAULT in names
     assert dyn.stage_names()[2].startswith("plastic loading")
     assert dyn.stage_names("linear_spring_dashpot") == {0: dyn.STAGE_NAMES[0], 1: "loading", 3: "unloading"}
+
+
+def test_the_whole_law_is_found_by_its_declaration():
+    """The whole adhesive law (the default of ``pair.sticking_velocity``, the law of the stick/bounce
+    maps) is the one model declaring ``WALL_ADHESION``, and its ``yield_velocity_of`` hook is its
+    outcome's ``yield_velocity`` field (the same bits with adhesion)."""
+    from microimpact import ContactPair
+
+    declaring = [n for n in models.available() if models.get(n).WALL_ADHESION]
+    assert declaring == [models.whole_law()] == ["thornton_ning_1998_adhesive_plastic"]
+    law = models.get(models.whole_law())
+    E, R, m, p_y = 1.31e9, 2.45e-6, 4.0 / 3.0 * math.pi * 2.45e-6**3 * 1350.0, 156e6
+    for G in (0.01, 0.5, 5.0):
+        assert law.yield_velocity_of(E, R, m, p_y, (G,)) == law.outcome(3.0, E, R, m, p_y, (G,))[1]
+    assert law.yield_velocity_of(E, R, m, p_y, (0.5,)) < law.yield_velocity_of(E, R, m, p_y, (0.01,))
+    pair = ContactPair.paper_case("silicon")
+    assert pair.sticking_velocity(work_of_adhesion=0.3) == pair.sticking_velocity(
+        model=models.whole_law(), work_of_adhesion=0.3
+    )
+    assert pair.sticking_velocity(work_of_adhesion=0.3) != pair.sticking_velocity(
+        model="thornton_ning_1998_elastic_adhesive", work_of_adhesion=0.3
+    )
+    assert models.get(models.DEFAULT).yield_velocity_of is None  # a hook, None where not declared
