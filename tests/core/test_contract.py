@@ -189,3 +189,37 @@ def test_the_whole_law_is_found_by_its_declaration():
         model="thornton_ning_1998_elastic_adhesive", work_of_adhesion=0.3
     )
     assert models.get(models.DEFAULT).yield_velocity_of is None  # a hook, None where not declared
+
+
+def test_no_model_file_writes_the_outcome_tuple():
+    """The 18-field outcome is written once, in :func:`~microimpact.core.models.pack` (and the NaN one
+    in ``nan_outcome``): no model file, nor a helper shared by model files, builds it itself."""
+    import ast
+    from pathlib import Path
+
+    folder = Path(models.__file__).parent
+    n = len(OUTCOME_FIELDS)
+    found = []
+    for path in sorted(folder.glob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.FunctionDef) and path.name == "_common.py" and node.name in ("pack", "nan_outcome"):
+                continue
+            for t in ast.walk(node) if isinstance(node, ast.FunctionDef) else ():
+                if isinstance(t, ast.Tuple) and len(t.elts) == n:
+                    found.append(f"{path.name}:{t.lineno} ({node.name})")
+    assert not found, "outcome tuples written outside pack: " + ", ".join(sorted(set(found)))
+
+
+def test_pack_beyond_flags_large_strain_and_is_pack_otherwise():
+    from microimpact.core.models._common import pack_beyond
+
+    args = (3.0, 2.0, 1.5, 0.0, 0.8, 2.4, 1e-7, 2e-8, 1e-3, 3e-6)
+    tail = (1e-8, 2e-8, 3e-8, 4e-8)
+    small = models.pack(*args, 1e-7, 1e-6, *tail)  # a/R = 0.1: within the small-strain range
+    assert small[OUTCOME_FIELDS.index("large_strain")] == 0.0
+    assert pack_beyond(*args, 1e-7, 1e-6, 0.0, *tail) == small
+    flagged = pack_beyond(*args, 1e-7, 1e-6, 1.0, *tail)
+    i = OUTCOME_FIELDS.index("large_strain")
+    assert flagged[i] == 1.0 and flagged[:i] + flagged[i + 1 :] == small[:i] + small[i + 1 :]
+    large = models.pack(*args, 5e-7, 1e-6, *tail)  # a/R = 0.5
+    assert pack_beyond(*args, 5e-7, 1e-6, 0.0, *tail) == large == pack_beyond(*args, 5e-7, 1e-6, 1.0, *tail)
