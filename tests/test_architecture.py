@@ -6,8 +6,9 @@ hold) -> ``applications`` -> ``cli``. A module imports only from its own layer o
 inside functions count too); no module imports a private name (``_x``) of another module; the core
 imports nothing of microimpact outside the core. A model's name is written only in its two files
 (its physics, ``core/models/NAME.py``, and its face, ``models/NAME.py``); no module reads another
-module's private attributes; the CLI calls the public API, not the core. Each rule is one test that
-lists every violation at once.
+module's private attributes; the CLI calls the public API, not the core; the application modules
+keep an order among themselves (:data:`APPLICATION_ORDER`). Each rule is one test that lists every
+violation at once.
 """
 
 from __future__ import annotations
@@ -127,6 +128,50 @@ def test_no_private_name_of_another_module():
         if target != importer:
             violations.append(f"{importer} imports the private name {name} of {target} at line {line}")
     _report("private names imported from another module", violations)
+
+
+#: The application modules (layer 3), bottom up: each imports only those before it (each other's
+#: names never in a circle), so that one can be read, tested and moved knowing only what is below.
+APPLICATION_ORDER = (
+    "quantities",  # the one table of quantities, re-exported above the core
+    "adhesion",  # the adhesion rules (from the models' declarations)
+    "oblique",  # oblique impacts, the tangential laws' tables
+    "stick",  # stick or bounce: the additive rule against the whole law
+    "calibrate",  # the DEM laws calibrated to a target e(V)
+    "wall",  # one particle at a wall (adhesion, oblique)
+    "fitting",  # fits and rankings of e(V) data
+    "compare",  # the models side by side (calibrate, oblique)
+    "sweep",  # parameter sweeps
+    "dem",  # runs in LAMMPS/LIGGGHTS
+    "deposition",  # an example application (wall)
+    "openfoam",  # the OpenFOAM hand-off (wall)
+    "cexport",  # CSV tables and the C source (adhesion, oblique, fitting)
+    "figures",  # every plot (compare, oblique, stick)
+    "paper",  # the seed paper reproduced (figures, fitting)
+    "coupling",  # deprecated: re-exports adhesion, wall and cexport
+)
+
+
+def test_application_modules_keep_their_order():
+    """An application module imports only application modules before it in :data:`APPLICATION_ORDER`
+    (and every application module is listed there, so a new one is placed)."""
+    top = {p.name if p.is_dir() else p.stem for p in SRC.iterdir() if p.suffix == ".py" or (p / "__init__.py").exists()}
+    apps = {m for m in top if m not in LAYERS and not m.startswith("__")}
+    violations = [
+        f"{m} is an application module missing from APPLICATION_ORDER" for m in sorted(apps - set(APPLICATION_ORDER))
+    ]
+    violations += [
+        f"{m} is listed in APPLICATION_ORDER but is no application module" for m in APPLICATION_ORDER if m not in apps
+    ]
+    rank = {m: i for i, m in enumerate(APPLICATION_ORDER)}
+    for importer, target, name, line in IMPORTS:
+        full = _full(target, name)
+        a, b = importer.split("."), full.split(".")
+        if len(a) < 2 or len(b) < 2 or a[1] == b[1] or a[1] not in rank or b[1] not in rank:
+            continue
+        if rank[b[1]] > rank[a[1]]:
+            violations.append(f"{importer} imports {full} (later in APPLICATION_ORDER) at line {line}")
+    _report("application modules out of order", violations)
 
 
 def test_core_imports_only_the_core():
