@@ -27,6 +27,7 @@ from ._validation import (
     check_yield_velocity,
 )
 from .core import adhesion as _adhesion
+from .core import hertz as _hertz
 from .core import models, quantities
 from .core.arrays import evaluate as _evaluate
 from .core.constants import LARGE_STRAIN_RATIO
@@ -631,8 +632,7 @@ class ContactPair:
                 f"from the base pair's materials ({p.name}, {s.name})",
             )
         nu, E2 = DEFAULT_POISSON, DEFAULT_SURFACE_MODULUS
-        inv = 1.0 / self.effective_modulus - (1.0 - nu**2) / E2
-        E1 = (1.0 - nu**2) / inv if inv > 0 else math.nan
+        E1 = _hertz.particle_modulus(self.effective_modulus, nu, E2, nu)
         return (
             {"particle_modulus": E1, "particle_poisson": nu, "surface_modulus": E2, "surface_poisson": nu},
             f"the base pair has effective values only: nu1 = nu2 = {nu}, E2 = {E2 / 1e9:g} GPa (as the seed's "
@@ -732,7 +732,7 @@ class ContactPair:
             if not math.isfinite(self.limiting_pressure):
                 raise ValueError("yield_velocity can be set only on a pair with a finite limiting_pressure")
             Vy0 = impact.yield_velocity(self.limiting_pressure, E, R, m)
-            p_y = self.limiting_pressure * (v["yield_velocity"] / Vy0) ** 0.4
+            p_y = _seed.limiting_pressure_for_yield_velocity(v["yield_velocity"], self.limiting_pressure, Vy0)
         else:
             p_y = np.float64(self.limiting_pressure)
         return E, R, m, p_y

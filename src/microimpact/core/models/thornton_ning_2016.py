@@ -56,6 +56,14 @@ def yield_velocity_sphere_on_flat(p_y, E, rho):
 
 
 @jitable
+def limiting_pressure_for_yield_velocity(V_y_new, p_y, V_y):
+    """The limiting pressure [Pa] that moves the yield velocity from ``V_y`` (at ``p_y`` [Pa]) to
+    ``V_y_new`` [m/s], ``E*``, ``R*`` and ``m*`` kept: ``p_y (V_y_new/V_y)^(2/5)``, since ``V_y`` grows
+    as ``p_y^(5/2)`` (eq. 28)."""
+    return p_y * (V_y_new / V_y) ** 0.4
+
+
+@jitable
 def plastic_stage(v, dv):
     """Normalised outcome of a plastic impact at ``v = V/V_y > 1``, ``dv = v - 1`` (eqs. 22, 14, 11, 9, 27).
 
