@@ -223,3 +223,38 @@ def test_pack_beyond_flags_large_strain_and_is_pack_otherwise():
     assert flagged[i] == 1.0 and flagged[:i] + flagged[i + 1 :] == small[:i] + small[i + 1 :]
     large = models.pack(*args, 5e-7, 1e-6, *tail)  # a/R = 0.5
     assert pack_beyond(*args, 5e-7, 1e-6, 0.0, *tail) == large == pack_beyond(*args, 5e-7, 1e-6, 1.0, *tail)
+
+
+#: Model files released with a module-level ``DEFAULTS`` (the contract before the parameter spec).
+RELEASED_DEFAULTS = (
+    "hertz_tsuji",
+    "hertz_viscoelastic",
+    "jkr_elastic_adhesive",
+    "liggghts_thornton_ning",
+    "linear_spring_dashpot",
+    "luding_adhesive",
+    "luding_hysteretic",
+    "thornton_ning_1998_elastic_adhesive",
+    "thornton_ning_2016",
+)
+
+
+@pytest.mark.parametrize("name", RELEASED_DEFAULTS)
+def test_released_defaults_still_read_with_a_warning(name):
+    import importlib
+
+    module = importlib.import_module(f"microimpact.core.models.{name}")
+    with pytest.warns(DeprecationWarning, match=rf"{name}\.DEFAULTS is deprecated; use microimpact\.models\.get"):
+        defaults = module.DEFAULTS
+    assert defaults == models.get(name).DEFAULTS == tuple(p.default for p in models.get(name).PARAMETERS)
+    with pytest.raises(AttributeError, match="no attribute 'NO_SUCH_NAME'"):
+        module.NO_SUCH_NAME  # noqa: B018
+    assert not hasattr(module, "NO_SUCH_NAME")
+
+
+def test_the_seeds_released_signed_force_warns():
+    from microimpact.core.models import thornton_ning_2016 as seed
+
+    with pytest.warns(DeprecationWarning, match=r"thornton_ning_2016\.signed_force is deprecated"):
+        fn = seed.signed_force
+    assert fn is seed.force is models.get(models.DEFAULT).signed_force

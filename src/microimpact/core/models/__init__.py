@@ -163,6 +163,7 @@ __all__ = [
     "LIMIT_FORCE",
     "Model",
     "declare",
+    "deprecated_names",
     "whole_law",
     "checks",
     "bounds",
@@ -399,6 +400,30 @@ def declare(module) -> Model:
         module=module,
         **hooks,
     )
+
+
+def deprecated_names(module_name: str, name: str, **moved: str) -> Callable:
+    """The ``__getattr__`` of a model file written before the parameter spec, keeping its released
+    names for one release: ``DEFAULTS`` (now each :class:`Parameter`'s default, collected by the
+    declaration, ``get(name).DEFAULTS``) and each ``old=new`` of ``moved`` (a name now read from
+    the declaration, ``get(name).new``). Each warns (:class:`DeprecationWarning`) naming where to
+    read it; any other name is an AttributeError as usual."""
+    moved = {"DEFAULTS": "DEFAULTS", **moved}
+
+    def __getattr__(attr):
+        if attr not in moved:
+            raise AttributeError(f"module {module_name!r} has no attribute {attr!r}")
+        import warnings
+
+        new = moved[attr]
+        warnings.warn(
+            f"{module_name}.{attr} is deprecated; use microimpact.models.get({name!r}).{new}",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return getattr(get(name), new)
+
+    return __getattr__
 
 
 # ----------------------------------------------------------------------------- the registry

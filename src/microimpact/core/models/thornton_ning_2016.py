@@ -23,7 +23,7 @@ from .._jit import jitable
 from ..constants import LARGE_STRAIN_RATIO
 from ..hertz_beta_table import U_SPLIT
 from ..special import hertz_beta_scaled_s, hertz_beta_scaled_u
-from . import checks
+from . import checks, deprecated_names
 from ._common import pack
 
 NAME = "thornton_ning_2016"
@@ -31,6 +31,9 @@ TITLE = "Elastic-plastic impact without adhesion (Aerosol Sci. Tech. 50(4), 2016
 LABEL = "seed (Thornton-Ning 2016)"
 PARAMETERS = ()
 BOUNDS, validate = checks(NAME, PARAMETERS)
+__getattr__ = deprecated_names(
+    __name__, NAME, signed_force="signed_force"
+)  # released DEFAULTS and signed_force: one release, with a warning
 #: History stages (seed eqs. 2, 8, 10).
 STAGES = {1: "Hertz loading (eq. 2)", 2: "plastic loading (eq. 8)", 3: "elastic unloading (eq. 10)"}
 
