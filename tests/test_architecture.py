@@ -402,6 +402,7 @@ LABELS_ALLOWED = {
     ("fitting/_plots.py", "$V$ [m/s]"): "the fit plots' own style (lower case, bracketed units): text would change",
     ("openfoam.py", "d [um]"): "the OpenFOAM report's style across its three panels (lower case, bracketed units)",
     ("oblique.py", "V [m/s]"): "a comment of the generated C table (C source text, not a label)",
+    ("cexport/_csource.py", "G [J/m^2]"): "a comment of the generated C source (C source text, not a label)",
     ("oblique.py", "V_y [m/s]"): "a comment of the generated C table (C source text, not a label)",
 }
 #: Calls whose string arguments are help text for people, not labels of numbers (argparse).
