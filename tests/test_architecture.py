@@ -399,7 +399,7 @@ def test_the_seed_array_face_is_one_room():
 # ----------------------------------------------------------------------------- one table labels everything
 #: Hand-typed labels of a tabled quantity allowed to stay, and why (``(file, label): reason``).
 LABELS_ALLOWED = {
-    ("fitting/_plots.py", "$V$ [m/s]"): "the fit plots' own style (lower case, bracketed units): text would change",
+    ("figures/fit.py", "$V$ [m/s]"): "the fit plots' own style (lower case, bracketed units): text would change",
     ("openfoam.py", "d [um]"): "the OpenFOAM report's style across its three panels (lower case, bracketed units)",
     ("oblique.py", "V [m/s]"): "a comment of the generated C table (C source text, not a label)",
     ("cexport/_csource.py", "G [J/m^2]"): "a comment of the generated C source (C source text, not a label)",
