@@ -401,6 +401,7 @@ def test_the_seed_array_face_is_one_room():
 LABELS_ALLOWED = {
     ("figures/fit.py", "$V$ [m/s]"): "the fit plots' own style (lower case, bracketed units): text would change",
     ("openfoam.py", "d [um]"): "the OpenFOAM report's style across its three panels (lower case, bracketed units)",
+    ("deposition.py", "$d$ [$\\mu$m]"): "the deposition plot's style (lower case, bracketed units), as the OpenFOAM report's",
     ("oblique.py", "V [m/s]"): "a comment of the generated C table (C source text, not a label)",
     ("cexport/_csource.py", "G [J/m^2]"): "a comment of the generated C source (C source text, not a label)",
     ("oblique.py", "V_y [m/s]"): "a comment of the generated C table (C source text, not a label)",
@@ -422,7 +423,9 @@ def _label_patterns() -> dict:
         out.setdefault(("col", column(n, display=True)), n)
         u = q.shown_unit
         if q.tex:
-            for tail in (f"{q.tex} ({tex_unit(u)})", f"{q.tex} [{u}]", f"{q.tex} [{tex_unit(u)}]"):
+            tu = tex_unit(u)
+            mu = tu.replace("\u00b5", r"$\mu$")  # the same unit in TeX's spelling: $\mu$m for um
+            for tail in (f"{q.tex} ({tu})", f"{q.tex} [{u}]", f"{q.tex} [{tu}]", f"{q.tex} ({mu})", f"{q.tex} [{mu}]"):
                 out.setdefault(("sub", tail), n)
         if q.symbol:
             out.setdefault(("sub", f"{q.symbol} [{u}]"), n)
@@ -466,3 +469,4 @@ def test_the_label_scan_sees_hand_typed_labels():
     """The scan above finds what it looks for: a column name and an axis label typed by hand."""
     patterns = _label_patterns()
     assert ("col", "velocity_m_s") in patterns and ("sub", "$V$ (m/s)") in patterns and ("sub", "t_c [ns]") in patterns
+    assert ("sub", r"$d$ ($\mu$m)") in patterns and ("sub", "$d$ (\u00b5m)") in patterns  # both spellings of um
