@@ -401,7 +401,10 @@ def test_the_seed_array_face_is_one_room():
 LABELS_ALLOWED = {
     ("figures/fit.py", "$V$ [m/s]"): "the fit plots' own style (lower case, bracketed units): text would change",
     ("openfoam.py", "d [um]"): "the OpenFOAM report's style across its three panels (lower case, bracketed units)",
-    ("deposition.py", "$d$ [$\\mu$m]"): "the deposition plot's style (lower case, bracketed units), as the OpenFOAM report's",
+    (
+        "deposition.py",
+        "$d$ [$\\mu$m]",
+    ): "the deposition plot's style (lower case, bracketed units), as the OpenFOAM report's",
     ("oblique.py", "V [m/s]"): "a comment of the generated C table (C source text, not a label)",
     ("cexport/_csource.py", "G [J/m^2]"): "a comment of the generated C source (C source text, not a label)",
     ("oblique.py", "V_y [m/s]"): "a comment of the generated C table (C source text, not a label)",
