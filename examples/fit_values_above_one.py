@@ -22,12 +22,11 @@ import warnings
 import numpy as np
 
 import microimpact as mi
+from microimpact.figures.fit import plot_fit, plot_models
 from microimpact.fitting import (
     FitWarning,
     fit_restitution,
     load_restitution_csv,
-    plot_fit,
-    plot_models,
     rank_models,
 )
 

@@ -6,8 +6,9 @@ hold) -> ``applications`` -> ``cli``. A module imports only from its own layer o
 inside functions count too); no module imports a private name (``_x``) of another module; the core
 imports nothing of microimpact outside the core. A model's name is written only in its two files
 (its physics, ``core/models/NAME.py``, and its face, ``models/NAME.py``); no module reads another
-module's private attributes; the CLI calls the public API, not the core. Each rule is one test that
-lists every violation at once.
+module's private attributes; the CLI calls the public API, not the core; the application modules
+keep an order among themselves (:data:`APPLICATION_ORDER`). Each rule is one test that lists every
+violation at once.
 """
 
 from __future__ import annotations
@@ -129,6 +130,50 @@ def test_no_private_name_of_another_module():
     _report("private names imported from another module", violations)
 
 
+#: The application modules (layer 3), bottom up: each imports only those before it (each other's
+#: names never in a circle), so that one can be read, tested and moved knowing only what is below.
+APPLICATION_ORDER = (
+    "quantities",  # the one table of quantities, re-exported above the core
+    "adhesion",  # the adhesion rules (from the models' declarations)
+    "oblique",  # oblique impacts, the tangential laws' tables
+    "stick",  # stick or bounce: the additive rule against the whole law
+    "calibrate",  # the DEM laws calibrated to a target e(V)
+    "wall",  # one particle at a wall (adhesion, oblique)
+    "fitting",  # fits and rankings of e(V) data
+    "compare",  # the models side by side (calibrate, oblique)
+    "sweep",  # parameter sweeps
+    "dem",  # runs in LAMMPS/LIGGGHTS
+    "deposition",  # an example application (wall)
+    "openfoam",  # the OpenFOAM hand-off (wall)
+    "cexport",  # CSV tables and the C source (adhesion, oblique, fitting)
+    "figures",  # every plot (compare, oblique, stick)
+    "paper",  # the seed paper reproduced (figures, fitting)
+    "coupling",  # deprecated: re-exports adhesion, wall and cexport
+)
+
+
+def test_application_modules_keep_their_order():
+    """An application module imports only application modules before it in :data:`APPLICATION_ORDER`
+    (and every application module is listed there, so a new one is placed)."""
+    top = {p.name if p.is_dir() else p.stem for p in SRC.iterdir() if p.suffix == ".py" or (p / "__init__.py").exists()}
+    apps = {m for m in top if m not in LAYERS and not m.startswith("__")}
+    violations = [
+        f"{m} is an application module missing from APPLICATION_ORDER" for m in sorted(apps - set(APPLICATION_ORDER))
+    ]
+    violations += [
+        f"{m} is listed in APPLICATION_ORDER but is no application module" for m in APPLICATION_ORDER if m not in apps
+    ]
+    rank = {m: i for i, m in enumerate(APPLICATION_ORDER)}
+    for importer, target, name, line in IMPORTS:
+        full = _full(target, name)
+        a, b = importer.split("."), full.split(".")
+        if len(a) < 2 or len(b) < 2 or a[1] == b[1] or a[1] not in rank or b[1] not in rank:
+            continue
+        if rank[b[1]] > rank[a[1]]:
+            violations.append(f"{importer} imports {full} (later in APPLICATION_ORDER) at line {line}")
+    _report("application modules out of order", violations)
+
+
 def test_core_imports_only_the_core():
     violations = [
         f"{importer} imports {target} at line {line}"
@@ -156,7 +201,6 @@ MODEL_NAME_ALLOWED = {
     ("core/models/__init__.py", "thornton_ning_2016"),
     # comments of the generated C source naming the core function or law it translates (text, not a lookup)
     ("cexport/_csource.py", "thornton_ning_2016"),
-    ("cexport/_csource.py", "thornton_ning_1998_adhesive_plastic"),
 }
 
 
@@ -172,6 +216,7 @@ def test_no_model_name_as_a_string_outside_its_two_files():
     names = models.available()
     word = re.compile(r"\b(" + "|".join(map(re.escape, names)) + r")\b")
     violations = []
+    used = set()
     for path, tree in _trees().items():
         rel = path.relative_to(SRC)
         if rel.parts[0] in ("core", "models") and rel.stem in names and rel.parts[-2] == "models":
@@ -182,14 +227,9 @@ def test_no_model_name_as_a_string_outside_its_two_files():
                 for name in sorted(set(word.findall(node.value))):
                     if (rel.as_posix(), name) not in MODEL_NAME_ALLOWED:
                         violations.append(f"{rel}:{node.lineno} writes the model name {name!r}")
+                    used.add((rel.as_posix(), name))
+    violations += [f"MODEL_NAME_ALLOWED lists {entry}, which no longer occurs" for entry in MODEL_NAME_ALLOWED - used]
     _report("model names written outside their two files", violations)
-
-
-#: Modules outside the core that still import a model other than the seed by its module, and why.
-MODEL_IMPORT_ALLOWED = {
-    ("microimpact.pair", "thornton_ning_1998_adhesive_plastic"): "the default model= of pair.sticking_velocity",
-    ("microimpact.stick", "thornton_ning_1998_adhesive_plastic"): "the whole law the stick/bounce maps compare",
-}
 
 
 def test_no_model_module_imported_outside_the_core():
@@ -197,7 +237,9 @@ def test_no_model_module_imported_outside_the_core():
     and a model's two rooms, a model other than the seed (whose array face is the library's own) is
     reached through the registry and its declaration (``models.get(name)``, its hooks and flags such as
     ``WALL_ADHESION`` or ``COST``), never by importing its module: what a room does with a model then
-    follows the model's declarations, and a new model needs no edit there."""
+    follows the model's declarations, and a new model needs no edit there (the whole adhesive law of
+    ``pair.sticking_velocity`` and of the stick/bounce maps is the model declaring ``WALL_ADHESION``,
+    :func:`microimpact.core.models.whole_law`). No exceptions."""
     from microimpact.core import models
 
     names = set(models.available()) - {models.DEFAULT}
@@ -210,8 +252,7 @@ def test_no_model_module_imported_outside_the_core():
             full.rsplit(".", 1)[-1] if full.startswith(("microimpact.core.models.", "microimpact.models.")) else None
         )
         if reached in names and not importer.endswith("models." + reached):
-            if (importer, reached) not in MODEL_IMPORT_ALLOWED:
-                violations.append(f"{importer} imports the model module {full} at line {line}")
+            violations.append(f"{importer} imports the model module {full} at line {line}")
     _report("model modules imported outside the core", violations)
 
 
@@ -360,9 +401,14 @@ def test_the_seed_array_face_is_one_room():
 # ----------------------------------------------------------------------------- one table labels everything
 #: Hand-typed labels of a tabled quantity allowed to stay, and why (``(file, label): reason``).
 LABELS_ALLOWED = {
-    ("fitting/_plots.py", "$V$ [m/s]"): "the fit plots' own style (lower case, bracketed units): text would change",
+    ("figures/fit.py", "$V$ [m/s]"): "the fit plots' own style (lower case, bracketed units): text would change",
     ("openfoam.py", "d [um]"): "the OpenFOAM report's style across its three panels (lower case, bracketed units)",
+    (
+        "deposition.py",
+        "$d$ [$\\mu$m]",
+    ): "the deposition plot's style (lower case, bracketed units), as the OpenFOAM report's",
     ("oblique.py", "V [m/s]"): "a comment of the generated C table (C source text, not a label)",
+    ("cexport/_csource.py", "G [J/m^2]"): "a comment of the generated C source (C source text, not a label)",
     ("oblique.py", "V_y [m/s]"): "a comment of the generated C table (C source text, not a label)",
 }
 #: Calls whose string arguments are help text for people, not labels of numbers (argparse).
@@ -382,7 +428,9 @@ def _label_patterns() -> dict:
         out.setdefault(("col", column(n, display=True)), n)
         u = q.shown_unit
         if q.tex:
-            for tail in (f"{q.tex} ({tex_unit(u)})", f"{q.tex} [{u}]", f"{q.tex} [{tex_unit(u)}]"):
+            tu = tex_unit(u)
+            mu = tu.replace("\u00b5", r"$\mu$")  # the same unit in TeX's spelling: $\mu$m for um
+            for tail in (f"{q.tex} ({tu})", f"{q.tex} [{u}]", f"{q.tex} [{tu}]", f"{q.tex} ({mu})", f"{q.tex} [{mu}]"):
                 out.setdefault(("sub", tail), n)
         if q.symbol:
             out.setdefault(("sub", f"{q.symbol} [{u}]"), n)
@@ -402,6 +450,7 @@ def test_labels_come_from_the_quantities_table():
     tails = {text: name for (kind, text), name in patterns.items() if kind == "sub"}
     tail_re = re.compile("|".join(re.escape(t) for t in sorted(tails, key=len, reverse=True)))
     violations = []
+    used = set()
     for path, tree in _trees().items():
         rel = path.relative_to(SRC).as_posix()
         if rel == "core/quantities.py":
@@ -419,6 +468,8 @@ def test_labels_come_from_the_quantities_table():
             for text, name in found.items():
                 if (rel, text) not in LABELS_ALLOWED:
                     violations.append(f"{rel}:{node.lineno} types {text!r} (quantity {name!r})")
+                used.add((rel, text))
+    violations += [f"LABELS_ALLOWED lists {entry}, which no longer occurs" for entry in set(LABELS_ALLOWED) - used]
     _report("hand-typed labels of tabled quantities", violations)
 
 
@@ -426,3 +477,4 @@ def test_the_label_scan_sees_hand_typed_labels():
     """The scan above finds what it looks for: a column name and an axis label typed by hand."""
     patterns = _label_patterns()
     assert ("col", "velocity_m_s") in patterns and ("sub", "$V$ (m/s)") in patterns and ("sub", "t_c [ns]") in patterns
+    assert ("sub", r"$d$ ($\mu$m)") in patterns and ("sub", "$d$ (\u00b5m)") in patterns  # both spellings of um

@@ -18,13 +18,13 @@ import pytest
 import microimpact as mi
 from microimpact.core import models as zoo
 from microimpact.core.quantities import OUTCOME_FIELDS
+from microimpact.figures.fit import plot_models
 from microimpact.fitting import (
     SEED_MODEL,
     FitWarning,
     Prediction,
     available_models,
     fit_restitution,
-    plot_models,
     rank_models,
 )
 from microimpact.impact import yield_velocity

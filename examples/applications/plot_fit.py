@@ -5,7 +5,7 @@ Fitting the limiting contact pressure, with its confidence band
 The seed notes that ``p_y`` is uncertain and "may be modified by fitting the
 experimental data". :func:`microimpact.fitting.fit_restitution` fits it to
 rebound measurements and returns the estimate with its standard error and
-confidence interval; :func:`microimpact.fitting.plot_fit` draws the data, the
+confidence interval; :func:`microimpact.figures.fit.plot_fit` draws the data, the
 fitted curve with its confidence band, and the residuals.
 
 The data here are **synthetic**: made from the model for the silicon case
@@ -18,7 +18,8 @@ file of the same kind for ``microimpact fit``.
 import numpy as np
 
 import microimpact as mi
-from microimpact.fitting import fit_restitution, plot_fit
+from microimpact.figures.fit import plot_fit
+from microimpact.fitting import fit_restitution
 
 pair = mi.ContactPair.paper_case("silicon")
 rng = np.random.default_rng(20160401)

@@ -92,10 +92,8 @@ WHOLE_LAW: str
 def _wall_laws() -> tuple:
     from .core import models
 
-    laws = tuple(n for n in models.available() if models.get(n).WALL_ADHESION)
-    if len(laws) > 1:  # the wall's table is one law's (core.adhesion.whole_law_correction): never another's
-        raise ValueError(f"one model may declare WALL_ADHESION (the wall's table is one law's), got {', '.join(laws)}")
-    return laws
+    # the wall's table is one law's (core.adhesion.whole_law_correction): never another's
+    return (models.whole_law(),)
 
 
 def __getattr__(name):  # ADHESION_RULES and WHOLE_LAW: read from the models' declarations once, when asked

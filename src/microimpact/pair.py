@@ -27,10 +27,10 @@ from ._validation import (
     check_yield_velocity,
 )
 from .core import adhesion as _adhesion
+from .core import hertz as _hertz
 from .core import models, quantities
 from .core.arrays import evaluate as _evaluate
 from .core.constants import LARGE_STRAIN_RATIO
-from .core.models import thornton_ning_1998_adhesive_plastic as _whole_law
 from .core.models import thornton_ning_2016 as _seed
 from .core.quantities import FLAG_FIELDS, OUTCOME_FIELDS
 from .core.wall import sphere_mass as _sphere_mass
@@ -632,8 +632,7 @@ class ContactPair:
                 f"from the base pair's materials ({p.name}, {s.name})",
             )
         nu, E2 = DEFAULT_POISSON, DEFAULT_SURFACE_MODULUS
-        inv = 1.0 / self.effective_modulus - (1.0 - nu**2) / E2
-        E1 = (1.0 - nu**2) / inv if inv > 0 else math.nan
+        E1 = _hertz.particle_modulus(self.effective_modulus, nu, E2, nu)
         return (
             {"particle_modulus": E1, "particle_poisson": nu, "surface_modulus": E2, "surface_poisson": nu},
             f"the base pair has effective values only: nu1 = nu2 = {nu}, E2 = {E2 / 1e9:g} GPa (as the seed's "
@@ -733,7 +732,7 @@ class ContactPair:
             if not math.isfinite(self.limiting_pressure):
                 raise ValueError("yield_velocity can be set only on a pair with a finite limiting_pressure")
             Vy0 = impact.yield_velocity(self.limiting_pressure, E, R, m)
-            p_y = self.limiting_pressure * (v["yield_velocity"] / Vy0) ** 0.4
+            p_y = _seed.limiting_pressure_for_yield_velocity(v["yield_velocity"], self.limiting_pressure, Vy0)
         else:
             p_y = np.float64(self.limiting_pressure)
         return E, R, m, p_y
@@ -1101,7 +1100,7 @@ class ContactPair:
             data = dynamics.integrate_model(mod.NAME, velocity, *self._args, params, n=n, times=times)
         return dynamics.ImpactHistory.from_dict(data, method=method)
 
-    def sticking_velocity(self, diameter=None, *, model: str = _whole_law.NAME, **params):
+    def sticking_velocity(self, diameter=None, *, model: str | None = None, **params):
         """The capture (sticking) velocity [m/s]: the particle sticks (``e = 0``) at and below it.
 
         Parameters
@@ -1112,8 +1111,9 @@ class ContactPair:
             this pair's particle.
         model : str, optional
             An adhesive model of :func:`microimpact.models.available` that defines its sticking
-            velocity (``"thornton_ning_1998_adhesive_plastic"``, the default, Thornton & Ning's whole
-            law; ``"thornton_ning_1998_elastic_adhesive"``; ``"jkr_elastic_adhesive"``), or
+            velocity (``"thornton_ning_1998_adhesive_plastic"``, Thornton & Ning's whole law, the
+            default: the model that declares ``WALL_ADHESION``, :func:`microimpact.core.models.whole_law`;
+            ``"thornton_ning_1998_elastic_adhesive"``; ``"jkr_elastic_adhesive"``), or
             ``"additive"``: Thornton & Ning's additive rule (their eq. 78, the seed's plastic loss
             plus the elastic adhesive one, :func:`microimpact.core.adhesion.restitution`), which
             takes ``work_of_adhesion``.
@@ -1139,6 +1139,8 @@ class ContactPair:
         >>> pair.sticking_velocity([0.1e-6, 0.2e-6], work_of_adhesion=1.0).round(1)
         array([253.5,  94.5])
         """
+        if model is None:
+            model = models.whole_law()
         if model == "additive":
             from .core import adhesion as _adh
 

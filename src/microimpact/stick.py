@@ -22,17 +22,20 @@ import math
 import numpy as np
 
 from ._validation import check_nonnegative, check_positive
+from .adhesion import ADDITIVE_RULE
 from .core import adhesion as _adh
+from .core import models as _models
 from .core.arrays import evaluate
-from .core.models import thornton_ning_1998_adhesive_plastic as _full
 from .core.models import thornton_ning_2016 as _seed
 
 __all__ = ["ADHESION_LAWS", "FULL_LAW", "capture_velocities", "parting_diameter", "stick_map"]
 
-#: The full law's model name (:mod:`~microimpact.core.models.thornton_ning_1998_adhesive_plastic`).
-FULL_LAW = _full.NAME
+#: The full law's model name (:mod:`~microimpact.core.models.thornton_ning_1998_adhesive_plastic`):
+#: the model that declares ``WALL_ADHESION`` (:func:`microimpact.core.models.whole_law`), whose
+#: ``sticking_velocity``, ``yield_velocity_of`` and ``restitution_only`` this module calls.
+FULL_LAW = _models.whole_law()
 #: The adhesive laws compared, in plotting order.
-ADHESION_LAWS = ("additive", FULL_LAW)
+ADHESION_LAWS = (ADDITIVE_RULE, FULL_LAW)
 
 
 def _law(name):
@@ -54,10 +57,11 @@ def _sizes(pair, diameter):
 
 def _one(law, E, R, m, p_y, G):
     """``(capture velocity, yield velocity)`` [m/s] of one size."""
-    if law == "additive":
+    if law == ADDITIVE_RULE:
         Vy = _seed.yield_point(E, R, m, p_y)[2]
         return _adh.capture_velocity(Vy, _adh.sticking_velocity(G, E, R, m)), Vy
-    return _full.sticking_velocity(E, R, m, p_y, (G,)), _full.yield_velocity(E, R, m, p_y, G)
+    full = _models.get(law)
+    return full.sticking_velocity(E, R, m, p_y, (G,)), full.yield_velocity_of(E, R, m, p_y, (G,))
 
 
 def capture_velocities(pair, diameter, work_of_adhesion, laws=ADHESION_LAWS) -> dict:
@@ -111,7 +115,7 @@ def parting_diameter(pair, work_of_adhesion, ratio=1.1, *, lo=1e-9, hi=1e-3) -> 
 
     def parted(d):
         R, m = _sizes(pair, d)
-        a = _one("additive", E, float(R), float(m), p_y, G)[0]
+        a = _one(ADDITIVE_RULE, E, float(R), float(m), p_y, G)[0]
         f = _one(FULL_LAW, E, float(R), float(m), p_y, G)[0]
         return f > ratio * a
 
@@ -159,11 +163,11 @@ def stick_map(pair, work_of_adhesion, diameter, velocity, laws=ADHESION_LAWS) ->
     P = np.full_like(VV, pair.limiting_pressure)
     out = {"diameter": d, "velocity": V}
     for law in laws:
-        if law == "additive":
+        if law == ADDITIVE_RULE:
             Vy = evaluate(_seed.yield_point, E, RR, MM, P, nout=3)[2]
             Vs = evaluate(_adh.sticking_velocity, np.full_like(VV, G), E, RR, MM)[0]
             e = evaluate(_adh.restitution, VV, Vy, Vs, nout=2)[0]
         else:
-            e = evaluate(_full.restitution, VV, E, RR, MM, P, params=(G,))[0]
+            e = evaluate(_models.get(law).restitution_only, VV, E, RR, MM, P, params=(G,))[0]
         out[law] = {"restitution": np.asarray(e, dtype=float).reshape(VV.shape), **caps[law]}
     return out

@@ -29,6 +29,14 @@ def test_json_and_csv(capsys, tmp_path):
     assert main(["stick", "5e-7", "--work-of-adhesion", "0.5", "--json", "--out", str(csv)]) == 0
     doc = json.loads(capsys.readouterr().out)
     v = doc["laws"]["thornton_ning_1998_adhesive_plastic"]["capture_velocity"][0]
+    assert (
+        doc["units"]
+        == {  # from the quantities table, not typed in the command
+            q: mi.quantities.QUANTITIES[q].unit
+            for q in ("diameter", "capture_velocity", "yield_velocity", "parting_diameter")
+        }
+        == {"diameter": "m", "capture_velocity": "m/s", "yield_velocity": "m/s", "parting_diameter": "m"}
+    )
     assert v == SILICON.sticking_velocity(5e-7, work_of_adhesion=0.5)
     lines = csv.read_text().splitlines()
     assert lines[0].startswith("diameter [m],capture_velocity_additive [m/s]")

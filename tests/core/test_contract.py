@@ -166,3 +166,95 @@ def test_seed_stage_models_is_deprecated():
     assert models.DEFAULT in names
     assert dyn.stage_names()[2].startswith("plastic loading")
     assert dyn.stage_names("linear_spring_dashpot") == {0: dyn.STAGE_NAMES[0], 1: "loading", 3: "unloading"}
+
+
+def test_the_whole_law_is_found_by_its_declaration():
+    """The whole adhesive law (the default of ``pair.sticking_velocity``, the law of the stick/bounce
+    maps) is the one model declaring ``WALL_ADHESION``, and its ``yield_velocity_of`` hook is its
+    outcome's ``yield_velocity`` field (the same bits with adhesion)."""
+    from microimpact import ContactPair
+
+    declaring = [n for n in models.available() if models.get(n).WALL_ADHESION]
+    assert declaring == [models.whole_law()] == ["thornton_ning_1998_adhesive_plastic"]
+    law = models.get(models.whole_law())
+    E, R, m, p_y = 1.31e9, 2.45e-6, 4.0 / 3.0 * math.pi * 2.45e-6**3 * 1350.0, 156e6
+    for G in (0.01, 0.5, 5.0):
+        assert law.yield_velocity_of(E, R, m, p_y, (G,)) == law.outcome(3.0, E, R, m, p_y, (G,))[1]
+    assert law.yield_velocity_of(E, R, m, p_y, (0.5,)) < law.yield_velocity_of(E, R, m, p_y, (0.01,))
+    pair = ContactPair.paper_case("silicon")
+    assert pair.sticking_velocity(work_of_adhesion=0.3) == pair.sticking_velocity(
+        model=models.whole_law(), work_of_adhesion=0.3
+    )
+    assert pair.sticking_velocity(work_of_adhesion=0.3) != pair.sticking_velocity(
+        model="thornton_ning_1998_elastic_adhesive", work_of_adhesion=0.3
+    )
+    assert models.get(models.DEFAULT).yield_velocity_of is None  # a hook, None where not declared
+
+
+def test_no_model_file_writes_the_outcome_tuple():
+    """The 18-field outcome is written once, in :func:`~microimpact.core.models.pack` (and the NaN one
+    in ``nan_outcome``): no model file, nor a helper shared by model files, builds it itself."""
+    import ast
+    from pathlib import Path
+
+    folder = Path(models.__file__).parent
+    n = len(OUTCOME_FIELDS)
+    found = []
+    for path in sorted(folder.glob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.FunctionDef) and path.name == "_common.py" and node.name in ("pack", "nan_outcome"):
+                continue
+            for t in ast.walk(node) if isinstance(node, ast.FunctionDef) else ():
+                if isinstance(t, ast.Tuple) and len(t.elts) == n:
+                    found.append(f"{path.name}:{t.lineno} ({node.name})")
+    assert not found, "outcome tuples written outside pack: " + ", ".join(sorted(set(found)))
+
+
+def test_pack_beyond_flags_large_strain_and_is_pack_otherwise():
+    from microimpact.core.models._common import pack_beyond
+
+    args = (3.0, 2.0, 1.5, 0.0, 0.8, 2.4, 1e-7, 2e-8, 1e-3, 3e-6)
+    tail = (1e-8, 2e-8, 3e-8, 4e-8)
+    small = models.pack(*args, 1e-7, 1e-6, *tail)  # a/R = 0.1: within the small-strain range
+    assert small[OUTCOME_FIELDS.index("large_strain")] == 0.0
+    assert pack_beyond(*args, 1e-7, 1e-6, 0.0, *tail) == small
+    flagged = pack_beyond(*args, 1e-7, 1e-6, 1.0, *tail)
+    i = OUTCOME_FIELDS.index("large_strain")
+    assert flagged[i] == 1.0 and flagged[:i] + flagged[i + 1 :] == small[:i] + small[i + 1 :]
+    large = models.pack(*args, 5e-7, 1e-6, *tail)  # a/R = 0.5
+    assert pack_beyond(*args, 5e-7, 1e-6, 0.0, *tail) == large == pack_beyond(*args, 5e-7, 1e-6, 1.0, *tail)
+
+
+#: Model files released with a module-level ``DEFAULTS`` (the contract before the parameter spec).
+RELEASED_DEFAULTS = (
+    "hertz_tsuji",
+    "hertz_viscoelastic",
+    "jkr_elastic_adhesive",
+    "liggghts_thornton_ning",
+    "linear_spring_dashpot",
+    "luding_adhesive",
+    "luding_hysteretic",
+    "thornton_ning_1998_elastic_adhesive",
+    "thornton_ning_2016",
+)
+
+
+@pytest.mark.parametrize("name", RELEASED_DEFAULTS)
+def test_released_defaults_still_read_with_a_warning(name):
+    import importlib
+
+    module = importlib.import_module(f"microimpact.core.models.{name}")
+    with pytest.warns(DeprecationWarning, match=rf"{name}\.DEFAULTS is deprecated; use microimpact\.models\.get"):
+        defaults = module.DEFAULTS
+    assert defaults == models.get(name).DEFAULTS == tuple(p.default for p in models.get(name).PARAMETERS)
+    with pytest.raises(AttributeError, match="no attribute 'NO_SUCH_NAME'"):
+        module.NO_SUCH_NAME  # noqa: B018
+    assert not hasattr(module, "NO_SUCH_NAME")
+
+
+def test_the_seeds_released_signed_force_warns():
+    from microimpact.core.models import thornton_ning_2016 as seed
+
+    with pytest.warns(DeprecationWarning, match=r"thornton_ning_2016\.signed_force is deprecated"):
+        fn = seed.signed_force
+    assert fn is seed.force is models.get(models.DEFAULT).signed_force

@@ -99,3 +99,25 @@ def _ours_at(V, Vy):
     """t_U for a pair whose yield velocity is ``Vy`` (``p_y`` from eq. 28 solved for it)."""
     p_y = (Vy**2 * 40.0 / math.pi**4 * E**4 * RHO) ** 0.2
     return dict(zip(OUTCOME_FIELDS, seed.outcome(V, E, R, M, p_y, ())))["unloading_time"]
+
+
+def test_limiting_pressure_for_yield_velocity_inverts_eq_28():
+    """The p_y that moves V_y to a target gives that V_y through yield_point (eq. 28), the pair kept;
+    and ContactPair.vary(yield_velocity=...) lands on it."""
+    from microimpact import ContactPair
+
+    Vy0 = seed.yield_point(E, R, M, P_Y)[2]
+    for target in (0.01, 1.0, Vy0, 37.0, 900.0):
+        p = seed.limiting_pressure_for_yield_velocity(target, P_Y, Vy0)
+        assert seed.yield_point(E, R, M, p)[2] == pytest.approx(target, rel=1e-14)
+    pair = ContactPair.paper_case("silicon")
+    assert pair.vary(yield_velocity=3.0).yield_velocity == pytest.approx(3.0, rel=1e-14)
+
+
+def test_particle_modulus_inverts_effective_modulus():
+    from microimpact.core import hertz
+
+    for E1, nu1, E2, nu2 in ((1.2e9, 0.3, 163e9, 0.22), (70e9, 0.33, 70e9, 0.33), (5e6, 0.49, 2e11, 0.0)):
+        Es = hertz.effective_modulus(E1, nu1, E2, nu2)
+        assert hertz.particle_modulus(Es, nu1, E2, nu2) == pytest.approx(E1, rel=1e-12)
+    assert math.isnan(hertz.particle_modulus(200e9, 0.3, 100e9, 0.3))  # stiffer than the surface: none

@@ -16,8 +16,6 @@ from ..fitting import (
     available_models,
     fit_restitution,
     load_restitution_csv,
-    plot_fit,
-    plot_models,
     rank_models,
 )
 from ..io import save_figure, write_json
@@ -169,6 +167,8 @@ def _rank(args, data, pair, f_scale_given, confidence) -> int:
         )
     if args.plot:
         plt = require("matplotlib.pyplot", "--plot")
+        from ..figures.fit import plot_models
+
         ax, _ = plot_models(ranking)
         try:
             save_figure(ax.figure, args.plot, dpi=200)
@@ -279,6 +279,8 @@ def run(args) -> int:
         )
     if args.plot:
         plt = require("matplotlib.pyplot", "--plot")
+        from ..figures.fit import plot_fit
+
         ax, _ = plot_fit(fit, velocity, restitution)
         ax.set_title(f"{data.source}: {fit.pair.label}", fontsize="medium")
         try:

@@ -8,6 +8,7 @@ import math
 import numpy as np
 
 from ..io import write_csv, write_json
+from ..quantities import QUANTITIES
 from ..quantities import header as heading
 from ._common import add_pair_arguments, check_outputs, pair_from_args, parse_float, parse_values
 
@@ -119,12 +120,9 @@ def run(args) -> int:
         finally:
             plt.close(axes[0].figure)
     if args.out is not None:
-        cols = [("diameter", "m", res["diameter"])]
+        cols = [("diameter", QUANTITIES["diameter"].unit, res["diameter"])]
         for law in laws:
-            cols += [
-                (f"capture_velocity_{law}", "m/s", res[law]["capture_velocity"]),
-                (f"yield_velocity_{law}", "m/s", res[law]["yield_velocity"]),
-            ]
+            cols += [(f"{q}_{law}", QUANTITIES[q].unit, res[law][q]) for q in ("capture_velocity", "yield_velocity")]
         write_csv(
             args.out,
             cols,
@@ -140,7 +138,10 @@ def run(args) -> int:
                     "density": pair.density,
                 },
                 "work_of_adhesion": G,
-                "units": {"diameter": "m", "capture_velocity": "m/s", "yield_velocity": "m/s", "parting_diameter": "m"},
+                "units": {
+                    q: QUANTITIES[q].unit
+                    for q in ("diameter", "capture_velocity", "yield_velocity", "parting_diameter")
+                },
                 "diameter": res["diameter"],
                 "laws": {law: {k: res[law][k] for k in ("capture_velocity", "yield_velocity")} for law in laws},
                 "parting_diameter": part,

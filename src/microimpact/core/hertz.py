@@ -15,6 +15,7 @@ from .special import BETA_25_12
 __all__ = [
     "effective_modulus",
     "equal_bodies_modulus",
+    "particle_modulus",
     "stiffness",
     "force",
     "contact_radius",
@@ -47,6 +48,16 @@ def equal_bodies_modulus(E, nu):
     that mixes one material with itself needs to reproduce a given ``E*``).
     """
     return 2.0 * (1.0 - nu * nu) * E
+
+
+@jitable
+def particle_modulus(E, nu1, E2, nu2):
+    """Young's modulus ``E1 = (1 - nu1^2)/(1/E* - (1 - nu2^2)/E2)`` [Pa] of the body that, against a
+    body ``(E2, nu2)``, gives the effective modulus ``E* = E`` [Pa]: :func:`effective_modulus`
+    solved for ``E1``. NaN where no such body exists (``E* >= E2/(1 - nu2^2)``).
+    """
+    inv = 1.0 / E - (1.0 - nu2 * nu2) / E2
+    return (1.0 - nu1 * nu1) / inv if inv > 0 else math.nan
 
 
 @jitable

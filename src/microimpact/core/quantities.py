@@ -207,6 +207,21 @@ QUANTITIES: dict[str, Quantity] = dict(
         _q("deresiewicz_time", "s", "Deresiewicz's elastic contact time", "30", "t_D", "$t_D$", **_NS),
         _q("ning_loading_time", "s", "Ning's high-speed loading time", "31", "t_N", "$t_N$", **_NS),
         _q("calibrated", "1", "1 where the model was calibrated to the reference, else 0", check="flag"),
+        # adhesion: stick or bounce (Thornton & Ning 1998)
+        _q("work_of_adhesion", "J/m^2", "work of adhesion G", "", "G", "$G$", check="nonnegative"),
+        _q(
+            "capture_velocity", "m/s", "capture (sticking) velocity V_s: e = 0 at and below it", "", "V_s", "$V_s$"
+        ),  # fmt: skip
+        _q(
+            "parting_diameter",
+            "m",
+            "largest diameter where the two laws' capture velocities part",
+            "",
+            "d_p",
+            "$d_p$",
+            "um",
+            1e6,
+        ),  # fmt: skip
         # text
         _q("model", "", "name of the impact model"),
         _q("series", "", "label of the curve"),

@@ -97,7 +97,7 @@ def plot_stick_map(pair=None, work_of_adhesion=1.0, diameter=None, velocity=None
             a.set_yscale("log")
             a.set_xlim(d_um.min(), d_um.max())
             a.set_ylim(V.min(), V.max())
-            a.set_xlabel(r"Particle diameter, $d$ ($\mu$m)")
+            a.set_xlabel(axis_label("diameter", "Particle diameter"))
             a.set_title(LAW_LABELS.get(law, law), fontsize=8)
             a.text(0.96, 0.05, "stick", transform=a.transAxes, fontsize=8, color="0.2", ha="right")
             if np.any(np.asarray(data[law]["yield_velocity"]) == 0.0):

@@ -141,7 +141,6 @@ from . import _fit, _models, _result, _solver
 from ._data import FitWarning, RestitutionData, load_restitution_csv
 from ._fit import fit_restitution
 from ._models import available_models
-from ._plots import plot_fit, plot_models, plot_residuals
 from ._ranking import ModelRanking, rank_models
 from ._result import FitResult, Prediction
 
@@ -195,8 +194,24 @@ __all__ = [
     "available_models",
     "fit_restitution",
     "load_restitution_csv",
-    "plot_fit",
-    "plot_models",
-    "plot_residuals",
     "rank_models",
 ]
+
+#: Plot functions that moved to :mod:`microimpact.figures.fit` (plots live in figures): still read
+#: here for one release, with a DeprecationWarning naming their home.
+_MOVED_PLOTS = ("plot_fit", "plot_models", "plot_residuals")
+
+
+def __getattr__(name):
+    if name in _MOVED_PLOTS:
+        import importlib
+        import warnings
+
+        warnings.warn(
+            f"microimpact.fitting.{name} is deprecated; use microimpact.figures.fit.{name}",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        # by name, not an import statement: figures comes after fitting in the application order
+        return getattr(importlib.import_module("microimpact.figures.fit"), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..pair import ContactPair
+from ..quantities import QUANTITIES
 from ._models import FREE_PARAMETERS, SEED_MODEL, FitModel, real_number
 
 # Public as microimpact.fitting.FAR_ABOVE_ONE, documented there.
@@ -364,7 +365,8 @@ class FitResult:
             rows.append((name, value * scale, self.stderr[name] * scale, lo * scale, hi * scale, unit))
         if "yield_velocity" not in self.params:
             lo, hi = self.yield_velocity_conf_int
-            rows.append(("yield_velocity (derived)", self.yield_velocity, self.yield_velocity_stderr, lo, hi, "m/s"))
+            unit = QUANTITIES["yield_velocity"].unit
+            rows.append(("yield_velocity (derived)", self.yield_velocity, self.yield_velocity_stderr, lo, hi, unit))
         return rows
 
     def summary(self) -> str:

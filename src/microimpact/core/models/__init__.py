@@ -98,12 +98,20 @@ as users name it (``model=NAME``). It declares what it is with module-level name
 ``sticking_velocity(E, R, m, p_y, params)`` [``None``: none known]
     The speed [m/s] at and below which the particle sticks (``e = 0``), for a law with ``STICKS``
     (:meth:`ContactPair.sticking_velocity <microimpact.pair.ContactPair.sticking_velocity>`).
+``yield_velocity_of(E, R, m, p_y, params)`` [``None``: the field ``yield_velocity`` of ``outcome``]
+    Marked ``@jitable``; the yield velocity ``V_y`` [m/s] alone (0 where the contact yields at any
+    speed), the field ``yield_velocity`` of :func:`outcome` (to rounding), for a law whose outcome
+    costs a quadrature (:mod:`microimpact.stick` maps it over particle sizes).
 ``WALL_ADHESION`` [``False``]
     True for the adhesive law the wall interaction can take as its normal law: ``adhesion=NAME`` of
     :func:`~microimpact.wall.wall_interaction`, of the C export and of its tables (the rules
     :data:`microimpact.adhesion.ADHESION_RULES` lists), through the table of the law's correction to
     the additive rule (:func:`microimpact.core.adhesion.whole_law_correction`, which that law
     computes). Declared by Thornton & Ning's whole law, and by one model only: that table is its.
+    The same declaration names the whole adhesive elastic-plastic law wherever one is meant
+    (:func:`whole_law`): the default of :meth:`ContactPair.sticking_velocity
+    <microimpact.pair.ContactPair.sticking_velocity>` and the law :mod:`microimpact.stick` sets
+    against the additive rule.
 ``WALL_REFUSAL`` [``None``]
     Why the law cannot be the wall's adhesion law, for a law a user may expect there (one clause:
     :func:`microimpact.adhesion.check_adhesion_rule` gives it after refusing the name).
@@ -155,6 +163,8 @@ __all__ = [
     "LIMIT_FORCE",
     "Model",
     "declare",
+    "deprecated_names",
+    "whole_law",
     "checks",
     "bounds",
     "in_bounds",
@@ -310,6 +320,7 @@ class Model:
     stage_two_approach: Callable | None = None
     ZERO_FORCE_ORDER: float = 1.5
     sticking_velocity: Callable | None = None
+    yield_velocity_of: Callable | None = None
     restitution_only: Callable | None = None
     restitution_group: Callable | None = None
     restitution_of_group: Callable | None = None
@@ -337,6 +348,7 @@ _HOOKS = (
     "separation_approach_after",
     "stage_two_approach",
     "sticking_velocity",
+    "yield_velocity_of",
     "restitution_only",
     "restitution_group",
     "restitution_of_group",
@@ -388,6 +400,30 @@ def declare(module) -> Model:
         module=module,
         **hooks,
     )
+
+
+def deprecated_names(module_name: str, name: str, **moved: str) -> Callable:
+    """The ``__getattr__`` of a model file written before the parameter spec, keeping its released
+    names for one release: ``DEFAULTS`` (now each :class:`Parameter`'s default, collected by the
+    declaration, ``get(name).DEFAULTS``) and each ``old=new`` of ``moved`` (a name now read from
+    the declaration, ``get(name).new``). Each warns (:class:`DeprecationWarning`) naming where to
+    read it; any other name is an AttributeError as usual."""
+    moved = {"DEFAULTS": "DEFAULTS", **moved}
+
+    def __getattr__(attr):
+        if attr not in moved:
+            raise AttributeError(f"module {module_name!r} has no attribute {attr!r}")
+        import warnings
+
+        new = moved[attr]
+        warnings.warn(
+            f"{module_name}.{attr} is deprecated; use microimpact.models.get({name!r}).{new}",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return getattr(get(name), new)
+
+    return __getattr__
 
 
 # ----------------------------------------------------------------------------- the registry
@@ -470,6 +506,21 @@ def get(name: str = DEFAULT) -> Model:
         raise ValueError(f"model must be one of {', '.join(names)}; got {name!r}")
     found = _MODELS[name] = declare(importlib.import_module(f"{_WHERE[name]}.{name}"))
     return found
+
+
+def whole_law() -> str:
+    """The name of the whole adhesive elastic-plastic law: the one model that declares
+    ``WALL_ADHESION`` (Thornton & Ning 1998, :mod:`~microimpact.core.models.thornton_ning_1998_adhesive_plastic`).
+
+    Read from the declarations (every model's, once per process), so that no room names it; ValueError
+    if none or more than one model declares it (the wall's table is one law's).
+    """
+    laws = [n for n in available() if get(n).WALL_ADHESION]
+    if len(laws) > 1:
+        raise ValueError(f"one model may declare WALL_ADHESION (the wall's table is one law's), got {', '.join(laws)}")
+    if not laws:
+        raise ValueError("no model declares WALL_ADHESION (the whole adhesive law)")
+    return laws[0]
 
 
 def parameters(name: str = DEFAULT) -> dict:  # noqa: D401

@@ -11,9 +11,7 @@ import math
 from .._jit import jitable
 from ..constants import LARGE_STRAIN_RATIO  # noqa: F401  (re-exported for the model files)
 
-__all__ = ["LARGE_STRAIN_RATIO", "NAN", "pack", "nan_outcome", "dem_outcome", "in_bounds", "as_floats", "check_flag"]
-
-NAN = math.nan
+__all__ = ["LARGE_STRAIN_RATIO", "pack", "pack_beyond", "nan_outcome", "dem_outcome", "in_bounds"]
 
 
 @jitable
@@ -66,6 +64,38 @@ def pack(
 
 
 @jitable
+def pack_beyond(
+    V,
+    Vy,
+    v,
+    elastic,
+    e,
+    rebound,
+    max_approach,
+    plastic_approach,
+    max_force,
+    unloading_radius,
+    contact_radius,
+    R,
+    beyond,
+    t1,
+    t2,
+    tL,
+    tU,
+):
+    """:func:`pack`, for a law whose stated range ends before the small-strain limit too: ``beyond``
+    1.0 sets ``large_strain`` (the impact is outside that range) whatever ``contact_radius / R``
+    gives; 0.0 leaves :func:`pack`'s flag. The tuple is :func:`pack`'s."""
+    out = pack(
+        V, Vy, v, elastic, e, rebound, max_approach, plastic_approach, max_force, unloading_radius, contact_radius, R,
+        t1, t2, tL, tU,
+    )  # fmt: skip
+    if beyond == 1.0 and out[12] == 0.0:
+        return out[:12] + (1.0,) + out[13:]
+    return out
+
+
+@jitable
 def nan_outcome(V):
     """The outcome of an impact a model cannot evaluate (invalid parameters): NaN but the speed."""
     n = math.nan
@@ -104,31 +134,3 @@ def in_bounds(params, bounds):
         if not (x < b[1] if (b[3] == 1.0 or b[1] == math.inf) else x <= b[1]):
             return False
     return True
-
-
-def no_parameters(name, params):
-    """``validate`` of a model with no parameters of its own: ``params`` must be empty."""
-    if len(params):
-        raise ValueError(f"model {name!r} takes no parameters, got {params!r}")
-    return ()
-
-
-def as_floats(parameters, params) -> list:
-    """A model's ``params`` as floats, one per entry of its ``PARAMETERS`` (ValueError naming what is wrong)."""
-    n = len(parameters)
-    if len(params) != n:
-        names = ", ".join(p[0] for p in parameters)
-        raise ValueError(f"params must hold {n} value{'s' if n != 1 else ''} ({names}), got {params!r}")
-    out = []
-    for p, x in zip(parameters, params):
-        name = p[0]
-        if isinstance(x, bool):
-            raise ValueError(f"{name} must be a number, not a bool, got {x!r}")
-        out.append(float(x))
-    return out
-
-
-def check_flag(name, x) -> None:
-    """A 0/1 switch such as ``limit_force``: ValueError naming it otherwise."""
-    if x not in (0.0, 1.0):
-        raise ValueError(f"{name} must be 0 or 1, got {x!r}")

@@ -32,8 +32,8 @@ import numpy as np
 
 from .. import hertz
 from .._jit import jitable
-from ..constants import LARGE_STRAIN_RATIO
 from ..special import BETA_25_12
+from ._common import nan_outcome, pack, pack_beyond
 from .thornton_ning_2016 import elastic_stage_time
 
 JACKSON_GREEN = 0
@@ -554,7 +554,7 @@ def impact(law, V, E, R, m, Y, nu, twin, a_limit):
     """
     n = math.nan
     if not V < math.inf:
-        return (V, n, n, n, n, n, n, n, n, n, n, n, n, n, n, n, n, n)
+        return nan_outcome(V)
     ac = critical_approach(law, E, R, Y, nu, twin)
     a1 = switch_approach(law, E, R, Y, nu, twin)
     Vy = math.sqrt(0.8 * hertz.force(ac, E, R) * ac / m)  # Hertz's impact speed reaching alpha_c
@@ -563,23 +563,21 @@ def impact(law, V, E, R, m, Y, nu, twin, a_limit):
         astar = hertz.max_approach(V, E, R, m)
         half = 0.4 * BETA_25_12 * hertz.time_scale(V, E, R, m)
         a = math.sqrt(R * astar)
-        large = 1.0 if a / R > LARGE_STRAIN_RATIO else 0.0
-        return (V, Vy, V / Vy, 1.0, 1.0, V, astar, 0.0, hertz.force(astar, E, R), R, 0.0, a, large, half, 0.0,
-                half, half, 2.0 * half)  # fmt: skip
+        return pack(V, Vy, V / Vy, 1.0, 1.0, V, astar, 0.0, hertz.force(astar, E, R), R, a, R, half, 0.0, half, half)
     astar = max_approach(law, V, E, R, m, Y, nu, twin)
     P, d, Rb, a = unloading(law, astar, E, R, Y, nu, twin)
     t1 = elastic_stage_time(V, E, R, m, a1, V1)
     t2 = plastic_loading_time(law, a1, astar, E, R, m, Y, nu, twin)
     tL = t1 + t2
     Wu = unloading_work(astar, d, Rb, E)
-    large = 1.0 if (a / R > LARGE_STRAIN_RATIO or astar > a_limit) else 0.0
+    beyond = 1.0 if astar > a_limit else 0.0  # outside the fit's stated range: flagged as large_strain
     WL = loading_work(law, 0.0, astar, E, R, Y, nu, twin)  # = m* V^2/2 to rounding
     if Wu > WL:  # retraces the loading: e = 1
-        return (V, Vy, V / Vy, 0.0, 1.0, V, astar, 0.0, P, n, 0.0, a, large, t1, t2, tL, tL, 2.0 * tL)
+        return pack_beyond(V, Vy, V / Vy, 0.0, 1.0, V, astar, 0.0, P, n, a, R, beyond, t1, t2, tL, tL)
     e = math.sqrt(Wu / WL)  # <= 1 exactly where Wu <= WL (a rounded quotient is monotonic)
     y = astar - d
     y0 = -d if d < 0.0 else 0.0
     Vfull = math.sqrt(0.8 * hertz.force(y, E, Rb) * y / m)  # the speed of a Hertz impact reaching y
     V0 = math.sqrt(0.8 * hertz.force(y0, E, Rb) * y0 / m)
     tU = 0.4 * BETA_25_12 * y / Vfull - elastic_stage_time(Vfull, E, Rb, m, y0, V0)
-    return (V, Vy, V / Vy, 0.0, e, e * V, astar, max(d, 0.0), P, Rb, 1.0 - e * e, a, large, t1, t2, tL, tU, tL + tU)
+    return pack_beyond(V, Vy, V / Vy, 0.0, e, e * V, astar, max(d, 0.0), P, Rb, a, R, beyond, t1, t2, tL, tU)

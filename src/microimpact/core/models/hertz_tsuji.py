@@ -52,7 +52,7 @@ import math
 
 from .. import hertz
 from .._jit import jitable
-from . import LIMIT_FORCE, Parameter, checks
+from . import LIMIT_FORCE, Parameter, checks, deprecated_names
 from ._common import dem_outcome, in_bounds, nan_outcome
 from .hertz_viscoelastic import scaled_damped_hertz
 
@@ -64,6 +64,7 @@ PARAMETERS = (
     LIMIT_FORCE,
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
+__getattr__ = deprecated_names(__name__, NAME)  # released DEFAULTS: one release, with a warning
 #: Cost class (the contract's ``COST``): ``e`` integrates the equation of motion, 0.4 ms a group in Python.
 COST = "slow"
 #: Order of the zero of :func:`signed_force` where the contact ends: the damping term cancels the

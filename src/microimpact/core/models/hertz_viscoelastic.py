@@ -54,7 +54,7 @@ import math
 
 from .. import hertz
 from .._jit import jitable
-from . import LIMIT_FORCE, Parameter, checks
+from . import LIMIT_FORCE, Parameter, checks, deprecated_names
 from ._common import dem_outcome, in_bounds, nan_outcome
 
 NAME = "hertz_viscoelastic"
@@ -65,6 +65,7 @@ PARAMETERS = (
     LIMIT_FORCE,
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
+__getattr__ = deprecated_names(__name__, NAME)  # released DEFAULTS: one release, with a warning
 #: Cost class (the contract's ``COST``): ``e`` integrates the equation of motion, 2.3 ms a point in Python.
 COST = "slow"
 #: Order of the zero of :func:`signed_force` where the contact ends: the viscous term cancels the

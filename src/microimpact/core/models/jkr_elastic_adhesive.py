@@ -50,7 +50,7 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
-from . import Parameter, _jkr, checks
+from . import Parameter, _jkr, checks, deprecated_names
 from ._common import in_bounds
 
 NAME = "jkr_elastic_adhesive"
@@ -59,6 +59,7 @@ LABEL = "JKR adhesive"
 STICKS = True
 PARAMETERS = (Parameter("surface_energy", "J/m^2", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)", low=0.0),)
 BOUNDS, validate = checks(NAME, PARAMETERS)
+__getattr__ = deprecated_names(__name__, NAME)  # released DEFAULTS: one release, with a warning
 #: Cost class of the outcome (the contract's ``OUTCOME_COST``): its contact times' quadrature, 1.0 ms a
 #: point in Python (``e`` alone: 4 us).
 OUTCOME_COST = "slow"

@@ -122,7 +122,7 @@ from fractions import Fraction
 from .. import hertz
 from .._jit import jitable
 from ..special import binomial_series
-from . import checks
+from . import checks, deprecated_names
 from . import thornton_ning_2016 as seed
 from ._common import pack
 
@@ -133,6 +133,7 @@ TITLE = (
 LABEL = "LIGGGHTS thornton_ning"
 PARAMETERS = ()
 BOUNDS, validate = checks(NAME, PARAMETERS)
+__getattr__ = deprecated_names(__name__, NAME)  # released DEFAULTS: one release, with a warning
 #: Cost class of the outcome (the contract's ``OUTCOME_COST``): its contact times' quadrature, 0.25 ms a
 #: point in Python (``e`` alone: 3 us).
 OUTCOME_COST = "slow"

@@ -61,7 +61,7 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
-from . import LIMIT_FORCE, Parameter, checks
+from . import LIMIT_FORCE, Parameter, checks, deprecated_names
 from ._common import dem_outcome, in_bounds, nan_outcome
 
 NAME = "linear_spring_dashpot"
@@ -80,6 +80,7 @@ PARAMETERS = (
     LIMIT_FORCE._replace(default=0.0),
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
+__getattr__ = deprecated_names(__name__, NAME)  # released DEFAULTS: one release, with a warning
 #: Order of the zero of :func:`signed_force` where the contact ends: ``k alpha + eta alpha_dot``
 #: crosses zero with a slope (a simple zero).
 ZERO_FORCE_ORDER = 1.0

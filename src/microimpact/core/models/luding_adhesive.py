@@ -65,7 +65,7 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
-from . import Parameter, checks
+from . import Parameter, checks, deprecated_names
 from ._common import dem_outcome, in_bounds, nan_outcome
 
 NAME = "luding_adhesive"
@@ -85,6 +85,7 @@ PARAMETERS = (
     Parameter("plasticity_depth", "1", "phi_f > 0, LIGGGHTS' phiF", low=0.0, low_open=True),
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
+__getattr__ = deprecated_names(__name__, NAME)  # released DEFAULTS: one release, with a warning
 
 
 @jitable

@@ -57,7 +57,7 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
-from . import Parameter, checks
+from . import Parameter, checks, deprecated_names
 from ._common import dem_outcome, in_bounds, nan_outcome
 
 NAME = "luding_hysteretic"
@@ -76,6 +76,7 @@ PARAMETERS = (
     ),
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
+__getattr__ = deprecated_names(__name__, NAME)  # released DEFAULTS: one release, with a warning
 #: Order of the zero of :func:`signed_force` where the contact ends: the unloading branch
 #: ``k2 (alpha - alpha_0)`` is linear, a simple zero.
 ZERO_FORCE_ORDER = 1.0

@@ -251,6 +251,14 @@ def yield_velocity(E, R, m, p_y, G):
 
 
 @jitable
+def yield_velocity_of(E, R, m, p_y, params):
+    """The contract's hook (:mod:`microimpact.core.models`): :func:`yield_velocity` [m/s] with
+    ``params = (G,)``: the field ``yield_velocity`` of :func:`outcome` without its quadratures (the
+    same bits for ``G > 0``; at ``G = 0``, where :func:`outcome` is the seed's, to rounding)."""
+    return yield_velocity(E, R, m, p_y, params[0])
+
+
+@jitable
 def _rebound_work(bs, E, R, p_y, s, bY, PY, K):
     """``(W_r, R_p)``: the work [J] of the unloading curve from ``b*`` to its snap-off (the rebound
     energy; not positive where the particle sticks), and ``R_p`` [m] (eqs. 76, 77)."""

@@ -71,7 +71,7 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
-from . import Parameter, _jkr, checks
+from . import Parameter, _jkr, checks, deprecated_names
 from ._common import in_bounds
 from ._jkr import b_of_alpha as _b_of_alpha
 from ._jkr import force_b as _force_b
@@ -83,6 +83,7 @@ LABEL = "Thornton-Ning 1998 adhesive"
 STICKS = True
 PARAMETERS = (Parameter("work_of_adhesion", "J/m^2", "G >= 0, interface energy (LIGGGHTS' surfaceEnergy)", low=0.0),)
 BOUNDS, validate = checks(NAME, PARAMETERS)
+__getattr__ = deprecated_names(__name__, NAME)  # released DEFAULTS: one release, with a warning
 #: Cost class of the outcome (the contract's ``OUTCOME_COST``): its contact times' quadrature, 0.8 ms a
 #: point in Python (``e`` alone: 4 us).
 OUTCOME_COST = "slow"

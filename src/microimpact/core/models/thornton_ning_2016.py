@@ -23,7 +23,7 @@ from .._jit import jitable
 from ..constants import LARGE_STRAIN_RATIO
 from ..hertz_beta_table import U_SPLIT
 from ..special import hertz_beta_scaled_s, hertz_beta_scaled_u
-from . import checks
+from . import checks, deprecated_names
 from ._common import pack
 
 NAME = "thornton_ning_2016"
@@ -31,6 +31,9 @@ TITLE = "Elastic-plastic impact without adhesion (Aerosol Sci. Tech. 50(4), 2016
 LABEL = "seed (Thornton-Ning 2016)"
 PARAMETERS = ()
 BOUNDS, validate = checks(NAME, PARAMETERS)
+__getattr__ = deprecated_names(
+    __name__, NAME, signed_force="signed_force"
+)  # released DEFAULTS and signed_force: one release, with a warning
 #: History stages (seed eqs. 2, 8, 10).
 STAGES = {1: "Hertz loading (eq. 2)", 2: "plastic loading (eq. 8)", 3: "elastic unloading (eq. 10)"}
 
@@ -53,6 +56,14 @@ def yield_point(E, R, m, p_y):
 def yield_velocity_sphere_on_flat(p_y, E, rho):
     """``V_y = (pi^4/40)^(1/2) (p_y^5/(E*^4 rho))^(1/2)`` [m/s] (eq. 28, a sphere on a flat)."""
     return math.sqrt(math.pi**4 / 40.0) * math.sqrt(p_y**5 / (E**4 * rho))
+
+
+@jitable
+def limiting_pressure_for_yield_velocity(V_y_new, p_y, V_y):
+    """The limiting pressure [Pa] that moves the yield velocity from ``V_y`` (at ``p_y`` [Pa]) to
+    ``V_y_new`` [m/s], ``E*``, ``R*`` and ``m*`` kept: ``p_y (V_y_new/V_y)^(2/5)``, since ``V_y`` grows
+    as ``p_y^(5/2)`` (eq. 28)."""
+    return p_y * (V_y_new / V_y) ** 0.4
 
 
 @jitable

@@ -1,11 +1,20 @@
-"""Plots of a fit and of a ranking (matplotlib, the ``plot`` extra)."""
+"""Plots of a fit and of a ranking (matplotlib, the ``plot`` extra): the data with the fitted curve,
+its confidence band and the residuals (:func:`plot_fit`, :func:`plot_residuals`), and the models of
+a ranking side by side (:func:`plot_models`).
+
+They take what :mod:`microimpact.fitting` returns (:class:`~microimpact.fitting.FitResult`,
+:class:`~microimpact.fitting.ModelRanking`); for one release they are importable from
+:mod:`microimpact.fitting` too, with a :class:`DeprecationWarning` naming this module.
+"""
 
 from __future__ import annotations
 
 import numpy as np
 
 from .._optional import require
-from ._models import FREE_PARAMETERS
+from ..fitting import FREE_PARAMETERS
+
+__all__ = ["plot_fit", "plot_residuals", "plot_models"]
 
 
 # ---------------------------------------------------------------------- plots
@@ -34,7 +43,7 @@ def plot_fit(
     Parameters
     ----------
     fit_result : FitResult
-        From :func:`fit_restitution`.
+        From :func:`~microimpact.fitting.fit_restitution`.
     data_velocity, data_restitution : array_like
         The measured points [m/s], [-].
     ax : matplotlib Axes, optional
@@ -121,7 +130,7 @@ def plot_residuals(fit_result, data_velocity, data_restitution, ax=None, *, sigm
     Parameters
     ----------
     fit_result : FitResult
-        From :func:`fit_restitution`; ``e_fit`` is ``fit_result.predict(V)``.
+        From :func:`~microimpact.fitting.fit_restitution`; ``e_fit`` is ``fit_result.predict(V)``.
     data_velocity : array_like
         Measured impact speeds ``V`` [m/s].
     data_restitution : array_like
@@ -178,7 +187,7 @@ def plot_models(ranking, ax=None, *, residual_ax=None, data_kws=None):
     Parameters
     ----------
     ranking : ModelRanking
-        From :func:`rank_models`.
+        From :func:`~microimpact.fitting.rank_models`.
     ax : matplotlib Axes, optional
         Axes for data and curves; when None a new figure with two panels (curves
         above, residuals below, shared speed axis).
