@@ -137,6 +137,7 @@ APPLICATION_ORDER = (
     "adhesion",  # the adhesion rules (from the models' declarations)
     "oblique",  # oblique impacts, the tangential laws' tables
     "stick",  # stick or bounce: the additive rule against the whole law
+    "_calibration_cache",  # calibrations kept on disk (core.cache)
     "calibrate",  # the DEM laws calibrated to a target e(V)
     "wall",  # one particle at a wall (adhesion, oblique)
     "fitting",  # fits and rankings of e(V) data
