@@ -43,15 +43,12 @@ from __future__ import annotations
 import argparse
 import datetime
 import math
-import os
-import subprocess
 import sys
-import tempfile
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-import dem_runs  # noqa: E402  (the code finders and version strings of the normal-law runs)
+import dem_runs  # noqa: E402  (the code finders, version strings, deck lines and runner of the normal-law runs)
 
 DEFAULT_OUT = HERE / "data" / "dem_oblique_runs.csv"
 
@@ -136,61 +133,31 @@ print "RESULT ${{vxa}} ${{vza}} ${{wya}}"
 """
 
 
+#: The region of the deck [m] and the neighbour skin.
+BOX, SKIN = "-0.05 0.05 -0.05 0.05 -0.001 0.05", "1e-4"
+
+
 def lammps_input(setting, angle, dt, nsteps, z0):
     """LAMMPS deck of one oblique impact; ``setting`` is the ``tangential`` sub-model with its coefficients."""
     th = math.radians(angle)
     coeffs = f"hertz/material {E_CODE!r} 0.0 {NU_CODE!r} damping viscoelastic tangential {setting} {FRICTION!r}"
-    lines = [
-        "units si",
-        "atom_style sphere",
-        "atom_modify map array",
-        "boundary f f f",
-        "newton off",
-        "comm_modify vel yes",
-        "region box block -0.05 0.05 -0.05 0.05 -0.001 0.05 units box",
-        "create_box 1 box",
-        f"create_atoms 1 single 0 0 {z0!r} units box",
-        f"set atom 1 diameter {2 * RADIUS!r} density {DENSITY!r}",
-        f"velocity all set {SPEED * math.sin(th)!r} 0 {-SPEED * math.cos(th)!r} units box",
-        "pair_style granular",
-        f"pair_coeff * * {coeffs}",
-        "neighbor 1e-4 bin",
-        "neigh_modify delay 0",
-        f"fix wall all wall/gran granular {coeffs} zplane 0.0 NULL",
-        "fix integr all nve/sphere",
-        f"timestep {dt!r}",
-    ]
-    return "\n".join(lines) + _RESULT.format(nsteps=nsteps)
+    velocity = f"{SPEED * math.sin(th)!r} 0 {-SPEED * math.cos(th)!r}"
+    deck = dem_runs.lammps_deck(coeffs, BOX, SKIN, z0, velocity, dt, RADIUS, DENSITY)
+    return deck + _RESULT.format(nsteps=nsteps)
 
 
 def liggghts_input(angle, dt, nsteps, z0):
     """LIGGGHTS deck of one oblique impact (one atom type for particle and wall)."""
     th = math.radians(angle)
-    lines = [
-        "units si",
-        "atom_style granular",
-        "atom_modify map array",
-        "boundary f f f",
-        "newton off",
-        "communicate single vel yes",
-        "hard_particles yes",
-        "region reg block -0.05 0.05 -0.05 0.05 -0.001 0.05 units box",
-        "create_box 1 reg",
-        "neighbor 1e-4 bin",
-        "neigh_modify delay 0",
+    props = [
         f"fix m1 all property/global youngsModulus peratomtype {E_CODE!r}",
         f"fix m2 all property/global poissonsRatio peratomtype {NU_CODE!r}",
         "fix m3 all property/global coefficientRestitution peratomtypepair 1 1.0",
         f"fix m4 all property/global coefficientFriction peratomtypepair 1 {FRICTION!r}",
-        "pair_style gran model hertz tangential history",
-        "pair_coeff * *",
-        f"timestep {dt!r}",
-        "fix wall all wall/gran model hertz tangential history primitive type 1 zplane 0.0",
-        f"create_atoms 1 single 0 0 {z0!r} units box",
-        f"set atom 1 diameter {2 * RADIUS!r} density {DENSITY!r} vx {SPEED * math.sin(th)!r} vz {-SPEED * math.cos(th)!r}",
-        "fix integr all nve/sphere",
     ]
-    return "\n".join(lines) + _RESULT.format(nsteps=nsteps)
+    velocity = f"vx {SPEED * math.sin(th)!r} vz {-SPEED * math.cos(th)!r}"
+    deck = dem_runs.liggghts_deck(props, "hertz", BOX, SKIN, z0, velocity, dt, RADIUS, DENSITY)
+    return deck + _RESULT.format(nsteps=nsteps)
 
 
 def hertz_time(Vn):
@@ -200,22 +167,12 @@ def hertz_time(Vn):
 
 
 def _run(exe, deck, extra_args=()):
-    """Run one deck in a temporary directory; returns (vx, vz, omega_y, screen)."""
-    with tempfile.TemporaryDirectory(prefix="dem_oblique_") as tmp:
-        Path(tmp, "in.deck").write_text(deck)
-        proc = subprocess.run(
-            [exe, "-in", "in.deck", "-log", "none", *extra_args],
-            cwd=tmp,
-            capture_output=True,
-            text=True,
-            env={**os.environ, "OMP_NUM_THREADS": "1"},
-        )
-    if proc.returncode != 0:
-        raise RuntimeError(f"{Path(exe).name} failed ({proc.returncode}): {proc.stdout[-800:]}{proc.stderr[-800:]}")
-    for line in proc.stdout.splitlines():
+    """Run one deck (:func:`dem_runs.run_deck`); returns (vx, vz, omega_y, screen)."""
+    screen, _ = dem_runs.run_deck(exe, deck, extra_args, prefix="dem_oblique_")
+    for line in screen.splitlines():
         if line.startswith("RESULT "):
             vx, vz, wy = (float(p) for p in line.split()[1:4])
-            return vx, vz, wy, proc.stdout
+            return vx, vz, wy, screen
     raise RuntimeError(f"no RESULT line in the output of {Path(exe).name}")
 
 

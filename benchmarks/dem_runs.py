@@ -203,6 +203,68 @@ run {nsteps}
 """
 
 
+def liggghts_deck(props, model, box, skin, z0, velocity, dt, radius, density):
+    """The LIGGGHTS lines of one sphere at a ``zplane`` wall (one atom type for particle and wall).
+
+    ``props``: the ``fix ... property/global`` lines; ``model``: the ``gran model`` (``hertz``,
+    ``thornton_ning``, ...); ``box``: the region's six bounds; ``velocity``: the ``set atom`` words
+    (``vz -3.0``). The deck of this script and of ``dem_oblique_runs.py``, without the output lines.
+    """
+    lines = [
+        "units si",
+        "atom_style granular",
+        "atom_modify map array",
+        "boundary f f f",
+        "newton off",
+        "communicate single vel yes",
+        "hard_particles yes",
+        f"region reg block {box} units box",
+        "create_box 1 reg",
+        f"neighbor {skin} bin",
+        "neigh_modify delay 0",
+        *props,
+        f"pair_style gran model {model} tangential history",
+        "pair_coeff * *",
+        f"timestep {dt!r}",
+        f"fix wall all wall/gran model {model} tangential history primitive type 1 zplane 0.0",
+        f"create_atoms 1 single 0 0 {z0!r} units box",
+        f"set atom 1 diameter {2 * radius!r} density {density!r} {velocity}",
+        "fix integr all nve/sphere",
+    ]
+    return "\n".join(lines)
+
+
+def lammps_deck(coeffs, box, skin, z0, velocity, dt, radius, density):
+    """The LAMMPS lines of one sphere at a ``zplane`` wall (``pair_style granular``, the same ``coeffs``
+    for pair and wall); ``velocity``: the ``velocity all set`` words (``0 0 -3.0``). The deck of this
+    script and of ``dem_oblique_runs.py``, without the output lines."""
+    lines = [
+        "units si",
+        "atom_style sphere",
+        "atom_modify map array",
+        "boundary f f f",
+        "newton off",
+        "comm_modify vel yes",
+        f"region box block {box} units box",
+        "create_box 1 box",
+        f"create_atoms 1 single 0 0 {z0!r} units box",
+        f"set atom 1 diameter {2 * radius!r} density {density!r}",
+        f"velocity all set {velocity} units box",
+        "pair_style granular",
+        f"pair_coeff * * {coeffs}",
+        f"neighbor {skin} bin",
+        "neigh_modify delay 0",
+        f"fix wall all wall/gran granular {coeffs} zplane 0.0 NULL",
+        "fix integr all nve/sphere",
+        f"timestep {dt!r}",
+    ]
+    return "\n".join(lines)
+
+
+#: The region of a normal impact's deck [m] and the neighbour skin.
+BOX, SKIN = "-1e-5 1e-5 -1e-5 1e-5 -1e-6 1e-4", "1e-7"
+
+
 def liggghts_input(model, V, dt, nsteps, z0):
     """LIGGGHTS input deck of one impact (one atom type for particle and wall)."""
     props = [
@@ -231,54 +293,15 @@ def liggghts_input(model, V, dt, nsteps, z0):
         ]
     else:
         raise ValueError(f"model must be thornton_ning, hooke or hooke/hysteresis; got {model!r}")
-    lines = [
-        "units si",
-        "atom_style granular",
-        "atom_modify map array",
-        "boundary f f f",
-        "newton off",
-        "communicate single vel yes",
-        "hard_particles yes",
-        "region reg block -1e-5 1e-5 -1e-5 1e-5 -1e-6 1e-4 units box",
-        "create_box 1 reg",
-        "neighbor 1e-7 bin",
-        "neigh_modify delay 0",
-        *props,
-        f"pair_style gran model {model} tangential history",
-        "pair_coeff * *",
-        f"timestep {dt!r}",
-        f"fix wall all wall/gran model {model} tangential history primitive type 1 zplane 0.0",
-        f"create_atoms 1 single 0 0 {z0!r} units box",
-        f"set atom 1 diameter {2 * RADIUS!r} density {DENSITY!r} vz {-V!r}",
-        "fix integr all nve/sphere",
-    ]
-    return "\n".join(lines) + _OUTPUT.format(title="title none", nsteps=nsteps)
+    deck = liggghts_deck(props, model, BOX, SKIN, z0, f"vz {-V!r}", dt, RADIUS, DENSITY)
+    return deck + _OUTPUT.format(title="title none", nsteps=nsteps)
 
 
 def lammps_input(model, V, dt, nsteps, z0):
     """LAMMPS input deck of one impact; ``model`` is a key of :data:`LAMMPS_MODELS`."""
     coeffs = LAMMPS_MODELS[model]["coeffs"]
-    lines = [
-        "units si",
-        "atom_style sphere",
-        "atom_modify map array",
-        "boundary f f f",
-        "newton off",
-        "comm_modify vel yes",
-        "region box block -1e-5 1e-5 -1e-5 1e-5 -1e-6 1e-4 units box",
-        "create_box 1 box",
-        f"create_atoms 1 single 0 0 {z0!r} units box",
-        f"set atom 1 diameter {2 * RADIUS!r} density {DENSITY!r}",
-        f"velocity all set 0 0 {-V!r} units box",
-        "pair_style granular",
-        f"pair_coeff * * {coeffs}",
-        "neighbor 1e-7 bin",
-        "neigh_modify delay 0",
-        f"fix wall all wall/gran granular {coeffs} zplane 0.0 NULL",
-        "fix integr all nve/sphere",
-        f"timestep {dt!r}",
-    ]
-    return "\n".join(lines) + _OUTPUT.format(title='title ""', nsteps=nsteps)
+    deck = lammps_deck(coeffs, BOX, SKIN, z0, f"0 0 {-V!r}", dt, RADIUS, DENSITY)
+    return deck + _OUTPUT.format(title='title ""', nsteps=nsteps)
 
 
 LIGGGHTS_MODELS = {
@@ -366,9 +389,12 @@ LAMMPS_MODELS = {
 }
 
 
-def _run(exe, deck, extra_args=()):
-    """Run one deck in a temporary directory; returns (records, screen text)."""
-    with tempfile.TemporaryDirectory(prefix="dem_") as tmp:
+def run_deck(exe, deck, extra_args=(), prefix="dem_", read=None):
+    """Run one deck in a temporary directory: ``(screen text, text of the file `read` it wrote or None)``.
+
+    The one runner of this script and of ``dem_oblique_runs.py`` (one OpenMP thread, no log file).
+    """
+    with tempfile.TemporaryDirectory(prefix=prefix) as tmp:
         Path(tmp, "in.deck").write_text(deck)
         proc = subprocess.run(
             [exe, "-in", "in.deck", "-log", "none", *extra_args],
@@ -379,15 +405,21 @@ def _run(exe, deck, extra_args=()):
         )
         if proc.returncode != 0:
             raise RuntimeError(f"{Path(exe).name} failed ({proc.returncode}): {proc.stdout[-800:]}{proc.stderr[-800:]}")
-        recs = []
-        for line in Path(tmp, "out.txt").read_text().splitlines():
-            parts = line.split()
-            if len(parts) == 4:
-                try:
-                    recs.append(tuple(float(p) for p in parts))
-                except ValueError:
-                    pass
-        return recs, proc.stdout
+        return proc.stdout, None if read is None else Path(tmp, read).read_text()
+
+
+def _run(exe, deck, extra_args=()):
+    """Run one deck; returns (records, screen text)."""
+    screen, text = run_deck(exe, deck, extra_args, read="out.txt")
+    recs = []
+    for line in text.splitlines():
+        parts = line.split()
+        if len(parts) == 4:
+            try:
+                recs.append(tuple(float(p) for p in parts))
+            except ValueError:
+                pass
+    return recs, screen
 
 
 def analyse(recs, V, z0):

@@ -53,16 +53,22 @@ def _unit(q):
     return q.unit if q.unit not in ("", "1") else "-"
 
 
-def _parameter_doc(param, check, note):
-    q = QUANTITIES[_ALIASES.get(param, param)]
-    unit = _unit(q)
-    words = q.description.split(",")[0].split(" (")[0].split(" = ")[0]  # "effective modulus E*"
-    if q.symbol and words.endswith(" " + q.symbol):
-        words = words[: -len(q.symbol)] + f"``{q.symbol}``"
-    elif q.symbol:
-        words += f" ``{q.symbol}``"
+def _parameter_doc(param, check, note, described=None, optional=False):
+    """One parameter's numpydoc entry: words and unit from its quantity (or ``described``, a
+    ``(words, unit)`` pair for a parameter that is not a quantity), its check and ``note``."""
+    if described is not None:
+        words, unit = described
+    else:
+        q = QUANTITIES[_ALIASES.get(param, param)]
+        unit = _unit(q)
+        words = q.description.split(",")[0].split(" (")[0].split(" = ")[0]  # "effective modulus E*"
+        if q.symbol and words.endswith(" " + q.symbol):
+            words = words[: -len(q.symbol)] + f"``{q.symbol}``"
+        elif q.symbol:
+            words += f" ``{q.symbol}``"
     text = f"{words} [{unit}], {CHECKS[check][1]}"
-    return f"{param} : array_like\n    {text[0].upper()}{text[1:]}{'; ' + note if note else ''}."
+    kind = "array_like, optional" if optional else "array_like"
+    return f"{param} : {kind}\n    {text[0].upper()}{text[1:]}{'; ' + note if note else ''}."
 
 
 def _docstring(summary, notes, parameters, returns, examples, source):
@@ -83,7 +89,18 @@ def _docstring(summary, notes, parameters, returns, examples, source):
 
 
 def array_function(
-    namespace, name, core_function, parameters, returns, summary, notes="", examples="", output=(0, 1), order=None
+    namespace,
+    name,
+    core_function,
+    parameters,
+    returns,
+    summary,
+    notes="",
+    examples="",
+    output=(0, 1),
+    order=None,
+    defaults=None,
+    described=None,
 ):
     """Define ``name`` in ``namespace`` (a module's ``globals()``): ``core_function`` over arrays.
 
@@ -112,6 +129,12 @@ def array_function(
     order : sequence of str, optional
         The parameters in the order the core function takes them, where it differs from the
         public signature's (each is checked in the signature's order first).
+    defaults : dict, optional
+        ``{parameter: value}``: the default values of the last parameters (keywords of the
+        signature, as in a hand-written function).
+    described : dict, optional
+        ``{parameter: (words, unit)}`` for a parameter that is not a quantity of
+        :data:`~microimpact.core.quantities.QUANTITIES` (a prefactor, say).
 
     Returns
     -------
@@ -119,7 +142,11 @@ def array_function(
         The function (also bound in ``namespace``).
     """
     params = [p if len(p) == 3 else (p[0], p[1], "") for p in parameters]
-    args = ", ".join(p for p, _, _ in params)
+    defaults = defaults or {}
+    described = described or {}
+    for p, value in defaults.items():
+        namespace[f"_default_{name}_{p}"] = value
+    args = ", ".join(p + (f"=_default_{name}_{p}" if p in defaults else "") for p, _, _ in params)
     checks = "".join(f"    {p} = _checks[{c!r}][0]({p!r}, {p})\n" for p, c, _ in params)
     checked = ", ".join(order or [p for p, _, _ in params])
     index, count = output
@@ -135,7 +162,7 @@ def array_function(
     fn.__doc__ = _docstring(
         summary,
         notes,
-        [_parameter_doc(p, c, n) for p, c, n in params],
+        [_parameter_doc(p, c, n, described.get(p), p in defaults) for p, c, n in params],
         f"{words} [{_unit(q)}].",
         examples,
         f"Generated from :func:`{core_function.__module__}.{core_function.__name__}`.",

@@ -287,46 +287,23 @@ def deck(
         atoms = [(x1, 0.0, zc, V / 2.0, 0.0, 0.0), (-x1, 0.0, zc, -V / 2.0, 0.0, 0.0)]
         out_vars = ["x[1]", "x[2]", "vx[1]", "vx[2]", "fx[1]"]
     region = f"block {-L!r} {L!r} {-L!r} {L!r} {-0.5 * L!r} {2.0 * L!r} units box"
-    if code == "lammps":
-        setup = [
-            "atom_style sphere",
-            "atom_modify map array",
-            "boundary f f f",
-            "newton off",
-            f"region box {region}",
-            "create_box 1 box",
-        ]
-        for i, (x, y, z, vx, vy, vz) in enumerate(atoms, start=1):
-            setup += [
-                f"create_atoms 1 single {x!r} {y!r} {z!r} units box",
-                f"set atom {i} diameter {2 * radius!r} density {density!r}",
-                f"velocity all set {vx!r} {vy!r} {vz!r} units box" if len(atoms) == 1 else "",
-            ]
-        if len(atoms) == 2:
-            setup += ["group a1 id 1", "group a2 id 2"]
-            setup += [
-                f"velocity a1 set {atoms[0][3]!r} 0 0 units box",
-                f"velocity a2 set {atoms[1][3]!r} 0 0 units box",
-            ]
-        title = 'title ""'
+    if code == "lammps":  # the same setup in both codes' words: atom style, communication, atoms
+        style, talk, title = "sphere", [], 'title ""'
     else:
-        setup = [
-            "atom_style granular",
-            "atom_modify map array",
-            "boundary f f f",
-            "newton off",
-            "communicate single vel yes",
-            "hard_particles yes",
-            f"region box {region}",
-            "create_box 1 box",
-        ]
-        for i, (x, y, z, vx, vy, vz) in enumerate(atoms, start=1):
-            setup += [
-                f"create_atoms 1 single {x!r} {y!r} {z!r} units box",
-                f"set atom {i} diameter {2 * radius!r} density {density!r} vx {vx!r} vy {vy!r} vz {vz!r}",
-            ]
-        title = "title none"
-    setup = [s for s in setup if s]
+        style, talk, title = "granular", ["communicate single vel yes", "hard_particles yes"], "title none"
+    setup = [f"atom_style {style}", "atom_modify map array", "boundary f f f", "newton off", *talk]
+    setup += [f"region box {region}", "create_box 1 box"]
+    for i, (x, y, z, vx, vy, vz) in enumerate(atoms, start=1):
+        setup.append(f"create_atoms 1 single {x!r} {y!r} {z!r} units box")
+        if code == "lammps":  # LAMMPS sets velocities with `velocity` (by group for two spheres, below)
+            setup.append(f"set atom {i} diameter {2 * radius!r} density {density!r}")
+            if len(atoms) == 1:
+                setup.append(f"velocity all set {vx!r} {vy!r} {vz!r} units box")
+        else:
+            setup.append(f"set atom {i} diameter {2 * radius!r} density {density!r} vx {vx!r} vy {vy!r} vz {vz!r}")
+    if code == "lammps" and len(atoms) == 2:
+        setup += ["group a1 id 1", "group a2 id 2"]
+        setup += [f"velocity a{i} set {atoms[i - 1][3]!r} 0 0 units box" for i in (1, 2)]
     try:
         at = printed.index("units si") + 1
     except ValueError:

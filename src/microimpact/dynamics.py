@@ -259,6 +259,7 @@ class ImpactHistory:
 # ============================================================================ Newton's equation, numerically
 
 
+@_history.shared_parameters
 def integrate_impact(
     velocity,
     effective_modulus,
@@ -290,17 +291,10 @@ def integrate_impact(
 
     Parameters
     ----------
-    velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure : float
-        ``V`` [m/s] (positive, finite), ``E*`` [Pa], ``R*`` [m], ``m*`` [kg], ``p_y`` [Pa].
-    rtol, atol : float
-        Tolerances of the solver (``atol`` on the scaled variables; 1e-17 as for
-        :func:`integrate_model`, whose integrator this is: with 1e-14 the scaled state near the
-        first contact, where the force grows as ``alpha^(3/2)``, is controlled too loosely and
-        the rebound speed is 1e-10 off the closed form instead of 1e-11).
-    method : str
-        A :func:`~scipy.integrate.solve_ivp` method; ``"DOP853"`` (default) or ``"Radau"``.
-    n, times : optional
-        If either is given, also return the history on that grid, as :func:`impact_history`.
+    {pair}
+    {tolerances}
+    {method}
+    {grid}
 
     Returns
     -------
@@ -322,6 +316,7 @@ def integrate_impact(
     return out
 
 
+@_history.shared_parameters
 def integrate_model(
     model,
     velocity,
@@ -353,21 +348,12 @@ def integrate_model(
 
     Parameters
     ----------
-    model : str
-        Name of the model (:func:`microimpact.models.available`).
-    velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure : float
-        ``V`` [m/s] (positive, finite), ``E*`` [Pa], ``R*`` [m], ``m*`` [kg], ``p_y`` [Pa].
-    params : dict or tuple, optional
-        The model's parameters by name (defaults filled in) or as its tuple.
-    rtol, atol : float
-        Tolerances of the solver (``atol`` on the scaled variables; 1e-17, not 1e-14, so that a
-        force that jumps at a small approach, as the fitted laws do at their regime limits, is
-        crossed at the right place: at ``E*/Y = 2500`` Kogut-Etsion's maximum approach was 1.3e-7
-        off with 1e-14, 5e-12 with 1e-17; the seed's cost is unchanged).
-    method : str
-        A :func:`~scipy.integrate.solve_ivp` method; ``"DOP853"`` (default) or ``"Radau"``.
-    n, times : optional
-        If either is given, also return the history on that grid, as :func:`impact_history`.
+    {model}
+    {pair}
+    {params}
+    {tolerances}
+    {method}
+    {grid}
 
     Returns
     -------

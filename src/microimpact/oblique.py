@@ -48,6 +48,7 @@ __all__ = [
     "ObliqueImpact",
     "OBLIQUE_REGIMES",
     "TANGENTIAL_MODELS",
+    "DEM_LAWS",
     "UNIVERSAL_LAWS",
     "oblique_impact",
     "stiffness_ratio_of",
@@ -61,10 +62,14 @@ __all__ = [
     "measured_alumina",
 ]
 
+#: The DEM codes' tangential laws, by name: :data:`microimpact.core.tangential_laws.ALL_LAWS` (the
+#: same tuple), for code above the core (``microimpact export --tangential``).
+DEM_LAWS = tl.ALL_LAWS
 #: Tangential models :func:`oblique_impact` knows, by name: the compliant contact of
 #: :mod:`microimpact.core.tangential`, the rigid-body impulse, and the DEM codes' laws of
-#: :mod:`microimpact.core.tangential_laws` (``"lammps_mindlin_rescale_force"`` is ``"mindlin"``).
-TANGENTIAL_MODELS = ("mindlin", "rigid", *tl.ALL_LAWS)
+#: :mod:`microimpact.core.tangential_laws` (:data:`DEM_LAWS`; ``"lammps_mindlin_rescale_force"`` is
+#: ``"mindlin"``).
+TANGENTIAL_MODELS = ("mindlin", "rigid", *DEM_LAWS)
 #: Laws whose outcome is a universal curve of ``psi``, ``kappa`` and ``V_y/V_n`` (tabulated for
 #: ``method="table"``). LIGGGHTS's arm ``R - delta/2`` adds ``alpha_m/R``, and a constant stiffness
 #: given in N/m makes ``kappa`` depend on the speed: those two are always integrated.

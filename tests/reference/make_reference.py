@@ -23,6 +23,7 @@ same functions. They use only public names of :mod:`microimpact`.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 import sys
@@ -35,6 +36,7 @@ import microimpact as mi
 from microimpact import adhesion, contact, dynamics, impact, materials
 from microimpact.cexport import restitution_table
 from microimpact.fitting import fit_restitution
+from microimpact.sweep import SWEEP_VARIABLES as SWEEP_VARIABLE_UNITS
 from microimpact.sweep import sweep
 from microimpact.wall import wall_interaction
 
@@ -44,44 +46,9 @@ SEED = 20261123
 N_RANDOM_PAIRS = 30
 
 #: Fields of an ImpactResult, in the dataclass order.
-RESULT_FIELDS = (
-    "velocity",
-    "yield_velocity",
-    "normalized_velocity",
-    "elastic",
-    "restitution",
-    "rebound_velocity",
-    "energy_loss",
-    "max_approach",
-    "plastic_approach",
-    "max_force",
-    "unloading_radius",
-    "max_contact_radius",
-    "large_strain",
-    "elastic_stage_time",
-    "plastic_stage_time",
-    "loading_time",
-    "unloading_time",
-    "contact_time",
-)
-HISTORY_ARRAYS = ("time", "approach", "approach_velocity", "force", "stage")
-HISTORY_SCALARS = (
-    "velocity",
-    "rebound_velocity",
-    "max_approach",
-    "plastic_approach",
-    "max_force",
-    "elastic_stage_time",
-    "plastic_stage_time",
-    "loading_time",
-    "unloading_time",
-    "contact_time",
-    "yield_velocity",
-    "effective_modulus",
-    "effective_radius",
-    "effective_mass",
-    "limiting_pressure",
-)
+RESULT_FIELDS = tuple(f.name for f in dataclasses.fields(mi.ImpactResult))
+HISTORY_ARRAYS = tuple(dynamics.HISTORY_COLUMNS)
+HISTORY_SCALARS = tuple(dynamics.HISTORY_SCALARS)
 WALL_FIELDS = (
     "velocity",
     "spin",
@@ -95,28 +62,7 @@ WALL_FIELDS = (
     "regime",
     "deposited_fraction",
 )
-SWEEP_VARIABLES = (
-    "restitution",
-    "rebound_velocity",
-    "energy_loss",
-    "max_approach",
-    "plastic_approach",
-    "max_force",
-    "unloading_radius",
-    "max_contact_radius",
-    "elastic_stage_time",
-    "plastic_stage_time",
-    "loading_time",
-    "unloading_time",
-    "contact_time",
-    "normalized_velocity",
-    "elastic",
-    "large_strain",
-    "yield_velocity",
-    "effective_modulus",
-    "effective_radius",
-    "effective_mass",
-)
+SWEEP_VARIABLES = tuple(SWEEP_VARIABLE_UNITS)
 
 # Speeds tied to the yield velocity (set per pair); a pair with p_y = inf has
 # V_y = inf and gets ELASTIC_ONLY_SPEEDS in these slots instead.

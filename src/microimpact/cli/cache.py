@@ -21,7 +21,7 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from ..core.arrays import cache_info, clear_cache
+    from ..cache import cache_info, clear_cache
 
     if args.clear:
         n = clear_cache()

@@ -9,6 +9,8 @@ import numpy as np
 
 from .._validation import check_velocity
 from ..io import write_json
+from ..quantities import QUANTITIES
+from ..quantities import header as heading
 from ._common import (
     add_model_arguments,
     add_pair_arguments,
@@ -90,13 +92,13 @@ _NORMAL_ONLY = ("model", "param", "reference_velocity", "dem_lines")
 
 def format_table(ds) -> str:
     """The comparison as an aligned text table, one row per model and speed (``*``: a*/R* > 0.3)."""
-    header = ["model", "V [m/s]", "e", "1-e^2", "t_c [ns]"]
+    header = ["model", *(heading(n) for n in ("velocity", "restitution", "energy_loss", "contact_time"))]
     rows = [header]
     for i, name in enumerate(ds["model"].values):
         for j, V in enumerate(ds["velocity"].values):
             e = float(ds["restitution"].values[i, j])
             loss = float(ds["energy_loss"].values[i, j])
-            tc = float(ds["contact_time"].values[i, j]) * 1e9
+            tc = float(ds["contact_time"].values[i, j]) * QUANTITIES["contact_time"].scale
             flag = " *" if bool(ds["large_strain"].values[i, j]) else ""
             rows.append([str(name), f"{V:.4g}", _f(e, "{:.5f}"), _f(loss, "{:.4f}"), _f(tc, "{:.4f}") + flag])
     widths = [max(len(r[k]) for r in rows) for k in range(len(header))]

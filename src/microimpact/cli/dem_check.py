@@ -7,6 +7,7 @@ import math
 import numpy as np
 
 from .. import models
+from ..quantities import header
 from ._common import (
     add_pair_arguments,
     check_pair_options,
@@ -102,7 +103,7 @@ def run(args) -> int:
     print(f"{cal.model}: {', '.join(f'{k} = {v:.10g}' for k, v in cal.as_dict().items())}")
     print(f"{rows[0]['version']}, {'sphere on a flat wall' if args.geometry == 'wall' else 'two equal spheres'}")
     print()
-    head = f"{'V [m/s]':>8s} {'e law':>10s} {'e run':>10s} {'diff':>9s} {'t_c law [s]':>12s} {'t_c run [s]':>12s} {'diff':>9s} {'dt [s]':>10s} {'t_c/dt':>8s}"
+    head = f"{header('velocity'):>8s} {'e law':>10s} {'e run':>10s} {'diff':>9s} {'t_c law [s]':>12s} {'t_c run [s]':>12s} {'diff':>9s} {'dt [s]':>10s} {'t_c/dt':>8s}"
     print(head)
     worst = 0.0
     for r in rows:

@@ -8,9 +8,9 @@ from pathlib import Path
 
 from ..adhesion import ADHESION_RULES, check_adhesion_rule, work_of_adhesion
 from ..cexport import DEFAULT_VS_OVER_VY, generate_c_source, write_band, write_c_source, write_tables
-from ..core.tangential_laws import ALL_LAWS as LAWS
 from ..fitting import INTERVALS, LOSSES
 from ..materials import sphere_mass
+from ..oblique import DEM_LAWS as LAWS
 from ._common import (
     add_pair_arguments,
     check_input_file,

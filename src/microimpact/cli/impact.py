@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import sys
 import warnings
@@ -11,30 +12,21 @@ import numpy as np
 from .. import models, quantities
 from .._validation import check_velocity
 from ..io import write_json
-from ..pair import RESULT_FIELDS, LargeStrainWarning
+from ..pair import RESULT_FIELDS, ImpactResult, LargeStrainWarning
 from ._common import add_pair_arguments, pair_from_args, parse_values
 
 #: Memory per speed [bytes]: 18 result arrays with their temporaries, and the JSON or table text.
 BYTES_PER_SPEED = 2000
 
-#: The table's columns: (attribute, header, scale to the shown unit, format), from the quantities table.
+#: Result fields the table leaves out (the pair's V_y is printed above it; the flags mark rows).
+HIDDEN = ("yield_velocity", "normalized_velocity", "elastic", "max_contact_radius", "large_strain")
+
+#: The table's columns: (attribute, header, scale to the shown unit, format), from the quantities table,
+#: in the order of :class:`~microimpact.pair.ImpactResult`'s fields.
 COLUMNS = [
     (n, quantities.header(n), quantities.QUANTITIES[n].scale, quantities.QUANTITIES[n].fmt)
-    for n in (
-        "velocity",
-        "restitution",
-        "rebound_velocity",
-        "energy_loss",
-        "max_approach",
-        "plastic_approach",
-        "max_force",
-        "unloading_radius",
-        "elastic_stage_time",
-        "plastic_stage_time",
-        "loading_time",
-        "unloading_time",
-        "contact_time",
-    )
+    for n in (f.name for f in dataclasses.fields(ImpactResult))
+    if n not in HIDDEN
 ]
 
 

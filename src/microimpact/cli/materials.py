@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from ..materials import get_material, list_materials
+from ..quantities import header
 
 
 def register(sub) -> None:
@@ -21,7 +22,7 @@ def run(args) -> int:
         )
         print(f"  source: {m.source}")
         return 0
-    print(f"{'name':16s} {'E [GPa]':>8s} {'nu':>5s} {'rho [kg/m3]':>11s} {'Y [MPa]':>8s}  description")
+    print(f"{'name':16s} {'E [GPa]':>8s} {'nu':>5s} {'rho [kg/m3]':>11s} {header('yield_strength'):>8s}  description")
     for name in list_materials():
         m = get_material(name)
         y = f"{m.yield_strength / 1e6:.0f}" if m.yield_strength else "-"

@@ -8,6 +8,7 @@ import math
 import numpy as np
 
 from ..io import write_csv, write_json
+from ..quantities import header as heading
 from ._common import add_pair_arguments, check_outputs, pair_from_args, parse_float, parse_values
 
 #: Memory per diameter [bytes]: a few result arrays and the text.
@@ -69,7 +70,7 @@ def _f(x, fmt="{:.5g}"):
 
 def format_table(res, laws) -> str:
     """The capture velocities as an aligned text table, one row per diameter."""
-    header = ["d [um]"]
+    header = [heading("diameter")]
     for law in laws:
         short = "additive" if law == "additive" else "whole law"
         header += [f"V_s {short} [m/s]", f"V_y {short} [m/s]"]

@@ -178,18 +178,8 @@ def _generate(fn, kinds: str, nout: int, with_params: bool) -> str:
 
 
 def _write_atomic(path: Path, text: str) -> None:
-    import tempfile
-
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name + ".", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+    """Write a generated loop file atomically (:func:`microimpact.core.cache.write_atomic`; one seam for tests)."""
+    _cache.write_atomic(path, text.encode())
 
 
 def _kernels(fn, kinds: str, nout: int, with_params: bool):

@@ -25,6 +25,7 @@ __all__ = [
     "rise_time",
     "half_period",
     "contact_time",
+    "deresiewicz_contact_time",
 ]
 
 
@@ -128,3 +129,19 @@ def contact_time(V, E, R, m):
     Twice :func:`half_period` (the same bits as ``0.8 B alpha_m/V``: doubling is exact).
     """
     return 2.0 * half_period(V, E, R, m)
+
+
+@jitable
+def deresiewicz_contact_time(V, E, R, m, constant):
+    """Deresiewicz's (1968) elastic contact time, ``constant (m*^2/(R* E*^2 V))^(1/5)`` [s] (seed eq. 30).
+
+    With ``constant`` the seed's printed 2.87 (:data:`~microimpact.core.special.HERTZ_TIME_CONSTANT_PRINTED`);
+    the exact :data:`~microimpact.core.special.HERTZ_TIME_CONSTANT` makes it :func:`contact_time`
+    written the seed's way. ``constant * inf`` where the denominator is 0 (``V = 0``), as IEEE
+    division gives it (NaN if ``m*^2`` is 0 too).
+    """
+    d = R * (E * E) * V
+    mm = m * m
+    if not d > 0.0:
+        return constant * (math.inf if mm > 0.0 else math.nan)
+    return constant * (mm / d) ** 0.2

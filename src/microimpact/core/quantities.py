@@ -28,6 +28,7 @@ __all__ = [
     "columns",
     "header",
     "axis_label",
+    "tex_unit",
 ]
 
 

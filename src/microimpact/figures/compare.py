@@ -100,10 +100,10 @@ def comparison_data(comparison=None, **kwargs) -> dict:
     return {
         "model": np.repeat(np.array(names, dtype=object), V.size),
         "calibrated": np.repeat(np.asarray(ds["calibrated"].values, dtype=int), V.size),
-        "velocity_m_s": np.tile(V, len(names)),
+        quantities.column("velocity"): np.tile(V, len(names)),
         "restitution": np.asarray(ds["restitution"].values, dtype=float).reshape(n),
         "energy_loss": np.asarray(ds["energy_loss"].values, dtype=float).reshape(n),
-        "contact_time_ns": np.asarray(ds["contact_time"].values, dtype=float).reshape(n)
+        quantities.column("contact_time", display=True): np.asarray(ds["contact_time"].values, dtype=float).reshape(n)
         * quantities.QUANTITIES["contact_time"].scale,
         "large_strain": np.asarray(ds["large_strain"].values, dtype=int).reshape(n),
     }
@@ -143,7 +143,7 @@ def plot_comparison(comparison=None, ax=None, *, legend=True, **kwargs):
     panels = [
         ("restitution", 1.0, r"Coefficient of restitution, $e$"),
         ("energy_loss", 1.0, r"Energy loss, $1 - e^2$"),
-        ("contact_time", 1e9, r"Contact time, $t_c$ (ns)"),
+        ("contact_time", 1e9, quantities.axis_label("contact_time", "Contact time")),
     ]
     with _style.style() as plt:
         if ax is None:
@@ -163,7 +163,7 @@ def plot_comparison(comparison=None, ax=None, *, legend=True, **kwargs):
                 (line,) = a.plot(V, np.asarray(ds[var].values[i], dtype=float) * scale, label=label, **st)
             handles.append(line)
         for a, (var, _, ylabel) in zip(axes, panels):
-            a.set_xlabel(r"Impact velocity, $V$ (m/s)")
+            a.set_xlabel(quantities.axis_label("velocity", "Impact velocity"))
             a.set_ylabel(ylabel)
             a.set_xlim(0.0, float(V.max()) * 1.02)
             a.minorticks_on()

@@ -113,6 +113,12 @@ def _scale(name):
     return quantities.QUANTITIES[name].scale
 
 
+def _legend_label(words, name):
+    """A legend entry for quantity ``name``: ``words``, its TeX symbol and its display unit (QUANTITIES)."""
+    q = quantities.QUANTITIES[name]
+    return f"{words} {q.tex} ({quantities.tex_unit(q.shown_unit)})"
+
+
 _VMAX = 120.0  # the seed's velocity range [m/s]
 
 
@@ -216,9 +222,9 @@ def restitution_data(pairs=None, data=None, velocity=None) -> dict:
             {
                 "series": np.full(n, str(name), dtype=object),
                 "kind": np.full(n, "model", dtype=object),
-                "velocity_m_s": np.asarray(out.velocity, dtype=float).ravel(),
+                quantities.column("velocity"): np.asarray(out.velocity, dtype=float).ravel(),
                 "restitution": np.asarray(out.restitution, dtype=float).ravel(),
-                "yield_velocity_m_s": np.full(n, Vy),
+                quantities.column("yield_velocity"): np.full(n, Vy),
                 "large_strain": np.asarray(out.large_strain, dtype=int).ravel(),
             }
         )
@@ -232,9 +238,9 @@ def restitution_data(pairs=None, data=None, velocity=None) -> dict:
             {
                 "series": np.full(n, str(name), dtype=object),
                 "kind": np.full(n, "measured", dtype=object),
-                "velocity_m_s": V,
+                quantities.column("velocity"): V,
                 "restitution": e,
-                "yield_velocity_m_s": np.full(n, np.nan),
+                quantities.column("yield_velocity"): np.full(n, np.nan),
                 "large_strain": np.zeros(n, dtype=int),
             }
         )
@@ -271,7 +277,7 @@ def plot_restitution(pairs=None, data=None, ax=None, *, velocity=None, table=Non
     with _style.style():
         ax = _style.new_axes(ax)
         kind = np.asarray(table["kind"])
-        V, e = np.asarray(table["velocity_m_s"], float), np.asarray(table["restitution"], float)
+        V, e = np.asarray(table[quantities.column("velocity")], float), np.asarray(table["restitution"], float)
         i_model = i_meas = 0
         model_colors = {}
         onset = math.inf
@@ -279,7 +285,7 @@ def plot_restitution(pairs=None, data=None, ax=None, *, velocity=None, table=Non
         for key, m in _groups(keys, "series_kind"):
             name = key.split("\x00")[0]
             if kind[m][0] == "model":
-                Vy = float(np.asarray(table["yield_velocity_m_s"], float)[m][0])
+                Vy = float(np.asarray(table[quantities.column("yield_velocity")], float)[m][0])
                 st = {**_style.series_style(i_model), **kws}
                 model_colors[name] = st["color"]
                 ax.plot(V[m], e[m], label=f"{name} (model, $V_y$ = {Vy:.2f} m/s)", **st)
@@ -335,7 +341,7 @@ def _pair_with(pair, parameter, value, particle_poisson, surface_modulus, surfac
             surface_modulus=surface_modulus,
             surface_poisson=surface_poisson,
         )
-        return p, {"effective_modulus_Pa": p.effective_modulus}
+        return p, {quantities.column("effective_modulus"): p.effective_modulus}
     return pair.vary(**{parameter: value}), {}
 
 
@@ -381,10 +387,10 @@ def energy_loss_data(
         part.update({k: np.full(n, v) for k, v in extra.items()})
         part.update(
             {
-                "velocity_m_s": np.asarray(out.velocity, float).ravel(),
+                quantities.column("velocity"): np.asarray(out.velocity, float).ravel(),
                 "energy_loss": np.asarray(out.energy_loss, float).ravel(),
                 "restitution": np.asarray(out.restitution, float).ravel(),
-                "yield_velocity_m_s": np.full(n, Vy),
+                quantities.column("yield_velocity"): np.full(n, Vy),
                 "large_strain": np.asarray(out.large_strain, dtype=int).ravel(),
             }
         )
@@ -433,7 +439,7 @@ def plot_energy_loss(parameter, values, ax=None, *, pair=None, velocity=None, ta
     col, symbol, unit, scale = ENERGY_LOSS_PARAMETERS[parameter]
     with _style.style():
         ax = _style.new_axes(ax)
-        V = np.asarray(table["velocity_m_s"], float)
+        V = np.asarray(table[quantities.column("velocity")], float)
         y = np.asarray(table["energy_loss"], float)
         ls_flag = np.asarray(table["large_strain"]).astype(bool)
         any_onset = False
@@ -525,12 +531,12 @@ def force_displacement_data(velocities=(30.0, 50.0, 70.0), pair=None, n=201) -> 
             k = alpha.size
             parts.append(
                 {
-                    "velocity_m_s": np.full(k, float(V)),
+                    quantities.column("velocity"): np.full(k, float(V)),
                     "branch": np.full(k, branch, dtype=object),
-                    "approach_m": alpha,
-                    "force_N": np.asarray(force, float),
-                    "max_approach_m": np.full(k, a_star),
-                    "plastic_approach_m": np.full(k, a_p),
+                    quantities.column("approach"): alpha,
+                    quantities.column("force"): np.asarray(force, float),
+                    quantities.column("max_approach"): np.full(k, a_star),
+                    quantities.column("plastic_approach"): np.full(k, a_p),
                 }
             )
     return _concat(parts)
@@ -568,14 +574,16 @@ def plot_force_displacement(velocities=(30.0, 50.0, 70.0), ax=None, *, pair=None
     with _style.style():
         ax = _style.new_axes(ax)
         branch = np.asarray(table["branch"])
-        a = np.asarray(table["approach_m"], float) * _scale("approach")
-        P = np.asarray(table["force_N"], float) * _scale("force")
-        for i, (V, m) in enumerate(_groups(table, "velocity_m_s")):
+        a = np.asarray(table[quantities.column("approach")], float) * _scale("approach")
+        P = np.asarray(table[quantities.column("force")], float) * _scale("force")
+        for i, (V, m) in enumerate(_groups(table, quantities.column("velocity"))):
             c = _style.COLORS[i % len(_style.COLORS)]
             lo, un = m & (branch == "loading"), m & (branch == "unloading")
             ax.plot(a[lo], P[lo], color=c, linestyle="-", label=f"V = {V:g} m/s", **kws)
             ax.plot(a[un], P[un], color=c, linestyle="--", **kws)
-            a_p = float(np.asarray(table["plastic_approach_m"], float)[m][0]) * _scale("plastic_approach")
+            a_p = float(np.asarray(table[quantities.column("plastic_approach")], float)[m][0]) * _scale(
+                "plastic_approach"
+            )
             ax.plot([a_p], [0.0], marker="v", markersize=4, color=c, clip_on=False, zorder=5)
             ax.annotate(
                 f"{a_p:.1f}",
@@ -590,7 +598,13 @@ def plot_force_displacement(velocities=(30.0, 50.0, 70.0), ax=None, *, pair=None
         ax.plot([], [], color="0.3", linestyle="-", label="loading")
         ax.plot([], [], color="0.3", linestyle="--", label="unloading")
         ax.plot(
-            [], [], color="0.3", linestyle="none", marker="v", markersize=4, label=r"plastic approach $\alpha_p$ (nm)"
+            [],
+            [],
+            color="0.3",
+            linestyle="none",
+            marker="v",
+            markersize=4,
+            label=_legend_label("plastic approach", "plastic_approach"),
         )
         ax.set_xlim(0.0, float(a.max()) * 1.05)
         ax.set_ylim(0.0, float(P.max()) * 1.08)
@@ -630,9 +644,9 @@ def approach_data(pair=None, velocity=None) -> dict:
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = np.where(a_star > 0, a_p / np.where(a_star > 0, a_star, 1.0), 0.0)
     return {
-        "velocity_m_s": np.asarray(out.velocity, float).ravel(),
-        "max_approach_m": a_star,
-        "plastic_approach_m": a_p,
+        quantities.column("velocity"): np.asarray(out.velocity, float).ravel(),
+        quantities.column("max_approach"): a_star,
+        quantities.column("plastic_approach"): a_p,
         "plastic_ratio": ratio,
         "large_strain": np.asarray(out.large_strain, dtype=int).ravel(),
     }
@@ -662,11 +676,11 @@ def plot_approach(pair=None, ax=None, *, velocity=None, table=None):
         table = approach_data(pair, velocity)
     with _style.style():
         ax = _style.new_axes(ax)
-        V = np.asarray(table["velocity_m_s"], float)
+        V = np.asarray(table[quantities.column("velocity")], float)
         c0, c1 = _style.COLORS[0], _style.COLORS[2]
         (l0,) = ax.plot(
             V,
-            np.asarray(table["max_approach_m"], float) * _scale("max_approach"),
+            np.asarray(table[quantities.column("max_approach")], float) * _scale("max_approach"),
             color=c0,
             linestyle="-",
             label=r"maximum approach $\alpha^*$",
@@ -722,33 +736,33 @@ def contact_time_data(pair=None, velocity=None) -> dict:
     V = _grid(velocity, pair.yield_velocity, start=2.0, num=473)
     out = pair.impact(V, warn=False)
     n = V.size
-    cols = {"velocity_m_s": np.asarray(out.velocity, float).ravel()}
+    cols = {quantities.column("velocity"): np.asarray(out.velocity, float).ravel()}
     for name in ("elastic_stage_time", "plastic_stage_time", "loading_time", "unloading_time", "contact_time"):
-        cols[name + "_s"] = np.asarray(getattr(out, name), float).ravel()
-    cols["deresiewicz_time_s"] = np.asarray(pair.deresiewicz_contact_time(V), float).ravel()
-    cols["ning_loading_time_s"] = np.full(n, pair.ning_loading_time())
-    cols["yield_velocity_m_s"] = np.full(n, pair.yield_velocity)
+        cols[quantities.column(name)] = np.asarray(getattr(out, name), float).ravel()
+    cols[quantities.column("deresiewicz_time")] = np.asarray(pair.deresiewicz_contact_time(V), float).ravel()
+    cols[quantities.column("ning_loading_time")] = np.full(n, pair.ning_loading_time())
+    cols[quantities.column("yield_velocity")] = np.full(n, pair.yield_velocity)
     cols["large_strain"] = np.asarray(out.large_strain, dtype=int).ravel()
     return cols
 
 
 def _yield_velocity_of(table):
     """``V_y`` of the table if it lies inside its speed range, else ``None``."""
-    if "yield_velocity_m_s" not in table:
+    if quantities.column("yield_velocity") not in table:
         return None
-    Vy = float(np.asarray(table["yield_velocity_m_s"], float)[0])
-    V = np.asarray(table["velocity_m_s"], float)
+    Vy = float(np.asarray(table[quantities.column("yield_velocity")], float)[0])
+    V = np.asarray(table[quantities.column("velocity")], float)
     return Vy if V.min() < Vy < V.max() else None
 
 
 _TIME_SERIES = [
-    ("contact_time_s", r"$t_c$ (eq. 33)", "#000000", "-"),
-    ("loading_time_s", r"$t_L$ (eq. 32)", "#0072B2", "-"),
-    ("unloading_time_s", r"$t_U$ (eq. 26)", "#D55E00", "--"),
-    ("elastic_stage_time_s", r"$t_1$ (eq. 20)", "#009E73", "-."),
-    ("plastic_stage_time_s", r"$t_2$ (eq. 23)", "#CC79A7", (0, (5, 1.5, 1, 1.5, 1, 1.5))),
-    ("deresiewicz_time_s", "Deresiewicz, eq. 30", "#E69F00", ":"),
-    ("ning_loading_time_s", "Ning, eq. 31", "#56B4E9", (0, (1, 1))),
+    (quantities.column("contact_time"), r"$t_c$ (eq. 33)", "#000000", "-"),
+    (quantities.column("loading_time"), r"$t_L$ (eq. 32)", "#0072B2", "-"),
+    (quantities.column("unloading_time"), r"$t_U$ (eq. 26)", "#D55E00", "--"),
+    (quantities.column("elastic_stage_time"), r"$t_1$ (eq. 20)", "#009E73", "-."),
+    (quantities.column("plastic_stage_time"), r"$t_2$ (eq. 23)", "#CC79A7", (0, (5, 1.5, 1, 1.5, 1, 1.5))),
+    (quantities.column("deresiewicz_time"), "Deresiewicz, eq. 30", "#E69F00", ":"),
+    (quantities.column("ning_loading_time"), "Ning, eq. 31", "#56B4E9", (0, (1, 1))),
 ]
 
 
@@ -776,9 +790,9 @@ def plot_contact_times(pair=None, ax=None, *, velocity=None, table=None):
         table = contact_time_data(pair, velocity)
     with _style.style():
         ax = _style.new_axes(ax)
-        V = np.asarray(table["velocity_m_s"], float)
+        V = np.asarray(table[quantities.column("velocity")], float)
         for col, label, color, ls in _TIME_SERIES:
-            lw = 1.6 if col == "ning_loading_time_s" else None
+            lw = 1.6 if col == quantities.column("ning_loading_time") else None
             ax.plot(
                 V,
                 np.asarray(table[col], float) * _scale("contact_time"),
@@ -800,7 +814,7 @@ def plot_contact_times(pair=None, ax=None, *, velocity=None, table=None):
                 fontsize=6.5,
                 color="0.35",
             )
-        ymax = float(np.nanmax(np.asarray(table["contact_time_s"], float))) * _scale("contact_time")
+        ymax = float(np.nanmax(np.asarray(table[quantities.column("contact_time")], float))) * _scale("contact_time")
         ax.set_ylim(0.0, ymax * 1.4)
         ls = np.asarray(table["large_strain"]).astype(bool)
         if ls.any():
@@ -860,9 +874,9 @@ def force_time_data(velocity=70.0, pair=None, n=1001) -> dict:
         parts.append(
             {
                 "series": np.full(t.size, name, dtype=object),
-                "time_s": t,
-                "approach_m": np.asarray(a, float),
-                "force_N": np.asarray(P, float),
+                quantities.column("time"): t,
+                quantities.column("approach"): np.asarray(a, float),
+                quantities.column("force"): np.asarray(P, float),
             }
         )
     return _concat(parts)
@@ -897,8 +911,8 @@ def plot_force_time(velocity=70.0, ax=None, *, pair=None, table=None):
     }
     with _style.style():
         ax = _style.new_axes(ax)
-        t = np.asarray(table["time_s"], float) * _scale("time")
-        P = np.asarray(table["force_N"], float) * _scale("force")
+        t = np.asarray(table[quantities.column("time")], float) * _scale("time")
+        P = np.asarray(table[quantities.column("force")], float) * _scale("force")
         for name, m in _groups(table, "series"):
             label, color, ls = labels.get(name, (name, "0.5", ":"))
             ax.plot(t[m], P[m], color=color, linestyle=ls, label=label)
@@ -932,10 +946,10 @@ def dynamics_data(velocity=50.0, pair=None, n=1001) -> dict:
     pair = _default_pair(pair)
     h = _history(pair, float(velocity), n)
     return {
-        "time_s": np.asarray(h.time, float),
-        "approach_velocity_m_s": np.asarray(h.approach_velocity, float),
-        "force_N": np.asarray(h.force, float),
-        "approach_m": np.asarray(h.approach, float),
+        quantities.column("time"): np.asarray(h.time, float),
+        quantities.column("approach_velocity"): np.asarray(h.approach_velocity, float),
+        quantities.column("force"): np.asarray(h.force, float),
+        quantities.column("approach"): np.asarray(h.approach, float),
         "stage": np.asarray(h.stage, dtype=int),
     }
 
@@ -969,16 +983,16 @@ def plot_dynamics(velocity=50.0, ax=None, *, pair=None, table=None):
             axes = np.asarray(ax, dtype=object).ravel()
             if axes.size != 3:
                 raise ValueError(f"ax must be three Axes (velocity, force, approach), got {axes.size}")
-        t = np.asarray(table["time_s"], float) * _scale("time")
+        t = np.asarray(table[quantities.column("time")], float) * _scale("time")
         stage = np.asarray(table["stage"], int)
         series = [
             (
-                "approach_velocity_m_s",
+                quantities.column("approach_velocity"),
                 _scale("approach_velocity"),
                 quantities.axis_label("approach_velocity", "velocity"),
             ),
-            ("force_N", _scale("force"), quantities.axis_label("force", "force")),
-            ("approach_m", _scale("approach"), quantities.axis_label("approach")),
+            (quantities.column("force"), _scale("force"), quantities.axis_label("force", "force")),
+            (quantities.column("approach"), _scale("approach"), quantities.axis_label("approach")),
         ]
         stage_style = {
             1: ("stage 1: Hertz loading", _style.COLORS[2], "-"),

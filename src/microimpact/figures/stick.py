@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 
+from ..quantities import axis_label
 from ..stick import FULL_LAW
 from . import style as _style
 
@@ -114,7 +115,7 @@ def plot_stick_map(pair=None, work_of_adhesion=1.0, diameter=None, velocity=None
             a.text(0.96, 0.93, "bounce", transform=a.transAxes, fontsize=8, color="white", ha="right", va="top")
             if math.isfinite(d_part) and d_um.min() < d_part * 1e6 < d_um.max():
                 a.axvline(d_part * 1e6, color="0.35", linewidth=0.6, linestyle="-.", zorder=3)
-        axes[0].set_ylabel(r"Impact velocity, $V$ (m/s)")
+        axes[0].set_ylabel(axis_label("velocity", "Impact velocity"))
         axes[0].legend(loc="lower left", fontsize=6.5, framealpha=0.9)
         if mesh is not None:
             fig.colorbar(mesh, ax=list(axes), label=r"Coefficient of restitution, $e$", shrink=0.95, pad=0.01)

@@ -8,8 +8,9 @@ closed-form history, eqs. 17-26, 30-33). Most are generated from the scalar core
 :func:`microimpact._face.array_function` (checked, broadcast inputs; parameters and units of the
 docstring from :data:`~microimpact.core.quantities.QUANTITIES`) or, for a field of the outcome, by
 :func:`microimpact._face.outcome_function`; the few written out here compose core functions
-(``contact_force``, ``impact_outcome``, ``contact_times``, the closed-form history) or are
-independent checks of them (``thornton_ning_restitution``, ``deresiewicz_contact_time``).
+(``contact_force``, ``impact_outcome``, ``contact_times``, the closed-form history) or take
+what the generator does not (``restitution_coefficient``'s ``out=``, ``incomplete_beta``'s range
+check and defaults, ``energy_loss_fraction``'s range check).
 """
 
 from __future__ import annotations
@@ -513,47 +514,25 @@ def restitution_coefficient(velocity, yield_velocity, *, out=None):
     return evaluate(_seed.restitution_at, V, Vy)[0]
 
 
-def thornton_ning_restitution(velocity, yield_velocity):
-    """Thornton & Ning's (1998) closed form of the restitution coefficient [-].
-
-    ``e = (6 3^(1/2)/5)^(1/2) (1 - w^2/6)^(1/2) [w / (w + 2 (6/5 - w^2/5)^(1/2))]^(1/4)``
-    with ``w = V_y/V`` for ``V > V_y``, and 1 otherwise. Written independently of
-    :func:`restitution_coefficient` (seed eq. 27); the two are algebraically equal
-    (see the :ref:`theory page <theory>`).
-
-    Parameters
-    ----------
-    velocity : array_like
-        Impact speed ``V`` [m/s], >= 0.
-    yield_velocity : array_like
-        Yield velocity ``V_y`` [m/s] (eq. 28); ``inf`` gives ``e = 1``.
-
-    Returns
-    -------
-    ndarray
-        Coefficient of restitution ``e`` [-].
-
-    Raises
-    ------
-    ValueError
-        If ``velocity`` is negative or ``yield_velocity`` not positive.
-
-    Examples
-    --------
-    >>> e_tn = thornton_ning_restitution(20.0, 7.52)
-    >>> bool(np.isclose(e_tn, restitution_coefficient(20.0, 7.52), rtol=1e-12))
-    True
-    """
-    V = check_velocity("velocity", velocity)
-    Vy = check_positive("yield_velocity", yield_velocity, allow_inf=True)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        w = np.minimum(Vy / V, 1.0)
-        e = (
-            np.sqrt(6.0 * np.sqrt(3.0) / 5.0)
-            * np.sqrt(1.0 - w**2 / 6.0)
-            * (w / (w + 2.0 * np.sqrt(6.0 / 5.0 - w**2 / 5.0))) ** 0.25
-        )
-    return np.where(V <= Vy, 1.0, e)
+thornton_ning_restitution = array_function(
+    globals(),
+    "thornton_ning_restitution",
+    _seed.thornton_ning_restitution,
+    [("velocity", "velocity"), ("yield_velocity", "positive_or_inf", "``inf`` gives ``e = 1``")],
+    ("restitution", "Coefficient of restitution ``e``"),
+    "Thornton & Ning's (1998) closed form of the restitution coefficient [-].",
+    notes="""
+        ``e = (6 3^(1/2)/5)^(1/2) (1 - w^2/6)^(1/2) [w / (w + 2 (6/5 - w^2/5)^(1/2))]^(1/4)``
+        with ``w = V_y/V`` for ``V > V_y``, and 1 otherwise. Written independently of
+        :func:`restitution_coefficient` (seed eq. 27); the two are algebraically equal
+        (see the :ref:`theory page <theory>`).
+    """,
+    examples="""
+        >>> e_tn = thornton_ning_restitution(20.0, 7.52)
+        >>> bool(np.isclose(e_tn, restitution_coefficient(20.0, 7.52), rtol=1e-12))
+        True
+    """,
+)
 
 
 def energy_loss_fraction(restitution):
@@ -673,47 +652,31 @@ hertz_contact_time = array_function(
 )
 
 
-def deresiewicz_contact_time(
-    velocity, effective_modulus, effective_radius, effective_mass, constant=_special.HERTZ_TIME_CONSTANT_PRINTED
-):
-    """Deresiewicz's (1968) elastic contact time, ``t_c = 2.87 (m*^2/(R* E*^2 V))^(1/5)`` [s] (seed eq. 30).
-
-    ``constant`` is the seed's printed 2.87 by default; the exact value is
-    :data:`HERTZ_TIME_CONSTANT` (2.8683), which makes this :func:`hertz_contact_time`.
-
-    Parameters
-    ----------
-    velocity : array_like
-        Impact speed ``V`` [m/s], >= 0.
-    effective_modulus : array_like
-        Effective modulus ``E*`` [Pa].
-    effective_radius : array_like
-        Effective radius ``R*`` [m].
-    effective_mass : array_like
-        Effective mass ``m*`` [kg].
-    constant : float, optional
-        Prefactor [-]; default 2.87, as printed in the seed.
-
-    Returns
-    -------
-    ndarray
-        Elastic contact time ``t_c`` [s].
-
-    Raises
-    ------
-    ValueError
-        If ``velocity`` is negative or a pair property is not positive.
-
-    Examples
-    --------
-    >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
-    >>> round(float(deresiewicz_contact_time(7.6, 1.31e9, 2.45e-6, m)) * 1e6, 5)  # us; seed: 0.03348
-    0.03349
-    """
-    V = check_velocity("velocity", velocity)
-    E, R, m, _ = check_pair(effective_modulus, effective_radius, effective_mass, 1.0)
-    with np.errstate(divide="ignore", over="ignore"):  # huge V: the time tends to 0
-        return constant * (m**2 / (R * E**2 * V)) ** 0.2
+deresiewicz_contact_time = array_function(
+    globals(),
+    "deresiewicz_contact_time",
+    hertz.deresiewicz_contact_time,
+    [
+        ("velocity", "velocity"),
+        ("effective_modulus", "positive"),
+        ("effective_radius", "positive"),
+        ("effective_mass", "positive"),
+        ("constant", "any", "default 2.87, as printed in the seed"),
+    ],
+    ("contact_time", "Elastic contact time ``t_c``"),
+    "Deresiewicz's (1968) elastic contact time, ``t_c = 2.87 (m*^2/(R* E*^2 V))^(1/5)`` [s] (seed eq. 30).",
+    notes="""
+        ``constant`` is the seed's printed 2.87 by default; the exact value is
+        :data:`HERTZ_TIME_CONSTANT` (2.8683), which makes this :func:`hertz_contact_time`.
+    """,
+    examples="""
+        >>> m = 4 / 3 * 3.141592653589793 * 2.45e-6**3 * 1350  # kg, 4.9 um NH4Fl sphere
+        >>> round(float(deresiewicz_contact_time(7.6, 1.31e9, 2.45e-6, m)) * 1e6, 5)  # us; seed: 0.03348
+        0.03349
+    """,
+    defaults={"constant": _special.HERTZ_TIME_CONSTANT_PRINTED},
+    described={"constant": ("Prefactor", "-")},
+)
 
 
 plastic_frequency = array_function(

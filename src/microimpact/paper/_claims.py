@@ -11,6 +11,7 @@ import numpy as np
 from ..figures import paper as figs
 from ..impact import restitution_coefficient
 from ..materials import PAPER_CASES
+from ..quantities import column
 from ._setup import (
     FIG3_PRESSURES,
     FIG4_MODULI,
@@ -339,7 +340,7 @@ def _st_pressure():
 def _st_modulus():
     t = figs.energy_loss_data("particle_modulus", FIG4_MODULI, velocity=[30.0, 60.0, 120.0], **FIG4_SURFACE)
     n = len(FIG4_MODULI)
-    Vy = np.asarray(t["yield_velocity_m_s"]).reshape(n, -1)[:, 0]
+    Vy = np.asarray(t[column("yield_velocity")]).reshape(n, -1)[:, 0]
     E = np.asarray(t["energy_loss"]).reshape(n, -1)
     ok = _monotone(Vy, 0, -1) and _monotone(E, 0, 1)
     return ok, (
@@ -351,7 +352,7 @@ def _st_modulus():
 def _st_density():
     t = figs.energy_loss_data("density", FIG5_DENSITIES, velocity=[30.0, 60.0, 120.0])
     n = len(FIG5_DENSITIES)
-    Vy = np.asarray(t["yield_velocity_m_s"]).reshape(n, -1)[:, 0]
+    Vy = np.asarray(t[column("yield_velocity")]).reshape(n, -1)[:, 0]
     E = np.asarray(t["energy_loss"]).reshape(n, -1)
     ok = _monotone(Vy, 0, -1) and _monotone(E, 0, 1)
     return ok, (

@@ -8,6 +8,7 @@ import html
 from .. import __version__
 from ..figures import paper as figs
 from ..materials import PAPER_CASES
+from ..quantities import header as heading
 from ._setup import (
     FIG3_PRESSURES,
     FIG4_MODULI,
@@ -62,12 +63,11 @@ def report_blocks(report, data, formats):
             "table",
             [
                 "case",
-                "d [um]",
-                "rho [kg/m^3]",
-                "E* [GPa]",
-                "p_y [MPa]",
-                "Y [MPa]",
-                "V_y [m/s] (eq. 28)",
+                *(
+                    heading(n)
+                    for n in ("diameter", "density", "effective_modulus", "limiting_pressure", "yield_strength")
+                ),
+                heading("yield_velocity") + " (eq. 28)",
                 "alpha_y [nm]",
                 "P_y [uN]",
             ],

@@ -122,6 +122,26 @@ def restitution_at(V, V_y):
 
 
 @jitable
+def thornton_ning_restitution(V, V_y):
+    """Thornton & Ning's (1998) closed form of the restitution coefficient [-], 1 for ``V <= V_y``.
+
+    ``e = (6 3^(1/2)/5)^(1/2) (1 - w^2/6)^(1/2) [w / (w + 2 (6/5 - w^2/5)^(1/2))]^(1/4)`` with
+    ``w = V_y/V``: written independently of :func:`restitution` (eq. 27), to which it is
+    algebraically equal (the theory page shows it), as its check.
+    """
+    if V <= V_y:
+        return 1.0
+    w = V_y / V
+    if w > 1.0:
+        w = 1.0
+    return (
+        math.sqrt(6.0 * math.sqrt(3.0) / 5.0)
+        * math.sqrt(1.0 - w * w / 6.0)
+        * (w / (w + 2.0 * math.sqrt(6.0 / 5.0 - w * w / 5.0))) ** 0.25
+    )
+
+
+@jitable
 def energy_loss(e):
     """Fraction of the kinetic energy lost, ``1 - e^2`` [-] (eq. 29); also takes arrays."""
     return 1.0 - e * e
