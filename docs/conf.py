@@ -107,3 +107,26 @@ html_show_sourcelink = False
 
 nitpicky = False
 suppress_warnings: list[str] = []
+
+
+# -- the sidebar ----------------------------------------------------------------
+# furo draws the whole site tree, every level expanded, in every page's sidebar: with one page per
+# public name (autosummary, ~490 pages) that is ~650 entries per page, and computing and parsing
+# that tree for each of the ~550 pages was ~90% of the build's time (profiled). The sidebar shows
+# the top levels and the branch of the page at hand, expanded to every depth (Sphinx's ``collapse``):
+# an API page still lists its module's siblings; the module pages list their names in a table.
+def _sidebar_collapsed(app, pagename, templatename, context, doctree):
+    toctree = context.get("toctree")
+    if toctree is None:
+        return
+
+    def collapsed(**kwargs):
+        kwargs["collapse"] = True
+        return toctree(**kwargs)
+
+    context["toctree"] = collapsed
+
+
+def setup(app):
+    # before furo's own handler (priority 500), which calls context["toctree"]
+    app.connect("html-page-context", _sidebar_collapsed, priority=400)

@@ -75,6 +75,19 @@ def test_table_read_back_bitwise_and_not_recomputed(cache_in, monkeypatch):
     assert calls and not np.array_equal(other.values, read.values)
 
 
+def test_mindlin_deresiewicz_table_read_back(cache_in, monkeypatch):
+    """Mindlin-Deresiewicz never slides throughout (its table ends within 3e-3 of 1, not at 1): its
+    stored table is read back too, not refused by the end-of-grid check and rebuilt in every process."""
+    ob._table.cache_clear()
+    built = ob.universal_table(0.8, law="mindlin_deresiewicz", n_x=3, steps=100)
+    assert not np.all(built.values[:, -1] == 1.0)  # the case: short of 1 at the grid's end
+    calls = _count_builds(monkeypatch)
+    ob._table.cache_clear()
+    read = ob.universal_table(0.8, law="mindlin_deresiewicz", n_x=3, steps=100)
+    assert not calls  # read from disk
+    assert np.array_equal(built.values, read.values)
+
+
 def test_corrupt_table_is_recomputed_and_healed(cache_in, monkeypatch):
     built = _fresh(0.8)
     (path,) = (cache_in / "tables").glob("universal_table_*.npy")
