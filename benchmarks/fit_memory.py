@@ -10,7 +10,7 @@ Nothing is written; the numbers are printed (``--json`` prints them as JSON).
 ``python benchmarks/fit_memory.py --csv N [--loader-only]``: the peak resident memory (RSS, what
 the system sees, interpreter included) of the command ``microimpact fit FILE`` on a CSV file of N
 rows (written to a temporary folder first, velocity and restitution as above), or of reading that
-file alone (:func:`microimpact.fitting.load_restitution_csv`). The reader streams the file into
+file alone (:func:`microimpact.io.load_restitution_csv`). The reader streams the file into
 typed arrays (20 bytes a row: two values and a 4-byte line number); the goal is a 10^7-row fit within 500 MB.
 """
 
@@ -55,7 +55,7 @@ def measure(n: int, loss: str = "linear") -> dict:
 # Each child reports its own peak RSS (a forked child's RUSAGE_CHILDREN would count the parent's pages).
 LOADER = r"""
 import resource, sys
-from microimpact.fitting import load_restitution_csv
+from microimpact.io import load_restitution_csv
 print(len(load_restitution_csv(sys.argv[1])[0]))
 print("peak", resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024, file=sys.stderr)
 """

@@ -47,7 +47,7 @@ BEFORE = " (e through the full outcome, as before issue 25)"
 @pytest.fixture(scope="module")
 def data():
     import microimpact as mi
-    from microimpact.fitting import load_restitution_csv
+    from microimpact.io import load_restitution_csv
 
     return load_restitution_csv(DATA), mi.ContactPair.paper_case("silicon")
 

@@ -26,9 +26,9 @@ from microimpact.figures.fit import plot_fit, plot_models
 from microimpact.fitting import (
     FitWarning,
     fit_restitution,
-    load_restitution_csv,
     rank_models,
 )
+from microimpact.io import load_restitution_csv
 
 
 def write_atomically(path, text):

@@ -21,8 +21,8 @@ from microimpact.fitting import (
     FitResult,
     FitWarning,
     fit_restitution,
-    load_restitution_csv,
 )
+from microimpact.io import load_restitution_csv
 
 SILICON = mi.ContactPair.paper_case("silicon")
 
@@ -551,3 +551,26 @@ def test_example_with_values_above_one_writes_only_to_its_folder(tmp_path, capsy
     # the robust fit finds p_y = 156 MPa within its interval despite the outlier
     m = re.search(r"soft_l1: +FitResult\(.*limiting_pressure=\S+ MPa \[95%: (\S+), (\S+)\]", out)
     assert float(m.group(1)) < 156 < float(m.group(2).rstrip("]"))
+
+
+def test_the_reader_lives_in_io_and_its_old_names_warn(tmp_path):
+    """Reading lives in :mod:`microimpact.io` (issue 20); ``fitting``'s names keep working one release."""
+    import warnings
+
+    import microimpact as mi
+    import microimpact.fitting as fitting
+    import microimpact.io as mio
+
+    path = write(tmp_path, "velocity,e\n8,1.013\n12,0.99\n30,0\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # the new homes give no warning
+        new = mio.load_restitution_csv(path)
+        assert mi.load_restitution_csv is mio.load_restitution_csv
+    for name in ("load_restitution_csv", "RestitutionData"):
+        with pytest.warns(DeprecationWarning, match=rf"use microimpact\.io\.{name}\b"):
+            assert getattr(fitting, name) is getattr(mio, name)
+    with pytest.warns(DeprecationWarning):
+        old = fitting.load_restitution_csv(path)
+    assert isinstance(old, mio.RestitutionData) and old.lines.tolist() == new.lines.tolist() == [2, 3, 4]
+    for a, b in zip(old[:2], new[:2]):
+        np.testing.assert_array_equal(a, b)

@@ -44,7 +44,7 @@ _LAZY = {
     "compare_models": "compare",
     "FitResult": "fitting",
     "fit_restitution": "fitting",
-    "load_restitution_csv": "fitting",
+    "load_restitution_csv": "io",
     "WallInteraction": "wall",
     "wall_interaction": "wall",
     "sticking_velocity": "adhesion",

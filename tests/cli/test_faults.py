@@ -712,8 +712,7 @@ def test_random_arguments_never_traceback(work, argv):
 
 
 def test_project_readers_read_the_one_layout(tmp_path):
-    from microimpact.fitting import load_restitution_csv
-    from microimpact.io import read_table
+    from microimpact.io import load_restitution_csv, read_table
 
     path = mio.write_csv(
         tmp_path / "m.csv",

@@ -14,8 +14,7 @@ import tracemalloc
 import numpy as np
 import pytest
 
-from microimpact.fitting import load_restitution_csv
-from microimpact.io import MemoryBudgetError
+from microimpact.io import MemoryBudgetError, load_restitution_csv
 from microimpact.wall import wall_interaction
 
 from .test_faults import assert_one_line, run

@@ -354,7 +354,8 @@ def _fit(args):
     """Fit the pair to ``--fit DATA.csv`` as ``microimpact fit`` does; returns the fit and its warnings."""
     import warnings
 
-    from ..fitting import FitWarning, fit_restitution, load_restitution_csv
+    from ..fitting import FitWarning, fit_restitution
+    from ..io import load_restitution_csv
     from .fit import fit_pair, fit_yield_strength
 
     data = load_restitution_csv(args.fit)

@@ -15,10 +15,9 @@ from ..fitting import (
     FitWarning,
     available_models,
     fit_restitution,
-    load_restitution_csv,
     rank_models,
 )
-from ..io import save_figure, write_json
+from ..io import load_restitution_csv, save_figure, write_json
 from ..materials import PAPER_CASES, get_material
 from ._common import (
     add_pair_arguments,

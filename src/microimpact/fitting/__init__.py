@@ -138,7 +138,7 @@ from __future__ import annotations
 
 from ..adhesion import ADDITIVE_RULE as _ADDITIVE_RULE
 from . import _fit, _models, _result, _solver
-from ._data import FitWarning, RestitutionData, load_restitution_csv
+from ._data import FitWarning
 from ._fit import fit_restitution
 from ._models import available_models
 from ._ranking import ModelRanking, rank_models
@@ -190,10 +190,8 @@ __all__ = [
     "FitWarning",
     "ModelRanking",
     "Prediction",
-    "RestitutionData",
     "available_models",
     "fit_restitution",
-    "load_restitution_csv",
     "rank_models",
 ]
 
@@ -202,7 +200,23 @@ __all__ = [
 _MOVED_PLOTS = ("plot_fit", "plot_models", "plot_residuals")
 
 
+#: The reader of restitution data that moved to :mod:`microimpact.io` (reading and writing live
+#: there): still read here for one release, with a DeprecationWarning naming its home.
+_MOVED_TO_IO = ("RestitutionData", "load_restitution_csv")
+
+
 def __getattr__(name):
+    if name in _MOVED_TO_IO:
+        import warnings
+
+        from .. import io as _io
+
+        warnings.warn(
+            f"microimpact.fitting.{name} is deprecated; use microimpact.io.{name}",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return getattr(_io, name)
     if name in _MOVED_PLOTS:
         import importlib
         import warnings

@@ -36,7 +36,7 @@ _SOURCE = f"seed: {SEED}"  # the provenance line of every CSV file
 def load_measurements(path):
     """Measured impact speeds and restitution coefficients from a CSV file.
 
-    Uses :func:`microimpact.fitting.load_restitution_csv` (columns ``velocity``,
+    Uses :func:`microimpact.io.load_restitution_csv` (columns ``velocity``,
     ``restitution``; errors name the file and line); an uncertainty column is
     ignored here.
 
@@ -57,7 +57,7 @@ def load_measurements(path):
     ValueError
         If the file is malformed (the message gives the line number).
     """
-    from ..fitting import load_restitution_csv
+    from ..io import load_restitution_csv
 
     data = load_restitution_csv(path)
     return np.asarray(data[0], float), np.asarray(data[1], float)
