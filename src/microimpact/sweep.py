@@ -27,7 +27,7 @@ import warnings
 import numpy as np
 
 from . import impact
-from ._optional import require, without_dask_probe  # noqa: F401  (the CLI's sweep takes it from here)
+from ._optional import require
 from ._validation import check_pair, check_poisson, check_positive, check_velocity
 from .core import models, quantities
 from .io import atomic_write, check_memory, progress_bar, write_netcdf

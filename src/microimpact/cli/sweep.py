@@ -17,10 +17,11 @@ import sys
 import numpy as np
 
 from .. import models, quantities
+from .._optional import without_dask_probe
 from .._validation import check_positive
 from ..materials import DEFAULT_K, PAPER_CASES, limiting_pressure, list_materials
 from ..pair import ContactPair
-from ..sweep import AUTO_BLOCK_POINTS, SWEEP_DIMENSIONS, without_dask_probe
+from ..sweep import AUTO_BLOCK_POINTS, SWEEP_DIMENSIONS
 from ._common import (
     add_model_arguments,
     check_outputs,

@@ -90,9 +90,11 @@ def _forced() -> str:
 
 def backend_for(n: int) -> str:
     """The engine :func:`evaluate` takes for ``n`` elements (see the module docstring)."""
-    forced = _forced()
-    if forced:
-        return forced
+    return _forced() or _unforced_engine(n)
+
+
+def _unforced_engine(n: int) -> str:
+    """The engine for ``n`` elements when ``MICROIMPACT_BACKEND`` does not force one."""
     return "numba" if (n >= SMALL or "numba" in sys.modules) else "python"
 
 
@@ -474,7 +476,7 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
         engine = "python"
     else:
         forced = _forced()
-        engine = forced or ("numba" if (n >= SMALL or "numba" in sys.modules) else "python")  # backend_for(n)
+        engine = forced or _unforced_engine(n)  # backend_for(n), reading the environment once
         if engine == "python" and not forced and n > 8:
             # A small array in Python only pays while the function is cheap: time one element once
             # per function (the same numbers either way) and compile when the loop would take longer.
@@ -490,7 +492,7 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
                 engine = "numba"
     with_params = params is not None
     if engine == "numba":
-        serial, parallel = _KERNELS.get((fn, kinds, nout, with_params)) or _kernels(fn, kinds, nout, with_params)
+        serial, parallel = _kernels(fn, kinds, nout, with_params)
         cost = _COST.get(serial)
         threads = n >= PARALLEL_MIN or (cost is not None and n >= 2048 and n * cost >= PARALLEL_WORK)
         p = tuple(params) if with_params else ()
