@@ -99,24 +99,26 @@ def plot_stick_map(pair=None, work_of_adhesion=1.0, diameter=None, velocity=None
             a.set_ylim(V.min(), V.max())
             a.set_xlabel(axis_label("diameter", "Particle diameter"))
             a.set_title(LAW_LABELS.get(law, law), fontsize=8)
-            a.text(0.96, 0.05, "stick", transform=a.transAxes, fontsize=8, color="0.2", ha="right")
+            # the stick region always holds the lower left corner (V_s falls with d): clear of the curves
+            a.text(0.03, 0.04, "stick", transform=a.transAxes, fontsize=8, color="0.2", ha="left", va="bottom")
             if np.any(np.asarray(data[law]["yield_velocity"]) == 0.0):
                 k = int(np.flatnonzero(np.asarray(data[law]["yield_velocity"]) == 0.0).max())
                 a.annotate(
                     "$V_y = 0$ to the left\n(yields at any speed)",
                     xy=(d_um[k], V.min()),
-                    xytext=(-3, 4),
+                    xytext=(8, 12),  # right of the curve's end, inside the axes (left of it is the y axis)
                     textcoords="offset points",
-                    ha="right",
+                    ha="left",
                     va="bottom",
                     fontsize=6.5,
                     color="#D55E00",
+                    arrowprops={"arrowstyle": "->", "color": "#D55E00", "linewidth": 0.6, "shrinkA": 1, "shrinkB": 1},
                 )
             a.text(0.96, 0.93, "bounce", transform=a.transAxes, fontsize=8, color="white", ha="right", va="top")
             if math.isfinite(d_part) and d_um.min() < d_part * 1e6 < d_um.max():
                 a.axvline(d_part * 1e6, color="0.35", linewidth=0.6, linestyle="-.", zorder=3)
         axes[0].set_ylabel(axis_label("velocity", "Impact velocity"))
-        axes[0].legend(loc="lower left", fontsize=6.5, framealpha=0.9)
+        axes[0].legend(loc="upper left", fontsize=6.5, framealpha=0.9)  # the lower left is the stick label's
         if mesh is not None:
             fig.colorbar(mesh, ax=list(axes), label=r"Coefficient of restitution, $e$", shrink=0.95, pad=0.01)
         part = (
