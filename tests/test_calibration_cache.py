@@ -193,6 +193,9 @@ def test_writers_racing_on_one_entry_leave_one_whole_file(cache_in):
             if not cc.store(name, (1.0, 2.0), e, e, None):
                 errors.append("store failed")
 
+    # one whole entry before the race: the reader's 300 loads could otherwise all come before any
+    # writer thread first ran (seen == 0 on CI once), which says nothing about the race itself
+    assert cc.store(name, (1.0, 2.0), np.zeros(50), np.zeros(50), None)
     threads = [threading.Thread(target=write, args=(s,)) for s in range(4)]
     for t in threads:
         t.start()
