@@ -43,24 +43,24 @@ starting with ``#``, :func:`read_table` and
 from __future__ import annotations
 
 import contextlib
-import csv
 import errno
 import io as _stdio
-import json
 import math
 import os
 import shutil
 import signal
 import stat
 import sys
-import tempfile
 import threading
-from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from . import _signals
 from ._validation import is_number_text
+
+if TYPE_CHECKING:  # pathlib, json, csv and tempfile load where used: every command checks memory here
+    from pathlib import Path
 
 __all__ = [
     "atomic_write",
@@ -177,6 +177,8 @@ def check_output_path(path, *, directory: bool = False) -> Path:
         :class:`IsADirectoryError` or :class:`FileExistsError` (not a regular
         file) with the offending path as ``filename``.
     """
+    from pathlib import Path
+
     if str(path) == "":
         raise FileNotFoundError(errno.ENOENT, "empty file name", "")
     target = Path(path)
@@ -205,6 +207,8 @@ def check_output_path(path, *, directory: bool = False) -> Path:
 
 def _resolve(target: Path) -> Path:
     """``target`` with a symbolic link followed (to its final target, which may not exist yet)."""
+    from pathlib import Path
+
     return Path(os.path.realpath(target)) if target.is_symlink() else target
 
 
@@ -225,6 +229,8 @@ def check_input_file(path, what: str = "file") -> Path:
     ValueError
         When it is not UTF-8 text (binary), naming the file and the byte offset.
     """
+    from pathlib import Path
+
     p = Path(path)
     if not p.exists():
         raise _oserror(errno.ENOENT, f"{what} file not found", p)
@@ -299,6 +305,9 @@ def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newli
     ------
     file object
     """
+    import tempfile
+    from pathlib import Path
+
     if mode not in ("w", "wb"):
         raise ValueError(f"mode must be 'w' or 'wb', got {mode!r}")
     kw = {} if "b" in mode else {"encoding": encoding, "newline": newline}
@@ -355,6 +364,8 @@ def _sha256(path) -> str:
 
 def _read_manifest(folder: Path):
     """The manifest in ``folder`` as ``(command, {name: {"size", "sha256"}})``, or None (absent or unreadable)."""
+    import json
+
     try:
         doc = json.loads((folder / MANIFEST).read_text(encoding="utf-8"))
         files = doc["files"]
@@ -425,6 +436,8 @@ def _foreign(folder: Path, command: str, inputs, shown) -> dict:
 
 
 def _write_manifest(folder: Path, command: str, names) -> None:
+    import json
+
     files = {}
     for name in sorted(names):
         p = folder / name
@@ -486,6 +499,9 @@ def owned_directory(path, command: str, *, inputs=()):
     pathlib.Path
         The staging folder to write the files into.
     """
+    import tempfile
+    from pathlib import Path
+
     target = Path(os.path.abspath(path))  # "." and "dir/.." name their real parent
     check_output_path(target, directory=True)
     if target.is_dir():
@@ -668,6 +684,8 @@ def write_csv(path, columns, comments=(), *, progress=False):
     pathlib.Path or None
         The file written (None for a file object).
     """
+    from pathlib import Path
+
     columns = list(columns)
     header = csv_header([(name, unit) for name, unit, _ in columns])
     comments = [_check_text("comment", c) for c in comments]
@@ -739,6 +757,9 @@ def write_json(obj, path=None, *, indent: int = 2):
     indent : int, optional
         Indentation (default 2).
     """
+    import json
+    from pathlib import Path
+
     text = json.dumps(json_safe(obj), indent=indent, allow_nan=False) + "\n"
     if path is None or (isinstance(path, str) and path == "-"):
         with _naming(sys.stdout):
@@ -775,6 +796,9 @@ def write_netcdf(ds, path, *, engine=None, progress=False):
     -------
     pathlib.Path
     """
+    import tempfile
+    from pathlib import Path
+
     check_output_path(path)
     target = _resolve(Path(path))
     fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
@@ -827,6 +851,8 @@ def save_figure(fig, path, **kwargs):
     -------
     pathlib.Path
     """
+    from pathlib import Path
+
     target = Path(path)
     fmt = kwargs.pop("format", None) or target.suffix.lstrip(".").lower() or None
     if fmt is None:
@@ -999,6 +1025,7 @@ def write_table(path, table: dict, title: str = "", columns: dict | None = None,
     Examples
     --------
     >>> import tempfile
+    >>> from pathlib import Path
     >>> with tempfile.TemporaryDirectory() as tmp:
     ...     cols = {"velocity_m_s": ("m/s", "impact speed V"), "restitution": ("1", "e")}
     ...     path = write_table(Path(tmp) / "e.csv", {"velocity_m_s": [5.0, 20.0], "restitution": [1.0, 0.8836]}, columns=cols)
@@ -1098,6 +1125,8 @@ def _column_key(text: str) -> tuple[str, str]:
 
 
 def _split(line: str, delimiter):
+    import csv
+
     if delimiter is None:
         return line.split()
     return [c.strip() for c in next(csv.reader(_stdio.StringIO(line), delimiter=delimiter))]

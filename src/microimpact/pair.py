@@ -9,7 +9,6 @@ delegates to the vectorized functions of :mod:`microimpact.contact`,
 from __future__ import annotations
 
 import functools
-import html
 import math
 import warnings
 from dataclasses import dataclass, field, fields, replace
@@ -298,6 +297,8 @@ class ImpactResult:
 
     def _repr_html_(self) -> str:
         """A table of every field with its unit (notebooks)."""
+        import html
+
         n = int(np.size(self.velocity))
         body = "".join(
             f"<tr><td><code>{html.escape(name)}</code></td><td>{html.escape(text)}</td>"
@@ -1290,6 +1291,8 @@ class ContactPair:
 
     def _repr_html_(self) -> str:
         """The pair's effective values and yield point as a table (notebooks)."""
+        import html
+
         rows = [
             ("E*", self.effective_modulus, "Pa"),
             ("R*", self.effective_radius, "m"),

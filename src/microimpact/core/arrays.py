@@ -28,20 +28,22 @@ poliastro's split (compiled core on floats; wrappers only convert and call).
 from __future__ import annotations
 
 import functools
-import hashlib
 import itertools
 import math
 import os
 import sys
 import threading
 import time
-from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from . import _defer
 from . import cache as _cache
 from ._jit import JITABLE
+
+if TYPE_CHECKING:  # hashlib and pathlib load where used: one impact on the command line needs neither
+    from pathlib import Path
 
 __all__ = [
     "evaluate",
@@ -109,6 +111,8 @@ def cache_dir() -> Path:
 
 @functools.lru_cache(maxsize=1)
 def _source_hash() -> str:
+    import hashlib
+
     import numba
 
     h = hashlib.sha256(_cache.core_hash().encode())
@@ -123,6 +127,7 @@ def _outside_hash(fn) -> str:
     old source, as the core's own hash guarantees for the core."""
     import hashlib
     import inspect
+    from pathlib import Path
 
     try:
         path = Path(inspect.getsourcefile(fn)).resolve()
@@ -235,6 +240,8 @@ def _reason(exc) -> str:
 
 
 def _build(fn, kinds: str, nout: int, with_params: bool):
+    import hashlib
+
     import numba  # noqa: F401  (the first compiled call pays for this import, once per process)
 
     text = _generate(fn, kinds, nout, with_params)
