@@ -36,15 +36,77 @@ def require(module: str, purpose: str = ""):
 
 @contextlib.contextmanager
 def without_dask_probe():
-    """While dask.array is not imported, tell xarray that no dask array exists (true then).
+    """While dask is not imported, tell xarray that no dask array or collection exists (true then).
 
     xarray asks, for every variable it builds, whether the data are a dask array, and imports
     :mod:`dask.array` to know (``xarray.namedarray.pycompat.array_type("dask")``): about half a
-    second, more than a small eager sweep costs altogether (issue 25). No object can be a dask array
-    before that module is imported, so inside this context xarray's cached answer is "dask absent";
-    it is withdrawn on the way out (a later lazy sweep imports dask as before). A no-op once
-    dask.array is imported, or where xarray keeps no such cache.
+    second, more than a small eager sweep costs altogether (issue 25). Building an index it asks
+    whether the data are a dask collection and imports :mod:`dask.base` to know
+    (``xarray.namedarray.utils.is_dask_collection``): another 0.1-0.2 s. No object can be a dask
+    array before that module is imported, so inside this context xarray's cached answer is "dask
+    absent"; it is withdrawn on the way out (a later lazy sweep imports dask as before). Likewise,
+    while dask itself is not imported, the collection check answers False without importing it, and
+    the question which dask scheduler is active (asked by ``to_netcdf``, which imports dask for it)
+    answers None, xarray's own answer without dask: none is; both ask dask as before once anything
+    has imported it. A no-op once dask is imported, or where xarray keeps no such cache or check.
     """
+    with _no_dask_collection_probe(), _no_dask_array_probe(), _no_dask_scheduler_probe():
+        yield
+
+
+@contextlib.contextmanager
+def _no_dask_scheduler_probe():
+    try:
+        from xarray.backends import locks, writers
+    except ImportError:  # pragma: no cover - another xarray layout: nothing to skip
+        yield
+        return
+    swapped = []
+    for module in (locks, writers):  # writers holds its own name for locks' function
+        original = getattr(module, "get_dask_scheduler", None)
+        if "dask" in sys.modules or not callable(original):
+            continue
+
+        def get_dask_scheduler(get=None, collection=None, _original=original):
+            # No dask scheduler can be active before dask is imported (by anyone, in any thread).
+            return _original(get, collection) if "dask" in sys.modules else None
+
+        module.get_dask_scheduler = get_dask_scheduler
+        swapped.append((module, original, get_dask_scheduler))
+    try:
+        yield
+    finally:
+        for module, original, ours in swapped:
+            if module.get_dask_scheduler is ours:
+                module.get_dask_scheduler = original
+
+
+@contextlib.contextmanager
+def _no_dask_collection_probe():
+    try:
+        from xarray.namedarray import utils
+    except ImportError:  # pragma: no cover - another xarray layout: nothing to skip
+        yield
+        return
+    original = getattr(utils, "is_dask_collection", None)
+    if "dask" in sys.modules or not callable(original):
+        yield
+        return
+
+    def is_dask_collection(x):
+        # A dask collection can exist only once dask is imported (by anyone, in any thread).
+        return "dask" in sys.modules and original(x)
+
+    utils.is_dask_collection = is_dask_collection
+    try:
+        yield
+    finally:
+        if utils.is_dask_collection is is_dask_collection:
+            utils.is_dask_collection = original
+
+
+@contextlib.contextmanager
+def _no_dask_array_probe():
     try:
         from xarray.namedarray import pycompat
     except ImportError:  # pragma: no cover - another xarray layout: nothing to skip
