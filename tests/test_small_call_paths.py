@@ -64,3 +64,19 @@ def test_usual_call_is_the_general_route(backend, V, Vy):
     assert fast.tobytes() == general.tobytes()
     one_by_one = np.array([seed.restitution_at(float(v), Vy) for v in V])
     assert fast[0].tobytes() == one_by_one.tobytes()
+
+
+@pytest.mark.parametrize("value", ["", "python", " NUMBA ", "bogus"])
+def test_backend_variable_is_read_at_every_call(monkeypatch, value):
+    """``MICROIMPACT_BACKEND`` is read from os.environ's own mapping (faster than os.environ.get): set,
+    changed or removed at any time, the next call sees it, and a wrong value names the variable."""
+    monkeypatch.delenv("MICROIMPACT_BACKEND", raising=False)
+    assert arrays.backend_for(10**6) == "numba" and arrays.backend_for(1) == arrays._unforced_engine(1)
+    monkeypatch.setenv("MICROIMPACT_BACKEND", value)
+    if value == "bogus":
+        with pytest.raises(ValueError, match="MICROIMPACT_BACKEND.*'bogus'"):
+            arrays.backend_for(10)
+    else:
+        assert arrays.backend_for(10**6) == (value.strip().lower() or "numba")
+    monkeypatch.delenv("MICROIMPACT_BACKEND")
+    assert arrays.backend_for(10**6) == "numba"
