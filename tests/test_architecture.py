@@ -34,6 +34,7 @@ LAYERS = {
     "models": 2,
     "pair": 2,
     "cache": 2,
+    "_calibration_cache": 2,  # the calibrations' files on disk: imports only the core (core.cache)
     "cli": 4,
     "__main__": 4,
 }
@@ -137,7 +138,6 @@ APPLICATION_ORDER = (
     "adhesion",  # the adhesion rules (from the models' declarations)
     "oblique",  # oblique impacts, the tangential laws' tables
     "stick",  # stick or bounce: the additive rule against the whole law
-    "_calibration_cache",  # calibrations kept on disk (core.cache)
     "calibrate",  # the DEM laws calibrated to a target e(V)
     "wall",  # one particle at a wall (adhesion, oblique)
     "fitting",  # fits and rankings of e(V) data

@@ -37,7 +37,7 @@ import numpy as np
 
 from .core import cache as _cache
 
-__all__ = ["key", "load", "store"]
+__all__ = ["key", "load", "store", "owned_files"]
 
 #: Bumped when the layout of an entry changes.
 _FORMAT = "microimpact-calibration-1"
@@ -151,3 +151,28 @@ def store(name, params, restitution, contact_time, warning) -> bool:
     except OSError:
         return False
     return True
+
+
+def owned_files(folder=None) -> list:
+    """The entries of ``folder/calibrations`` (default the cache folder) that :func:`store` wrote and can
+    prove it: a first line that is the SHA-256 of the rest, which is this layout's JSON naming its own
+    file. Anything else in the folder (a user's file, a damaged entry) is not counted."""
+    root = Path(_cache.cache_dir() if folder is None else folder) / "calibrations"
+    try:
+        entries = sorted(root.iterdir())
+    except OSError:
+        return []
+    owned = []
+    for path in entries:
+        if path.suffix != ".json" or path.is_symlink() or not path.is_file():
+            continue
+        try:
+            digest, _, body = path.read_bytes().partition(b"\n")
+            if hashlib.sha256(body).hexdigest().encode() != digest:
+                continue
+            entry = json.loads(body)
+            if entry.get("format") == _FORMAT and entry.get("key") == path.stem:
+                owned.append(path)
+        except (OSError, ValueError, AttributeError):
+            continue
+    return owned

@@ -137,3 +137,54 @@ def test_cache_info_and_clear_touch_only_the_caches_files(healthy, tmp_path):
     assert sorted(p.name for p in cache.rglob("*") if p.is_file()) == ["notes.py", "other.nbi"]
     info = _run("healthy", cache, ["cache", "--info"])
     assert "files:    0" in info.stdout
+
+
+_TABLES_AND_CALIBRATIONS = r"""
+import numpy as np
+import microimpact as mi
+from microimpact.core import cache
+cache.store_array("demo_table", "k" * 16, np.linspace(0.0, 1.0, 7))
+with cache.locked(cache.cache_dir() / "tables", "demo_table_" + "k" * 16):
+    pass
+mi.compare_models("silicon", [10.0, 50.0], ["hertz_viscoelastic"])  # stores one calibration
+"""
+
+
+def test_clear_deletes_the_tables_and_calibrations_it_can_prove_it_wrote(healthy, tmp_path):
+    """``cache --clear`` also empties tables/ and calibrations/, by what each file proves (its format
+    line and checksum), never by its name: a user's file, a look-alike and a damaged entry stay."""
+    import shutil
+
+    warm, _ = healthy
+    cache = tmp_path / "cache"
+    shutil.copytree(warm, cache)
+    proc = subprocess.run(
+        [sys.executable, "-c", _TABLES_AND_CALIBRATIONS],
+        capture_output=True,
+        text=True,
+        env=_env(MICROIMPACT_CACHE_DIR=str(cache)),
+        timeout=600,
+    )
+    assert proc.returncode == 0, proc.stderr
+    tables, calibrations = cache / "tables", cache / "calibrations"
+    ours = sorted(p.name for p in tables.iterdir()) + sorted(p.name for p in calibrations.iterdir())
+    assert len(ours) == 3 and any(n.endswith(".lock") for n in ours), ours
+    stored = next(tables.glob("*.npy"))
+    kept = {
+        tables / "notes.npy": b"a user's file named like a table",
+        tables / "damaged_0123.npy": stored.read_bytes()[:-8],  # a damaged entry proves nothing
+        tables / "other.lock": b"",  # a lock named after no table of ours
+        calibrations / "mine.json": b'{"format": "microimpact-calibration-1", "key": "mine"}',
+    }
+    entry = next(calibrations.glob("*.json"))
+    kept[calibrations / ("f" * 32 + ".json")] = entry.read_bytes()  # a copy under another key's name
+    for path, data in kept.items():
+        path.write_bytes(data)
+    files = [p for p in cache.rglob("*") if p.is_file()]
+    info = _run("healthy", cache, ["cache", "--info"])
+    assert f"files:    {len(files) - len(kept)} " in info.stdout, info.stdout  # every file but the kept ones
+    clear = _run("healthy", cache, ["cache", "--clear"])
+    assert clear.returncode == 0 and f"deleted {len(files) - len(kept)} cache files" in clear.stdout, clear.stdout
+    for path, data in kept.items():
+        assert path.read_bytes() == data, path
+    assert sorted(p for p in cache.rglob("*") if p.is_file()) == sorted(kept)

@@ -6,13 +6,15 @@ from __future__ import annotations
 def register(sub) -> None:
     p = sub.add_parser(
         "cache",
-        help="show (--info) or empty (--clear) the cache of compiled loops",
+        help="show (--info) or empty (--clear) the cache of compiled loops, tables and calibrations",
         description="The array computations compile their loops with numba once and keep the machine code in "
         "a cache folder (MICROIMPACT_CACHE_DIR, else $XDG_CACHE_HOME/microimpact or ~/.cache/microimpact), so "
         "that a new process loads instead of compiling. The cache is an optimisation: when it cannot be read or "
         "written (a read-only home, a full disk) the loops are compiled in memory, and a corrupt entry is "
-        "deleted and rebuilt, each with a one-line warning naming the folder. --clear deletes only the files "
-        "the cache made (generated loop files and numba's entries for them), nothing else in the folder.",
+        "deleted and rebuilt, each with a one-line warning naming the folder. The same folder keeps the tables "
+        "of the oblique and adhesive laws (tables/) and compare's calibrations (calibrations/). --clear deletes "
+        "only the files microimpact can prove it made there (generated loop files by their first line and "
+        "numba's entries for them, tables and calibrations by their checksums), nothing else in the folder.",
     )
     g = p.add_mutually_exclusive_group()
     g.add_argument("--info", action="store_true", help="print the folder, its files and their size (default)")

@@ -31,7 +31,7 @@ if TYPE_CHECKING:
 # hashlib and pathlib load where they are used: a command that never touches the cache (one impact
 # on the command line) does not pay for them (OpenSSL's hashlib alone is 2-6 ms of a 130 ms start).
 
-__all__ = ["cache_dir", "core_hash", "locked", "load_array", "store_array", "write_atomic"]
+__all__ = ["cache_dir", "core_hash", "locked", "load_array", "store_array", "write_atomic", "owned_tables"]
 #: Bumped when the file layout of :func:`store_array` changes.
 _FORMAT = b"microimpact-array-1\n"
 
@@ -166,3 +166,40 @@ def store_array(kind: str, key: str, arr) -> bool:
     except OSError:
         return False
     return True
+
+
+def _is_stored_array(path) -> bool:
+    """True when ``path`` is a regular file :func:`store_array` wrote: its format line, then the
+    SHA-256 of the rest, which matches (a file of another origin cannot pass by chance)."""
+    import hashlib
+
+    if path.is_symlink() or not path.is_file():
+        return False
+    try:
+        data = path.read_bytes()
+    except OSError:
+        return False
+    head = len(_FORMAT) + 32
+    return (
+        len(data) > head
+        and data.startswith(_FORMAT)
+        and hashlib.sha256(data[head:]).digest() == data[len(_FORMAT) : head]
+    )
+
+
+def owned_tables(folder: Path | None = None) -> list:
+    """The files of ``folder/tables`` (default :func:`cache_dir`) that this module can prove it wrote:
+    every array :func:`store_array` stored (checked by its content, see :func:`_is_stored_array`) and
+    the lock file :func:`locked` made beside it under the same name. Nothing else: a file that only
+    looks like one (a name, a suffix) is not counted, nor a damaged entry that no longer proves it."""
+    from pathlib import Path
+
+    tables = Path(cache_dir() if folder is None else folder) / "tables"
+    try:
+        entries = sorted(tables.iterdir())
+    except OSError:
+        return []
+    owned = [p for p in entries if p.suffix == ".npy" and _is_stored_array(p)]
+    stems = {p.stem for p in owned}
+    locks = [p for p in entries if p.suffix == ".lock" and p.stem in stems and p.is_file() and not p.is_symlink()]
+    return owned + locks
