@@ -101,9 +101,16 @@ def jg_contact_radius(x, E, R, Y, nu):
 
     Ghaednia et al. 2019 eq. 23 (Jackson & Green's radius), ``B = 0.14 exp(23 S_y/E)`` (eq. 24);
     eq. 25 gives ``a = a_p`` without strain hardening (``E_t = 0``: ``Upsilon = 0``, eq. 26).
+
+    Far below the law's range of ``E/S_y`` (``E*/S_y`` about 2) ``B`` is in the thousands and
+    ``x (x/1.9)^B`` leaves the float range: the radius is then NaN on every path (Python's ``**``
+    raised OverflowError where the compiled loop gave NaN), and so is the impact's outcome.
     """
-    B = 0.14 * math.exp(23.0 * Y / E)
-    return R * (math.pi * jg_coefficient(nu) * Y / (2.0 * E)) * math.sqrt(x * (x / JG_SWITCH) ** B)
+    B = 0.14 * math.exp(min(23.0 * Y / E, 700.0))
+    r = x / JG_SWITCH
+    if r > 1.0 and B * math.log(r) + math.log(x) > 700.0:
+        return math.nan
+    return R * (math.pi * jg_coefficient(nu) * Y / (2.0 * E)) * math.sqrt(x * r**B)
 
 
 @jitable
