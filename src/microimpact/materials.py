@@ -77,7 +77,7 @@ class Material:
     @property
     def plane_strain_compliance(self) -> float:
         """``(1 - nu^2) / E`` [1/Pa], this body's share of ``1/E*``."""
-        return (1.0 - self.poisson_ratio**2) / self.youngs_modulus
+        return _hertz.compliance(self.youngs_modulus, self.poisson_ratio)
 
 
 _W90 = "Wall, John, Wang & Goren (1990), Aerosol Sci. Technol. 12:926-946, as used in the seed paper, Section 3.1"

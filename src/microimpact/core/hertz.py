@@ -13,6 +13,7 @@ from ._jit import jitable
 from .special import BETA_25_12
 
 __all__ = [
+    "compliance",
     "effective_modulus",
     "equal_bodies_modulus",
     "particle_modulus",
@@ -28,6 +29,12 @@ __all__ = [
     "contact_time",
     "deresiewicz_contact_time",
 ]
+
+
+@jitable
+def compliance(E, nu):
+    """``(1 - nu^2)/E`` [1/Pa]: one body's share of ``1/E*`` (seed, after eq. 2; see :func:`effective_modulus`)."""
+    return (1.0 - nu * nu) / E
 
 
 @jitable
