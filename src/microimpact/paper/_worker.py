@@ -1,0 +1,166 @@
+"""Figures of :func:`~microimpact.paper.reproduce` drawn in a second process, beside the first.
+
+``python -m microimpact.paper._worker`` (started by :class:`Helper`, never by hand) reads pickled
+jobs on its standard input and writes pickled answers to the standard output it was given; it
+writes no file. The first message is the caller's rcParams and image formats; each job is a
+figure's stem and table, answered with the figure's image bytes (:func:`._driver._draw`, the same
+function the caller draws its own figures with: a figure's bytes do not depend on the process
+that draws it nor on the figures drawn before it) and the warnings raised while drawing, which
+the caller raises again. SIGINT is ignored (a Ctrl-C reaches the whole process group; the caller
+handles it and ends this process); an end of input ends it.
+"""
+
+from __future__ import annotations
+
+import os
+import pickle
+import signal
+import subprocess
+import sys
+import threading
+import time
+import warnings
+from pathlib import Path
+
+_READY = "ready"
+
+
+def main() -> int:
+    """The worker's loop (the child side)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    # The answers go to the pipe that was the standard output; anything a library prints goes to stderr.
+    out = os.fdopen(os.dup(1), "wb")
+    os.dup2(2, 1)
+    inp = sys.stdin.buffer
+    # what the first figure needs, before saying ready: pyplot and the default formats' printers
+    import matplotlib.backends.backend_agg  # noqa: F401
+    import matplotlib.backends.backend_pdf  # noqa: F401
+
+    from ..figures import style
+    from ._driver import _draw
+
+    style.pyplot()
+    pickle.dump(_READY, out)
+    out.flush()
+    try:
+        rc, formats = pickle.load(inp)
+    except EOFError:
+        return 0
+    while True:
+        try:
+            stem, table = pickle.load(inp)
+        except EOFError:
+            return 0
+        t0 = time.perf_counter()
+        try:
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                images = _draw(stem, table, formats, rc)
+            said = [(w.message, w.category, w.filename, w.lineno) for w in caught]
+            answer = ("ok", images, said, time.perf_counter() - t0)
+        except Exception as exc:  # the caller draws this figure itself, and meets the error there
+            answer = ("error", repr(exc), [], 0.0)
+        try:
+            pickle.dump(answer, out)
+        except Exception:  # an answer that does not pickle (a warning's odd message): the caller redraws
+            pickle.dump(("error", "answer not picklable", [], 0.0), out)
+        out.flush()
+
+
+class Helper:
+    """One worker process and the thread that feeds it figures from the back of a shared queue.
+
+    :meth:`start` launches the process at once (its imports overlap the caller's work);
+    :meth:`feed` starts the thread, which takes a job only once the worker is ready, so that a
+    worker still starting never holds a figure the caller could have drawn. :meth:`close` ends
+    both (always called, in a ``finally``). Any failure of the worker (it cannot start, dies,
+    answers an error) leaves the job in ``failed``: the caller draws it.
+    """
+
+    def __init__(self):
+        self.proc = None
+        self.thread = None
+        self.failed = []
+        self._stop = False
+
+    def start(self) -> None:
+        import microimpact
+
+        env = dict(os.environ)
+        # the same microimpact as the caller's, wherever the caller found it
+        root = str(Path(microimpact.__file__).resolve().parents[1])
+        env["PYTHONPATH"] = os.pathsep.join([root] + ([env["PYTHONPATH"]] if env.get("PYTHONPATH") else []))
+        try:
+            self.proc = subprocess.Popen(
+                [sys.executable, "-m", "microimpact.paper._worker"],
+                stdin=subprocess.PIPE,
+                stdout=subprocess.PIPE,
+                stderr=subprocess.DEVNULL,
+                env=env,
+            )
+        except OSError:
+            self.proc = None
+
+    def feed(self, take, tables, rc, formats, done) -> None:
+        """Start feeding: ``take()`` gives the next job's index (or None), ``done(i, answer)`` takes its answer."""
+        if self.proc is None:
+            return
+        self.thread = threading.Thread(
+            target=self._run, args=(take, tables, rc, formats, done), name="microimpact-paper-worker", daemon=True
+        )
+        self.thread.start()
+
+    def _run(self, take, tables, rc, formats, done) -> None:
+        i = None
+        try:
+            if pickle.load(self.proc.stdout) != _READY:
+                return
+            pickle.dump((rc, formats), self.proc.stdin)
+            self.proc.stdin.flush()
+            while not self._stop:
+                i = take()
+                if i is None:
+                    return
+                stem, table = tables[i]
+                pickle.dump((stem, table), self.proc.stdin)
+                self.proc.stdin.flush()
+                answer = pickle.load(self.proc.stdout)
+                if answer[0] != "ok":
+                    self.failed.append(i)
+                    i = None
+                    return
+                done(i, answer)
+                i = None
+        except Exception:  # the worker died or closed its pipe: the caller draws what it held
+            if i is not None:
+                self.failed.append(i)
+
+    def join(self) -> None:
+        """Wait for the thread, in short waits (a signal's handler runs between them)."""
+        while self.thread is not None and self.thread.is_alive():
+            self.thread.join(0.05)
+
+    def close(self) -> None:
+        """End the worker (at once, if it is still drawing) and then the thread, which its end unblocks."""
+        self._stop = True
+        proc = self.proc
+        if proc is None:
+            return
+        if proc.poll() is None:
+            proc.kill()
+        try:
+            proc.wait(timeout=5)
+        except subprocess.TimeoutExpired:  # pragma: no cover - a killed process that does not end
+            pass
+        if self.thread is not None:
+            self.thread.join(1.0)
+        for pipe in (proc.stdin, proc.stdout):
+            try:
+                pipe.close()
+            except Exception:
+                pass
+
+
+if __name__ == "__main__":
+    sys.exit(main())
