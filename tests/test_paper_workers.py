@@ -4,6 +4,7 @@ figure is drawn here); an interrupt ends the worker with the command; a bad ``wo
 
 from __future__ import annotations
 
+import collections
 import os
 import signal
 import subprocess
@@ -32,16 +33,13 @@ def _tables(stems):
 
 def _feed(helper, tables, rc, formats=FORMATS):
     """Every job of ``tables`` through ``helper``; returns ``{index: answer}`` and the failed indices."""
-    queue = list(range(len(tables)))
-    lock = threading.Lock()
+    queue = collections.deque(range(len(tables)))
     answers = {}
-
-    def take():
-        with lock:
-            return queue.pop() if queue else None
-
-    helper.feed(take, tables, rc, formats, lambda i, a: answers.__setitem__(i, a))
-    helper.join()
+    helper.feed(queue, threading.Lock(), tables, rc, formats, answers.__setitem__)
+    while queue or helper.holding is not None:  # the helper takes every job (none is drawn here)
+        assert helper.thread.is_alive()
+        time.sleep(0.02)
+    helper.finish()
     return answers, helper.failed
 
 
@@ -141,13 +139,13 @@ def test_a_failing_worker_costs_nothing_but_time(tmp_path, monkeypatch, after, p
     gate = threading.Event()
     orig_run = _worker.Helper._run
 
-    def run(self, take, tables, rc, formats, done):
+    def run(self, queue, lock, tables, rc, formats, done):
         def done_and_open(i, answer):
             done(i, answer)
             gate.set()
 
         try:
-            orig_run(self, take, tables, rc, formats, done_and_open)
+            orig_run(self, queue, lock, tables, rc, formats, done_and_open)
         finally:
             gate.set()
 

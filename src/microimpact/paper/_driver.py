@@ -6,6 +6,7 @@ import collections
 import contextlib
 import io
 import os
+import sys
 import threading
 import time
 import warnings
@@ -232,8 +233,10 @@ def _draw(stem, table, formats, rc=None) -> dict:
 
 def _processes(workers) -> int:
     """How many processes draw the figures: ``workers``, or by default 2 when this process may
-    run on more than one core (its CPU affinity), else 1."""
+    run on more than one core (its CPU affinity) and is a Python interpreter, else 1."""
     if workers is None:
+        if getattr(sys, "frozen", False):  # a bundled application: its executable is not a Python to start
+            return 1
         try:
             cores = len(os.sched_getaffinity(0))
         except (AttributeError, OSError):  # not Linux
@@ -273,8 +276,8 @@ def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progre
 
     Notes
     -----
-    With more than one worker, the other processes (``python -m microimpact.paper._worker``)
-    start at once and draw figures from their tables while this one draws others; they write
+    With more than one worker, the other processes (Python interpreters running
+    ``microimpact.paper._worker``) start at once and draw figures from their tables while this one draws others; they write
     no file (this process writes every file, in the order of the figures), they draw with this
     process's rcParams and in the package's style, and a figure they cannot draw is drawn here.
     Fonts added at run time (``matplotlib.font_manager.fontManager.addfont``) are not seen by
@@ -342,16 +345,12 @@ def _reproduce(report, t0, data, formats, inputs, helpers, progress, emit) -> Pa
         lock = threading.Lock()
         answers = {}
 
-        def take(front):
-            with lock:
-                return (queue.popleft() if front else queue.pop()) if queue else None
-
         def done(i, answer):
             answers[i] = answer
 
         rc = _rc_snapshot() if helpers else None
         for h in helpers:
-            h.feed(lambda: take(False), tables, rc, formats, done)
+            h.feed(queue, lock, tables, rc, formats, done)
         written = 0
 
         def write_ready():
@@ -377,13 +376,18 @@ def _reproduce(report, t0, data, formats, inputs, helpers, progress, emit) -> Pa
             images = _draw(*tables[i], formats)
             answers[i] = ("ok", images, [], time.perf_counter() - t1)
 
-        while (i := take(True)) is not None:
+        while True:
+            with lock:
+                if not queue:
+                    break
+                i = queue.popleft()
             bar.set_description(f"paper {tables[i][0]}")
             draw_here(i)
             write_ready()
         for h in helpers:
-            h.join()
+            h.finish()
         for h in helpers:
+            h.close()  # done with it: its CPU is the report's
             for i in h.failed:
                 draw_here(i)
         write_ready()

@@ -1,6 +1,6 @@
 """Figures of :func:`~microimpact.paper.reproduce` drawn in a second process, beside the first.
 
-``python -m microimpact.paper._worker`` (started by :class:`Helper`, never by hand) reads pickled
+The worker (:func:`main`, started by :class:`Helper` as ``python -c`` code, never by hand) reads pickled
 jobs on its standard input and writes pickled answers to the standard output it was given; it
 writes no file. The first message is the caller's rcParams and image formats; each job is a
 figure's stem and table, answered with the figure's image bytes (:func:`._driver._draw`, the same
@@ -12,6 +12,7 @@ handles it and ends this process); an end of input ends it.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import pickle
 import signal
@@ -68,77 +69,101 @@ def main() -> int:
         out.flush()
 
 
+def _boot() -> str:
+    """The worker's ``python -c`` code: it imports the caller's microimpact, wherever the caller found it.
+
+    The path's first entry (the working directory, for ``-c``) becomes the folder holding the
+    caller's package, or goes when that folder is a site directory the child searches anyway
+    (an installed package), so that nothing in the working directory shadows a module.
+    """
+    import site
+    import sysconfig
+
+    import microimpact
+
+    root = os.path.realpath(Path(microimpact.__file__).resolve().parents[1])
+    sites = set()
+    with contextlib.suppress(Exception):
+        sites.update(site.getsitepackages())
+    with contextlib.suppress(Exception):
+        sites.add(site.getusersitepackages())
+    sites.update(sysconfig.get_paths().get(k, "") for k in ("purelib", "platlib"))
+    first = "del sys.path[0]" if root in {os.path.realpath(p) for p in sites if p} else f"sys.path[0] = {root!r}"
+    return f"import sys; {first}; from microimpact.paper._worker import main; sys.exit(main())"
+
+
 class Helper:
     """One worker process and the thread that feeds it figures from the back of a shared queue.
 
     :meth:`start` launches the process at once (its imports overlap the caller's work);
     :meth:`feed` starts the thread, which takes a job only once the worker is ready, so that a
-    worker still starting never holds a figure the caller could have drawn. :meth:`close` ends
-    both (always called, in a ``finally``). Any failure of the worker (it cannot start, dies,
-    answers an error) leaves the job in ``failed``: the caller draws it.
+    worker still starting never holds a figure the caller could have drawn; :meth:`finish` waits
+    for the job it holds; :meth:`close` ends both (always called, in a ``finally``). Any failure
+    of the worker (it cannot start, dies, answers an error) leaves its job in ``failed``: the
+    caller draws it.
     """
 
     def __init__(self):
         self.proc = None
         self.thread = None
         self.failed = []
+        self.holding = None
         self._stop = False
 
     def start(self) -> None:
-        import microimpact
-
-        env = dict(os.environ)
-        # the same microimpact as the caller's, wherever the caller found it
-        root = str(Path(microimpact.__file__).resolve().parents[1])
-        env["PYTHONPATH"] = os.pathsep.join([root] + ([env["PYTHONPATH"]] if env.get("PYTHONPATH") else []))
         try:
             self.proc = subprocess.Popen(
-                [sys.executable, "-m", "microimpact.paper._worker"],
+                [sys.executable, "-c", _boot()],
                 stdin=subprocess.PIPE,
                 stdout=subprocess.PIPE,
                 stderr=subprocess.DEVNULL,
-                env=env,
             )
         except OSError:
             self.proc = None
 
-    def feed(self, take, tables, rc, formats, done) -> None:
-        """Start feeding: ``take()`` gives the next job's index (or None), ``done(i, answer)`` takes its answer."""
+    def feed(self, queue, lock, tables, rc, formats, done) -> None:
+        """Start feeding: jobs are indices taken from the back of ``queue`` (a deque shared with the
+        caller, under ``lock``) into ``tables``; ``done(i, answer)`` takes each answer."""
         if self.proc is None:
             return
         self.thread = threading.Thread(
-            target=self._run, args=(take, tables, rc, formats, done), name="microimpact-paper-worker", daemon=True
+            target=self._run,
+            args=(queue, lock, tables, rc, formats, done),
+            name="microimpact-paper-worker",
+            daemon=True,
         )
         self.thread.start()
 
-    def _run(self, take, tables, rc, formats, done) -> None:
-        i = None
+    def _run(self, queue, lock, tables, rc, formats, done) -> None:
         try:
             if pickle.load(self.proc.stdout) != _READY:
                 return
             pickle.dump((rc, formats), self.proc.stdin)
             self.proc.stdin.flush()
             while not self._stop:
-                i = take()
-                if i is None:
-                    return
-                stem, table = tables[i]
-                pickle.dump((stem, table), self.proc.stdin)
+                with lock:  # taken and held in one step: the caller sees either the job queued or held
+                    if not queue:
+                        return
+                    self.holding = i = queue.pop()
+                pickle.dump(tables[i], self.proc.stdin)
                 self.proc.stdin.flush()
                 answer = pickle.load(self.proc.stdout)
                 if answer[0] != "ok":
-                    self.failed.append(i)
-                    i = None
-                    return
+                    return  # no more jobs for a worker that failed one
                 done(i, answer)
-                i = None
-        except Exception:  # the worker died or closed its pipe: the caller draws what it held
-            if i is not None:
-                self.failed.append(i)
+                self.holding = None
+        except Exception:  # the worker died or closed its pipe
+            pass
+        finally:
+            if self.holding is not None:  # the caller draws what the worker held
+                self.failed.append(self.holding)
+                self.holding = None
 
-    def join(self) -> None:
-        """Wait for the thread, in short waits (a signal's handler runs between them)."""
-        while self.thread is not None and self.thread.is_alive():
+    def finish(self) -> None:
+        """Wait until the worker holds no figure: its answer is in, or its failure noted in ``failed``.
+        (A worker still starting holds none: it is not waited for.) Short waits, so that a signal's
+        handler runs between them."""
+        while self.thread is not None and self.thread.is_alive() and self.holding is not None:
             self.thread.join(0.05)
 
     def close(self) -> None:
