@@ -203,7 +203,7 @@ def test_an_interrupt_ends_the_worker_with_the_command(tmp_path, sig, group):
     for key in [k for k in env if k.startswith("COV_CORE_") or k == "COVERAGE_PROCESS_START"]:
         env.pop(key)
     proc = subprocess.Popen(
-        [sys.executable, "-m", "microimpact", "paper", "--out", "out", "--quiet"],
+        [sys.executable, "-m", "microimpact", "paper", "--out", "out", "--quiet", "--workers", "2"],
         cwd=tmp_path,
         env=env,
         stdout=subprocess.PIPE,
@@ -233,3 +233,25 @@ def test_an_interrupt_ends_the_worker_with_the_command(tmp_path, sig, group):
         time.sleep(0.05)
     assert _marked(mark) == []
     assert list(tmp_path.iterdir()) == []  # no output folder, no staging folder
+
+
+@pytest.mark.parametrize(
+    ("cores", "load", "frozen", "expected"),
+    [
+        (1, 0.0, False, 1),
+        (2, 0.5, False, 2),
+        (2, 1.0, False, 2),
+        (2, 1.5, False, 1),
+        (8, 6.5, False, 2),
+        (4, 0.0, True, 1),
+    ],
+)
+def test_default_workers_need_an_idle_core_and_a_python(monkeypatch, cores, load, frozen, expected):
+    """By default a second process only where one of the cores this process may use is idle (on a
+    busy machine its imports would only add work) and where sys.executable is a Python."""
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: set(range(cores)), raising=False)
+    monkeypatch.setattr(os, "getloadavg", lambda: (load, load, load), raising=False)
+    if frozen:
+        monkeypatch.setattr(sys, "frozen", True, raising=False)
+    assert _driver._processes(None) == expected
+    assert _driver._processes(3) == 3 and _driver._processes(50) == len(STEMS)

@@ -42,7 +42,7 @@ def register(sub) -> None:
         default=None,
         metavar="N",
         help="processes drawing the figures, this one included (default: 2 when it may run on more than one "
-        "core, else 1); the files are the same bytes whatever N",
+        "core and one is idle, else 1); the files are the same bytes whatever N",
     )
     p.add_argument("--quiet", "-q", action="store_true", help="no progress bar and no summary")
     p.set_defaults(func=run)

@@ -232,8 +232,10 @@ def _draw(stem, table, formats, rc=None) -> dict:
 
 
 def _processes(workers) -> int:
-    """How many processes draw the figures: ``workers``, or by default 2 when this process may
-    run on more than one core (its CPU affinity) and is a Python interpreter, else 1."""
+    """How many processes draw the figures: ``workers``, or by default 2 when this process may run
+    on more than one core (its CPU affinity), one of them is idle (the 1-minute load average at
+    most the cores less one) and it is a Python interpreter, else 1. A second process costs its
+    imports (about 0.7 CPU-s): on a machine with no idle core it makes ``paper`` slower."""
     if workers is None:
         if getattr(sys, "frozen", False):  # a bundled application: its executable is not a Python to start
             return 1
@@ -241,7 +243,11 @@ def _processes(workers) -> int:
             cores = len(os.sched_getaffinity(0))
         except (AttributeError, OSError):  # not Linux
             cores = os.cpu_count() or 1
-        return 2 if cores > 1 else 1
+        try:
+            load = os.getloadavg()[0]
+        except (AttributeError, OSError):  # Windows
+            load = 0.0
+        return 2 if cores > 1 and load <= cores - 1 else 1
     if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
         raise ValueError(f"workers must be a whole number >= 1, got {workers!r}")
     return min(int(workers), len(FIGURES))
@@ -272,7 +278,8 @@ def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progre
         receives one line per figure (``"[3/9] fig04 ... done (0.41 s)"``); ``False``: quiet.
     workers : int, optional
         Processes drawing the figures (this one included). Default: 2 when this process may run
-        on more than one core, else 1. The files are the same bytes whatever the number.
+        on more than one core and one of them is idle (1-minute load average), else 1. The
+        files are the same bytes whatever the number.
 
     Notes
     -----
