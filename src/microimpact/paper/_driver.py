@@ -235,7 +235,7 @@ def _processes(workers) -> int:
     """How many processes draw the figures: ``workers``, or by default 2 when this process may run
     on more than one core (its CPU affinity), one of them is idle (the 1-minute load average at
     most the cores less one) and it is a Python interpreter, else 1. A second process costs its
-    imports (about 0.7 CPU-s): on a machine with no idle core it makes ``paper`` slower."""
+    imports (about 1 CPU-s): on a machine with no idle core it makes ``paper`` slower."""
     if workers is None:
         if getattr(sys, "frozen", False):  # a bundled application: its executable is not a Python to start
             return 1

@@ -79,9 +79,7 @@ def _boot() -> str:
     import site
     import sysconfig
 
-    import microimpact
-
-    root = os.path.realpath(Path(microimpact.__file__).resolve().parents[1])
+    root = os.path.realpath(Path(__file__).resolve().parents[2])  # .../microimpact/paper/_worker.py
     sites = set()
     with contextlib.suppress(Exception):
         sites.update(site.getsitepackages())
