@@ -20,6 +20,8 @@ engines give bitwise the same numbers, because both run the very same source:
   or earlier once a serial call has shown that the array's work (elements times the measured time
   per element) exceeds :data:`PARALLEL_WORK`, several times what starting the threads costs. The
   choice never changes a result (both loops run the same function on each element).
+  The first call of a loop also keeps its machine code (:mod:`microimpact.core._native`): a new
+  process runs that with llvmlite alone, without numba's start-up (~0.5 s beyond its import).
 
 This is the fluids idea (one scalar source per formula, fast dialects generated from it) with
 poliastro's split (compiled core on floats; wrappers only convert and call).
@@ -39,7 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import _defer
+from . import _defer, _native
 from . import cache as _cache
 from ._jit import JITABLE
 
@@ -75,6 +77,7 @@ _KERNELS: dict = {}
 _JITABLE_SET: set = set()  # JITABLE's functions as evaluate has met them (JITABLE is a list, in order)
 _READY: set = set()  # compiled loops called once already in this process (loaded or compiled)
 _LOCK_NAMES: dict = {}  # compiled loop -> (folder, name) of its file lock
+_NATIVE_TODO: dict = {}  # numba's loop -> what _keep_native needs to keep its machine code
 _LOCK = threading.Lock()  # dask evaluates blocks in threads: one thread builds a loop, the others wait
 
 
@@ -235,6 +238,30 @@ def _reason(exc) -> str:
 
 
 def _build(fn, kinds: str, nout: int, with_params: bool):
+    """The loops over ``fn``: its machine code kept by :mod:`~microimpact.core._native` (no numba
+    start-up), else numba's (compiled, or loaded from numba's cache); the first call of numba's then
+    keeps its machine code for the next process (:func:`_call`)."""
+    text = _generate(fn, kinds, nout, with_params)
+    entry = _native.entry_path(fn, kinds, nout, with_params, text, _outside_hash(fn))
+    if entry is not None:
+        loaded = _native.load(entry, kinds, nout, lambda: _through_call(*_numba_loops(fn, kinds, nout, with_params)))
+        if loaded is not None:
+            return loaded
+    serial, parallel = _numba_loops(fn, kinds, nout, with_params)
+    if entry is not None:
+        _NATIVE_TODO[serial] = _NATIVE_TODO[parallel] = (fn, kinds, nout, with_params, entry)
+    return serial, parallel
+
+
+def _through_call(serial, parallel):
+    """numba's loops, called through :func:`_call` (its lock and cache healing on a first call)."""
+    return (
+        lambda n, *rest: _call(serial, n, rest[:-2], rest[-2], rest[-1]),
+        lambda n, *rest: _call(parallel, n, rest[:-2], rest[-2], rest[-1]),
+    )
+
+
+def _numba_loops(fn, kinds: str, nout: int, with_params: bool):
     import numba  # noqa: F401  (the first compiled call pays for this import, once per process)
 
     text = _generate(fn, kinds, nout, with_params)
@@ -353,8 +380,24 @@ def _call(kernel, n, inputs, params, out):
                 else:
                     with _cache.locked(folder, stem):
                         _heal_call(kernel, 0, *inputs, params, out)
+                        _keep_native(kernel, params)
         _READY.add(kernel)
     kernel(n, *inputs, params, out)
+
+
+def _keep_native(kernel, params) -> None:
+    """After numba's loop ran once (under its file lock): keep its machine code for the next process
+    (:func:`microimpact.core._native.build`), unless another process has done so meanwhile."""
+    todo = _NATIVE_TODO.get(kernel)
+    if todo is None:
+        return
+    fn, kinds, nout, with_params, entry = todo
+    for k in [k for k, v in _NATIVE_TODO.items() if v is todo]:
+        del _NATIVE_TODO[k]
+    if with_params and not all(isinstance(x, float) for x in params):
+        return
+    if not _native.sound(entry):  # absent, or corrupt: (re)written
+        _native.build(fn, kinds, nout, len(params) if with_params else None, entry)
 
 
 def _shape(arrays):
@@ -554,7 +597,7 @@ def _owned_cache_files(folder: Path):
     for p in cached:
         if p.is_file() and not p.is_symlink() and any(p.name.startswith(stem + ".") for stem in stems):
             files.append(p)
-    return files
+    return files + _native.owned_files(folder)
 
 
 def cache_info() -> dict:
@@ -589,7 +632,7 @@ def clear_cache() -> int:
             n += 1
         except FileNotFoundError:
             pass
-    for d in (folder / "kernels" / "__pycache__", folder / "kernels"):
+    for d in (folder / "kernels" / "__pycache__", _native.folder(), folder / "kernels"):
         try:
             d.rmdir()  # only when empty
         except OSError:

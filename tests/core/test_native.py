@@ -1,0 +1,212 @@
+"""The compiled loops' machine code kept for a new process (microimpact.core._native).
+
+The kept loop is the same ``@jitable`` function compiled by the same numba: its numbers must be
+bitwise those of the scalar core and of numba's own loops, serial and split over threads. A call
+it cannot take goes to numba's loop; a missing or corrupt entry only means numba's route (and the
+entry is written again); a new process with a sound entry computes without importing numba (nor
+scipy, which numba's start-up imports); processes started together on an empty cache write it once.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("numba")
+
+from microimpact.core import _native, arrays  # noqa: E402
+from microimpact.core.models import hertz_viscoelastic as visco  # noqa: E402
+from microimpact.core.models import thornton_ning_2016 as seed  # noqa: E402
+from microimpact.core.quantities import OUTCOME_FIELDS  # noqa: E402
+
+from .test_paths import ARGS, VY, _edge_speeds, _random_cases  # noqa: E402
+
+NOUT = len(OUTCOME_FIELDS)
+
+
+def _same(a, b):
+    return np.array_equal(np.asarray(a).view(np.int64), np.asarray(b).view(np.int64))
+
+
+def _loops(tmp_path, fn, kinds, nout, nparams):
+    """``(serial, threaded, fallback calls)`` of an entry built in ``tmp_path`` and loaded back."""
+    path = tmp_path / "entry.bin"
+    assert _native.build(fn, kinds, nout, nparams, path)
+    assert _native.sound(path)
+    used = []
+
+    def fallback():
+        used.append(1)
+        serial, parallel = arrays._numba_loops(fn, kinds, nout, nparams is not None)
+        return (lambda n, *r: serial(n, *r), lambda n, *r: parallel(n, *r))
+
+    serial, threaded = _native.load(path, kinds, nout, fallback)
+    assert isinstance(serial, _native.NativeLoop)
+    return serial, threaded, used
+
+
+def _scalar(fn, columns, params):
+    n = columns[0].size
+    rows = [fn(*(float(c[i]) for c in columns), *(() if params is None else (params,))) for i in range(n)]
+    out = np.array(rows, dtype=np.float64)
+    return out.reshape(n, -1).T
+
+
+@pytest.mark.parametrize("cases", ["edge", "random"])
+def test_kept_loop_is_bitwise_the_core_serial_and_threaded(tmp_path, cases):
+    if cases == "edge":
+        V = _edge_speeds(VY)
+        E, R, m, p = (np.full(V.size, x) for x in ARGS)
+    else:
+        V, E, R, m, p = _random_cases()
+    serial, threaded, used = _loops(tmp_path, seed.outcome, "aaaaa", NOUT, 0)
+    want = _scalar(seed.outcome, (V, E, R, m, p), ())
+    numba_serial, _ = arrays._numba_loops(seed.outcome, "aaaaa", NOUT, True)
+    by_numba = np.empty((NOUT, V.size))
+    numba_serial(V.size, V, E, R, m, p, (), by_numba)
+    for loop in (serial, threaded):
+        out = np.full((NOUT, V.size), -1.0)
+        loop(V.size, V, E, R, m, p, (), out)
+        assert _same(out, want) and _same(out, by_numba)
+    assert not used  # every call taken by the kept loop
+
+
+def test_kept_loop_with_parameters_and_scalars(tmp_path):
+    """A model with parameters (a loop of its own, called, not inlined), scalar arguments, an output
+    with any strides (a table's transpose), split over threads: still the core's numbers."""
+    V = np.linspace(0.5, 90.0, 3000)
+    params = (2e-6, 1.0)
+    serial, threaded, used = _loops(tmp_path, visco.outcome, "assss", NOUT, len(params))
+    want = _scalar(visco.outcome, [V] + [np.full(V.size, x) for x in ARGS], params)
+    for loop in (serial, threaded):
+        table = np.full((V.size, NOUT), -1.0)
+        loop(V.size, V, *ARGS, params, table.T)
+        assert _same(table.T, want)
+    assert not used
+
+
+def test_calls_the_kept_loop_cannot_take_go_to_numba(tmp_path):
+    V = np.linspace(0.5, 90.0, 3000)
+    params = (2e-6, 1.0)
+    serial, threaded, used = _loops(tmp_path, visco.outcome, "assss", NOUT, len(params))
+    want = _scalar(visco.outcome, [V] + [np.full(V.size, x) for x in ARGS], params)
+    wide = np.repeat(V, 2)[::2]  # a strided column: taken, read in place
+    out = np.empty((NOUT, V.size))
+    threaded(V.size, wide, *ARGS, params, out)
+    assert not used and _same(out, want)
+    raw = np.zeros(V.nbytes + 1, dtype=np.uint8)
+    odd = raw[1:].view(np.float64)  # an unaligned column: numba's loop
+    odd[:] = V
+    assert not odd.flags.aligned
+    out = np.empty((NOUT, V.size))
+    serial(V.size, odd, *ARGS, params, out)
+    assert len(used) == 1 and _same(out, want)
+
+
+def test_an_entry_that_is_not_sound_is_not_loaded(tmp_path):
+    path = tmp_path / "entry.bin"
+    assert _native.build(seed.outcome, "assss", NOUT, 0, path)
+    good = path.read_bytes()
+    for bad in (good[:-1] + bytes([good[-1] ^ 1]), good[:50], b"", b"\x7fELF" + good[4:]):
+        path.write_bytes(bad)
+        assert not _native.sound(path)
+        assert _native.load(path, "assss", NOUT, lambda: None) is None
+    path.write_bytes(good)
+    assert _native.load(path, "aaaaa", NOUT, lambda: None) is None  # another loop's signature
+    assert _native.load(path, "assss", NOUT, lambda: None) is not None
+
+
+_RUN = r"""
+import sys, hashlib, numpy as np, microimpact as mi
+from microimpact.core import _native
+built = []
+real = _native.build
+_native.build = lambda *a: built.append(1) or real(*a)
+pair = mi.ContactPair.paper_case("silicon")
+r = pair.impact(np.linspace(1.0, 120.0, 200_000), warn=False)
+digest = hashlib.sha256(b"".join(np.ascontiguousarray(getattr(r, f)).tobytes() for f in ("restitution", "contact_time")))
+print(digest.hexdigest(), len(built), int("numba" in sys.modules), int("scipy" in sys.modules))
+"""
+
+
+def _runs(cache, k=1):
+    env = dict(os.environ, MICROIMPACT_CACHE_DIR=str(cache))
+    env.pop("MICROIMPACT_BACKEND", None)
+    src = str(Path(arrays.__file__).resolve().parents[2])
+    env["PYTHONPATH"] = src + os.pathsep + env.get("PYTHONPATH", "")
+    procs = [
+        subprocess.Popen(
+            [sys.executable, "-c", _RUN], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env
+        )
+        for _ in range(k)
+    ]
+    outs = []
+    for p in procs:
+        out, err = p.communicate(timeout=600)
+        assert p.returncode == 0, err
+        assert "kernel cache" not in err, err
+        outs.append(out.split())
+    return outs
+
+
+def test_a_new_process_computes_without_numba_and_heals_a_corrupt_entry(tmp_path):
+    cache = tmp_path / "cache"
+    [first] = _runs(cache)
+    assert first[1:] == ["1", "1", "1"]  # numba's route, the machine code kept
+    entries = list((cache / "kernels" / "native").glob("*.bin"))
+    assert len(entries) == 1
+    [warm] = _runs(cache)
+    assert warm == [first[0], "0", "0", "0"]  # the same numbers; neither numba nor scipy imported
+    data = bytearray(entries[0].read_bytes())
+    data[len(data) // 2] ^= 0x10
+    entries[0].write_bytes(bytes(data))
+    [healing] = _runs(cache)
+    assert healing == [first[0], "1", "1", "1"]  # numba's route again, the entry written anew
+    assert _native.sound(entries[0])
+    [healed] = _runs(cache)
+    assert healed == [first[0], "0", "0", "0"]
+
+
+def test_processes_started_together_on_an_empty_cache_keep_it_once(tmp_path):
+    outs = _runs(tmp_path / "cache", k=3)
+    assert len({o[0] for o in outs}) == 1  # the same numbers everywhere
+    assert sum(int(o[1]) for o in outs) == 1, outs  # one wrote the machine code, the others waited
+
+
+def test_numba_works_after_a_kept_loop_was_loaded(tmp_path):
+    """Loading an entry gives numba's helper names (used only by the wrapper it never calls) a
+    placeholder when numba is not loaded; numba's own start-up then sets the real ones."""
+    path = tmp_path / "entry.bin"
+    assert _native.build(seed.outcome, "assss", NOUT, 0, path)
+    code = f"""
+import numpy as np
+from microimpact.core import _native
+from microimpact.core.models.thornton_ning_2016 import outcome
+import sys
+serial, _ = _native.load(__import__("pathlib").Path({str(path)!r}), "assss", {NOUT}, None)
+assert "numba" not in sys.modules
+import numba
+
+@numba.njit
+def f(n):
+    a = np.arange(n) * 1.0  # allocates and frees (numba's runtime)
+    if n > 3:
+        raise ValueError("n is", n)  # numba's exception helpers
+    return a.sum()
+
+print(f(3))
+try:
+    f(5)
+except ValueError as e:
+    print(e)
+"""
+    env = dict(os.environ)
+    env["PYTHONPATH"] = str(Path(arrays.__file__).resolve().parents[2]) + os.pathsep + env.get("PYTHONPATH", "")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.split("\n")[:2] == ["3.0", "('n is', 5)"]
