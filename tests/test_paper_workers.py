@@ -47,10 +47,10 @@ def test_a_worker_draws_the_same_bytes_as_this_process_with_its_rcparams():
     import matplotlib as mpl
 
     tables = _tables(["fig06", "fig09"])
-    here = {stem: _driver._draw(stem, table, FORMATS) for stem, table in tables}
+    here = {stem: _driver.draw_figure(stem, table, FORMATS) for stem, table in tables}
     with mpl.rc_context({"lines.linewidth": 2.5, "font.family": "serif"}):
         rc = _driver._rc_snapshot()
-        here_rc = {stem: _driver._draw(stem, table, FORMATS) for stem, table in tables}
+        here_rc = {stem: _driver.draw_figure(stem, table, FORMATS) for stem, table in tables}
     h = _worker.Helper()
     try:
         h.start()
@@ -135,7 +135,7 @@ def test_a_failing_worker_costs_nothing_but_time(tmp_path, monkeypatch, after, p
 
     monkeypatch.setattr(_worker.Helper, "start", start)
     # the helper must get its jobs: this process waits for its first answer (or its end) before drawing
-    orig = _driver._draw
+    orig = _driver.draw_figure
     gate = threading.Event()
     orig_run = _worker.Helper._run
 
@@ -154,7 +154,7 @@ def test_a_failing_worker_costs_nothing_but_time(tmp_path, monkeypatch, after, p
         return orig(*args, **kws)
 
     monkeypatch.setattr(_worker.Helper, "_run", run)
-    monkeypatch.setattr(_driver, "_draw", draw)
+    monkeypatch.setattr(_driver, "draw_figure", draw)
     paper.reproduce(tmp_path / "out", workers=2, progress=False, formats=["png"])
     monkeypatch.undo()
     a, b = _files(tmp_path / "out"), png_only

@@ -213,7 +213,7 @@ def _render(fig, formats) -> dict:
     return images
 
 
-def _draw(stem, table, formats, rc=None) -> dict:
+def draw_figure(stem, table, formats, rc=None) -> dict:
     """``{format: bytes}`` of figure ``stem`` drawn from its ``table`` (:func:`_render`), in the package's
     style over ``rc`` (the caller's rcParams, for a figure drawn in another process) or the current
     rcParams. The same bytes in any process, whatever it drew before."""
@@ -385,7 +385,7 @@ def _reproduce(report, t0, data, formats, inputs, helpers, progress, emit) -> Pa
 
         def draw_here(i):
             t1 = time.perf_counter()
-            images = _draw(*tables[i], formats)
+            images = draw_figure(*tables[i], formats)
             answers[i] = ("ok", images, [], time.perf_counter() - t1)
 
         while True:

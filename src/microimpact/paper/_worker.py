@@ -3,7 +3,7 @@
 The worker (:func:`main`, started by :class:`Helper` as ``python -c`` code, never by hand) reads pickled
 jobs on its standard input and writes pickled answers to the standard output it was given; it
 writes no file. The first message is the caller's rcParams and image formats; each job is a
-figure's stem and table, answered with the figure's image bytes (:func:`._driver._draw`, the same
+figure's stem and table, answered with the figure's image bytes (:func:`._driver.draw_figure`, the same
 function the caller draws its own figures with: a figure's bytes do not depend on the process
 that draws it nor on the figures drawn before it) and the warnings raised while drawing, which
 the caller raises again. SIGINT is ignored (a Ctrl-C reaches the whole process group; the caller
@@ -39,7 +39,7 @@ def main() -> int:
     import matplotlib.backends.backend_pdf  # noqa: F401
 
     from ..figures import style
-    from ._driver import _draw
+    from ._driver import draw_figure
 
     style.pyplot()
     pickle.dump(_READY, out)
@@ -57,7 +57,7 @@ def main() -> int:
         try:
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
-                images = _draw(stem, table, formats, rc)
+                images = draw_figure(stem, table, formats, rc)
             said = [(w.message, w.category, w.filename, w.lineno) for w in caught]
             answer = ("ok", images, said, time.perf_counter() - t0)
         except Exception as exc:  # the caller draws this figure itself, and meets the error there
