@@ -421,6 +421,9 @@ def _entry(key, rec: Record) -> dict | None:
             met = met and bool(s / mpl <= 5.0)
             headline += f" = {s / mpl:.3g}x import matplotlib.pyplot"
             rows += [("python -c 'import matplotlib.pyplot'", _fmt_t(mpl)), ("ratio", f"{s / mpl:.3g}x")]
+            one = t.get("end to end, one process")
+            if one:
+                rows += [("one process (--workers 1)", f"{_fmt_t(one)} = {one / mpl:.3g}x")]
     if not headline:
         headline = "incomplete: " + ", ".join(sorted(t)) if t else "no timings"
     return {

@@ -1,6 +1,7 @@
 """6. ``microimpact paper`` end to end, in a subprocess writing to a temporary directory, run in turn
 with ``python -c "import matplotlib.pyplot"`` (what it cannot avoid): A B A B, best of each, so that
-the ratio holds on a loaded machine."""
+the ratio holds on a loaded machine. ``paper`` as a user runs it (its figures drawn in two processes
+when it may use more than one core) and in one process (``--workers 1``), reported beside it."""
 
 import os
 import subprocess
@@ -24,11 +25,16 @@ def test_paper_end_to_end(record, size, tmp_path):
         pytest.skip("not run in tiny mode")
     pytest.importorskip("matplotlib")
     paper = [sys.executable, "-m", "microimpact", "paper", "--out", str(tmp_path)]
+    serial = paper + ["--workers", "1"]
     mpl = [sys.executable, "-c", "import matplotlib.pyplot"]
     _time(mpl)  # bytecode and matplotlib's font cache, as on a user's machine
     best = {}
     for _ in range(2):
-        for label, argv in (("end to end", paper), ("python -c 'import matplotlib.pyplot'", mpl)):
+        for label, argv in (
+            ("end to end", paper),
+            ("end to end, one process", serial),
+            ("python -c 'import matplotlib.pyplot'", mpl),
+        ):
             best[label] = min(best.get(label, float("inf")), _time(argv))
     for label, seconds in best.items():
         record.time(KEY, label, seconds)

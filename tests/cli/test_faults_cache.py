@@ -7,6 +7,10 @@ permanent ``UnpicklingError``/``EOFError`` naming no folder, a full file system 
 on device`` naming nothing. Now the numbers come out the same (checked against a run with a
 healthy cache), with one warning naming the folder, and a corrupt entry is rebuilt.
 
+Both routes of the compiled loops are tried: ``native`` (the machine code core._native keeps, what
+a new process runs) and ``numba`` (numba's own loops and cache: calls the kept code cannot take, a
+cache from an older version).
+
 Running as root, file modes do not make a folder read-only, so the read-only and full cases make
 numba's writability probe and writes fail the way the kernel reports them (EROFS, ENOSPC).
 """
@@ -23,18 +27,24 @@ from .test_faults import _env
 pytest.importorskip("numba")
 
 DRIVER = r"""
-import errno, sys
+import errno, os, sys
 import numba.core.caching as c
 import microimpact.core.arrays as a
+import microimpact.core.cache as k
+from microimpact.core import _native
 
+if os.environ["ROUTE"] == "numba":  # numba's own loops and cache, not the machine code core._native keeps
+    _native.entry_path = lambda *args: None
 mode = sys.argv[1]
 def fail(code, text):
     def f(self, *args, **kw):
         raise OSError(code, text, str(getattr(self, "_index_path", "") or self.get_cache_path()))
     return f
-if mode == "read-only":  # numba's probe of every cache folder fails; our loop files cannot be written
+if mode == "read-only":  # numba's probe of every cache folder fails; our files cannot be written
     c._CacheLocator.ensure_cache_path = fail(errno.EROFS, "Read-only file system")
-    a._write_atomic = lambda path, text: (_ for _ in ()).throw(OSError(errno.EROFS, "Read-only file system", str(path)))
+    k.write_atomic = lambda path, data: (_ for _ in ()).throw(OSError(errno.EROFS, "Read-only file system", str(path)))
+elif mode == "full-native":  # the kept machine code cannot be written
+    k.write_atomic = lambda path, data: (_ for _ in ()).throw(OSError(errno.ENOSPC, "No space left on device", str(path)))
 elif mode == "full-kernels":  # the loop file cannot be written
     a._write_atomic = lambda path, text: (_ for _ in ()).throw(OSError(errno.ENOSPC, "No space left on device", str(path)))
 elif mode == "full-numba":  # the loop file is there, numba's entry cannot be saved
@@ -51,12 +61,12 @@ raise SystemExit(main(sys.argv[2:]))
 ARGV = ["api"]
 
 
-def _run(mode, cache, argv=ARGV):
+def _run(mode, cache, argv=ARGV, route="numba"):
     return subprocess.run(
         [sys.executable, "-c", DRIVER, mode, *argv],
         capture_output=True,
         text=True,
-        env=_env(MICROIMPACT_CACHE_DIR=str(cache), MICROIMPACT_BACKEND="numba"),
+        env=_env(MICROIMPACT_CACHE_DIR=str(cache), MICROIMPACT_BACKEND="numba", ROUTE=route),
         timeout=600,
     )
 
@@ -73,41 +83,40 @@ def healthy(tmp_path_factory):
     return cache, proc.stdout
 
 
-def _without_machine_code(cache):
-    """Delete the loops' machine code kept for a new process (core._native): numba's own cache is
-    then what the next run reads, as a cache written by an older version has it."""
-    native = cache / "kernels" / "native"
-    assert list(native.glob("*.bin")), "the healthy run kept no machine code"
-    for p in native.glob("*.bin"):
-        p.unlink()
-
-
-@pytest.mark.parametrize("kept", [True, False], ids=["machine code kept", "numba's cache only"])
-def test_a_read_only_warm_cache_under_the_impact_command(tmp_path, kept):
+@pytest.mark.parametrize("route", ["native", "numba"])
+def test_a_read_only_warm_cache_under_the_impact_command(tmp_path, route):
+    """``native``: the machine code kept by core._native (what a new process runs); ``numba``:
+    numba's own loops and cache (calls the kept code cannot take, a cache of an older version)."""
     cache = tmp_path / "cache"
     argv = ["impact", "1:120:100000"]  # 10^5 impacts: the compiled loops
-    want = _run("healthy", cache, argv)
+    want = _run("healthy", cache, argv, route)
     assert want.returncode == 0 and _warnings(want.stderr) == [], want.stderr
-    if not kept:
-        _without_machine_code(cache)
-    proc = _run("read-only", cache, argv)
+    proc = _run("read-only", cache, argv, route)
     assert proc.returncode == 0 and proc.stdout == want.stdout, proc.stderr
     lines = _warnings(proc.stderr)
-    if kept:  # the kept machine code is only read: nothing to write, nothing to say
+    if route == "native":  # the kept machine code is only read: nothing to write, nothing to say
         assert lines == [], proc.stderr
     else:
         assert len(lines) == 1 and str(cache) in lines[0] and "cannot cache" in lines[0], proc.stderr
 
 
+@pytest.mark.parametrize("mode", ["read-only", "full-native"])
+def test_machine_code_that_cannot_be_kept_runs_from_memory(healthy, tmp_path, mode):
+    _, want = healthy  # numba's loops: the same numbers
+    cache = tmp_path / "cache"
+    proc = _run(mode, cache, route="native")
+    assert proc.returncode == 0 and "Traceback" not in proc.stderr, proc.stderr
+    assert proc.stdout == want
+    lines = _warnings(proc.stderr)
+    assert len(lines) == 1 and str(cache) in lines[0], proc.stderr
+    assert ("Read-only" if mode == "read-only" else "No space left") in lines[0]
+    assert not list(cache.rglob("*.bin"))
+
+
 @pytest.mark.parametrize("mode", ["read-only", "full-kernels", "full-numba"])
 def test_an_unwritable_cache_compiles_in_memory(healthy, tmp_path, mode):
-    import shutil
-
     warm, want = healthy
-    cache = tmp_path / "cache"
-    if mode == "read-only":  # with the warm cache, as numba's cache alone has it (kept code: above)
-        shutil.copytree(warm, cache)
-        _without_machine_code(cache)
+    cache = warm if mode == "read-only" else tmp_path / "cache"  # read-only: with the warm cache
     proc = _run(mode, cache)
     assert proc.returncode == 0, proc.stderr
     assert "Traceback" not in proc.stderr
@@ -124,7 +133,6 @@ def test_a_corrupt_index_is_rebuilt(healthy, tmp_path, damage):
     warm, want = healthy
     cache = tmp_path / "cache"
     shutil.copytree(warm, cache)
-    _without_machine_code(cache)  # numba's index is what is read
     indexes = sorted(cache.rglob("*.nbi"))
     assert indexes
     for p in indexes:

@@ -239,7 +239,7 @@ import os, sys
 from microimpact.core import _native, arrays
 from microimpact.cli import main
 
-_native.load = lambda *a: None  # numba's route, not the machine code kept for a new process: its compiler is the subject
+_native.entry_path = lambda *a: None  # numba's own loops, not the machine code core._native keeps
 heal = arrays._heal_call
 seen = []
 def heal_after_a_signal(dispatcher, *args):

@@ -125,8 +125,8 @@ _RUN = r"""
 import sys, hashlib, numpy as np, microimpact as mi
 from microimpact.core import _native
 built = []
-real = _native.build
-_native.build = lambda *a: built.append(1) or real(*a)
+real = _native._compile
+_native._compile = lambda *a: built.append(1) or real(*a)
 pair = mi.ContactPair.paper_case("silicon")
 r = pair.impact(np.linspace(1.0, 120.0, 200_000), warn=False)
 digest = hashlib.sha256(b"".join(np.ascontiguousarray(getattr(r, f)).tobytes() for f in ("restitution", "contact_time")))

@@ -36,6 +36,14 @@ def register(sub) -> None:
         metavar="LIST",
         help="image formats, comma separated, among png, pdf, svg, eps (default: png,pdf)",
     )
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=None,
+        metavar="N",
+        help="processes drawing the figures, this one included (default: 2 when it may run on more than one "
+        "core and one is idle, else 1); the files are the same bytes whatever N",
+    )
     p.add_argument("--quiet", "-q", action="store_true", help="no progress bar and no summary")
     p.set_defaults(func=run)
 
@@ -64,6 +72,7 @@ def run(args) -> int:
         data=data,
         formats=[f for f in args.formats.split(",") if f.strip()],
         progress=show_progress(args),
+        workers=args.workers,
     )
     if not args.quiet:
         print(report.summary(), file=sys.stderr)

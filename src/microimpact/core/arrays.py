@@ -3,8 +3,9 @@
 :func:`evaluate` applies a scalar core function element by element over broadcast arrays. Two
 engines give bitwise the same numbers, because both run the very same source:
 
-* ``"python"``: a loop over the scalar function itself. Used for small arrays while numba is not
-  yet imported in this process (importing numba costs ~0.35 s here, the loop ~1-3 us per element),
+* ``"python"``: a loop over the scalar function itself. Used for small arrays while no compiled
+  loop is loaded in this process (numba not imported, no kept machine code run: importing numba
+  costs ~0.35 s here, loading kept code ~0.1 s, the loop ~1-3 us per element),
   unless one element, timed, shows that the loop would take longer than :data:`PYTHON_BUDGET`
   (a model that integrates its equation of motion: ~1 ms per element); and whenever
   ``MICROIMPACT_BACKEND=python``.
@@ -20,8 +21,10 @@ engines give bitwise the same numbers, because both run the very same source:
   or earlier once a serial call has shown that the array's work (elements times the measured time
   per element) exceeds :data:`PARALLEL_WORK`, several times what starting the threads costs. The
   choice never changes a result (both loops run the same function on each element).
-  The first call of a loop also keeps its machine code (:mod:`microimpact.core._native`): a new
-  process runs that with llvmlite alone, without numba's start-up (~0.5 s beyond its import).
+  The loops are in fact compiled by numba as C-callable functions whose machine code is kept in
+  the cache (:mod:`microimpact.core._native`): a new process runs that with llvmlite alone,
+  without numba's start-up (~0.5 s beyond its import); numba's own loops (and numba's cache)
+  serve the calls those cannot take.
 
 This is the fluids idea (one scalar source per formula, fast dialects generated from it) with
 poliastro's split (compiled core on floats; wrappers only convert and call).
@@ -63,7 +66,8 @@ __all__ = [
 
 #: Engines :func:`evaluate` can use.
 BACKENDS = ("numba", "python")
-#: Below this many elements, and while numba is not imported, the Python loop is used.
+#: Below this many elements, while no compiled loop is loaded (numba not imported, no kept machine
+#: code run: core._native), the Python loop is used.
 SMALL = 4096
 #: From this many elements on, the compiled loop runs on all cores.
 PARALLEL_MIN = 50_000
@@ -79,7 +83,6 @@ _KERNELS: dict = {}
 _JITABLE_SET: set = set()  # JITABLE's functions as evaluate has met them (JITABLE is a list, in order)
 _READY: set = set()  # compiled loops called once already in this process (loaded or compiled)
 _LOCK_NAMES: dict = {}  # compiled loop -> (folder, name) of its file lock
-_NATIVE_TODO: dict = {}  # numba's loop -> what _keep_native needs to keep its machine code
 _LOCK = threading.Lock()  # dask evaluates blocks in threads: one thread builds a loop, the others wait
 
 
@@ -113,9 +116,14 @@ def backend_for(n: int) -> str:
     return _forced() or _unforced_engine(n)
 
 
+#: core._native's LOADED (true once a kept loop is loaded) from the first loop built on; empty before:
+#: _native loads with the first loop (its hashlib, json and pathlib cost a command that never compiles).
+_NATIVE_LOADED: list | tuple = ()
+
+
 def _unforced_engine(n: int) -> str:
     """The engine for ``n`` elements when ``MICROIMPACT_BACKEND`` does not force one."""
-    return "numba" if (n >= SMALL or "numba" in sys.modules) else "python"
+    return "numba" if (n >= SMALL or "numba" in sys.modules or _NATIVE_LOADED) else "python"
 
 
 def cache_dir() -> Path:
@@ -258,21 +266,28 @@ def _reason(exc) -> str:
 
 
 def _build(fn, kinds: str, nout: int, with_params: bool):
-    """The loops over ``fn``: its machine code kept by :mod:`~microimpact.core._native` (no numba
-    start-up), else numba's (compiled, or loaded from numba's cache); the first call of numba's then
-    keeps its machine code for the next process (:func:`_call`)."""
+    """The loops over ``fn``: its machine code kept by :mod:`~microimpact.core._native` (loaded
+    without numba's start-up, or compiled by numba and kept on the first call); numba's own loops
+    where that cannot be (another object format, a version that cannot be told) and for the calls
+    the kept loop cannot take."""
+    global _NATIVE_LOADED
     from . import _native  # hashlib, json, pathlib: not for a command that never compiles
 
+    _NATIVE_LOADED = _native.LOADED
     text = _generate(fn, kinds, nout, with_params)
     entry = _native.entry_path(fn, kinds, nout, with_params, text, _outside_hash(fn))
-    if entry is not None:
-        loaded = _native.load(entry, kinds, nout, lambda: _through_call(*_numba_loops(fn, kinds, nout, with_params)))
-        if loaded is not None:
-            return loaded
-    serial, parallel = _numba_loops(fn, kinds, nout, with_params)
-    if entry is not None:
-        _NATIVE_TODO[serial] = _NATIVE_TODO[parallel] = (fn, kinds, nout, with_params, entry)
-    return serial, parallel
+    if entry is None:
+        return _numba_loops(fn, kinds, nout, with_params)
+
+    def numba_loops():
+        return _through_call(*_numba_loops(fn, kinds, nout, with_params))
+
+    loops = _native.load(entry, kinds, nout, numba_loops)
+    if loops is None:
+        loops = _native.pending(
+            entry, fn, kinds, nout, with_params, numba_loops, lambda what: _warn_cache(_native.folder(), what)
+        )
+    return loops
 
 
 def _through_call(serial, parallel):
@@ -404,26 +419,8 @@ def _call(kernel, n, inputs, params, out):
                 else:
                     with _cache.locked(folder, stem):
                         _heal_call(kernel, 0, *inputs, params, out)
-                        _keep_native(kernel, params)
         _READY.add(kernel)
     kernel(n, *inputs, params, out)
-
-
-def _keep_native(kernel, params) -> None:
-    """After numba's loop ran once (under its file lock): keep its machine code for the next process
-    (:func:`microimpact.core._native.build`), unless another process has done so meanwhile."""
-    from . import _native
-
-    todo = _NATIVE_TODO.get(kernel)
-    if todo is None:
-        return
-    fn, kinds, nout, with_params, entry = todo
-    for k in [k for k, v in _NATIVE_TODO.items() if v is todo]:
-        del _NATIVE_TODO[k]
-    if with_params and not all(isinstance(x, float) for x in params):
-        return
-    if not _native.sound(entry):  # absent, or corrupt: (re)written
-        _native.build(fn, kinds, nout, len(params) if with_params else None, entry)
 
 
 def _shape(arrays):

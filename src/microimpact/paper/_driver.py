@@ -2,9 +2,14 @@
 
 from __future__ import annotations
 
+import collections
+import contextlib
 import io
 import os
+import sys
+import threading
 import time
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -12,6 +17,7 @@ import numpy as np
 
 from ..figures import paper as figs
 from ..io import write_table
+from . import _worker
 from ._claims import PAPER_QUOTES, PAPER_STATEMENTS, check_statements, compare_with_paper
 from ._report import report_blocks, to_html, to_markdown
 from ._setup import (
@@ -64,52 +70,31 @@ def load_measurements(path):
 
 
 # ----------------------------------------------------------------------------- figures
-def _fig2(data):
-    return figs.restitution_data(data=data), lambda t: figs.plot_restitution(table=t)
-
-
-def _fig3(data):
-    return (
-        figs.energy_loss_data("limiting_pressure", FIG3_PRESSURES),
-        lambda t: figs.plot_energy_loss("limiting_pressure", FIG3_PRESSURES, table=t),
-    )
-
-
-def _fig4(data):
-    return (
-        figs.energy_loss_data("particle_modulus", FIG4_MODULI, **FIG4_SURFACE),
-        lambda t: figs.plot_energy_loss("particle_modulus", FIG4_MODULI, table=t),
-    )
-
-
-def _fig5(data):
-    return (
-        figs.energy_loss_data("density", FIG5_DENSITIES),
-        lambda t: figs.plot_energy_loss("density", FIG5_DENSITIES, table=t),
-    )
-
-
-def _fig6(data):
-    return figs.force_displacement_data(FIG6_VELOCITIES), lambda t: figs.plot_force_displacement(table=t)
-
-
-def _fig7(data):
-    return figs.force_time_data(FIG7_VELOCITY), lambda t: figs.plot_force_time(table=t)
-
-
-def _fig8(data):
-    return figs.approach_data(), lambda t: figs.plot_approach(table=t)
-
-
-def _fig9(data):
-    return figs.contact_time_data(), lambda t: figs.plot_contact_times(table=t)
-
-
-def _fig10(data):
-    return figs.dynamics_data(FIG10_VELOCITY), lambda t: figs.plot_dynamics(table=t)
-
-
-_MAKERS = dict(zip([f[0] for f in FIGURES], [_fig2, _fig3, _fig4, _fig5, _fig6, _fig7, _fig8, _fig9, _fig10]))
+# Each figure's table (from the public API; it is also the figure's CSV) and its drawing from that
+# table alone, so that a second process can draw it from the table (._worker).
+_TABLES = {
+    "fig02": lambda data: figs.restitution_data(data=data),
+    "fig03": lambda data: figs.energy_loss_data("limiting_pressure", FIG3_PRESSURES),
+    "fig04": lambda data: figs.energy_loss_data("particle_modulus", FIG4_MODULI, **FIG4_SURFACE),
+    "fig05": lambda data: figs.energy_loss_data("density", FIG5_DENSITIES),
+    "fig06": lambda data: figs.force_displacement_data(FIG6_VELOCITIES),
+    "fig07": lambda data: figs.force_time_data(FIG7_VELOCITY),
+    "fig08": lambda data: figs.approach_data(),
+    "fig09": lambda data: figs.contact_time_data(),
+    "fig10": lambda data: figs.dynamics_data(FIG10_VELOCITY),
+}
+_PLOTS = {
+    "fig02": lambda t: figs.plot_restitution(table=t),
+    "fig03": lambda t: figs.plot_energy_loss("limiting_pressure", FIG3_PRESSURES, table=t),
+    "fig04": lambda t: figs.plot_energy_loss("particle_modulus", FIG4_MODULI, table=t),
+    "fig05": lambda t: figs.plot_energy_loss("density", FIG5_DENSITIES, table=t),
+    "fig06": lambda t: figs.plot_force_displacement(table=t),
+    "fig07": lambda t: figs.plot_force_time(table=t),
+    "fig08": lambda t: figs.plot_approach(table=t),
+    "fig09": lambda t: figs.plot_contact_times(table=t),
+    "fig10": lambda t: figs.plot_dynamics(table=t),
+}
+assert list(_TABLES) == list(_PLOTS) == [f[0] for f in FIGURES]
 
 _FORMATS = ("png", "pdf", "svg", "eps")
 
@@ -228,7 +213,54 @@ def _render(fig, formats) -> dict:
     return images
 
 
-def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progress=True) -> PaperReport:
+def draw_figure(stem, table, formats, rc=None) -> dict:
+    """``{format: bytes}`` of figure ``stem`` drawn from its ``table`` (:func:`_render`), in the package's
+    style over ``rc`` (the caller's rcParams, for a figure drawn in another process) or the current
+    rcParams. The same bytes in any process, whatever it drew before."""
+    from ..figures import style as _style
+
+    plt = _style.pyplot()
+    with contextlib.ExitStack() as stack:
+        if rc is not None:
+            stack.enter_context(plt.rc_context(rc))
+        stack.enter_context(_style.style())
+        fig = np.ravel(_PLOTS[stem](table))[0].figure
+        try:
+            return _render(fig, formats)
+        finally:
+            plt.close(fig)
+
+
+def _processes(workers) -> int:
+    """How many processes draw the figures: ``workers``, or by default 2 when this process may run
+    on more than one core (its CPU affinity), one of them is idle (the 1-minute load average at
+    most the cores less one) and it is a Python interpreter, else 1. A second process costs its
+    imports (about 1 CPU-s): on a machine with no idle core it makes ``paper`` slower."""
+    if workers is None:
+        if getattr(sys, "frozen", False):  # a bundled application: its executable is not a Python to start
+            return 1
+        try:
+            cores = len(os.sched_getaffinity(0))
+        except (AttributeError, OSError):  # not Linux
+            cores = os.cpu_count() or 1
+        try:
+            load = os.getloadavg()[0]
+        except (AttributeError, OSError):  # Windows
+            load = 0.0
+        return 2 if cores > 1 and load <= cores - 1 else 1
+    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
+        raise ValueError(f"workers must be a whole number >= 1, got {workers!r}")
+    return min(int(workers), len(FIGURES))
+
+
+def _rc_snapshot() -> dict:
+    """The current rcParams, for a worker to draw with the caller's settings (its backend aside)."""
+    import matplotlib as mpl
+
+    return {k: v for k, v in mpl.rcParams.copy().items() if k != "backend"}
+
+
+def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progress=True, workers=None) -> PaperReport:
     """Regenerate Section 3 of the seed paper: Figures 2-10, their data, and a report.
 
     Parameters
@@ -244,9 +276,20 @@ def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progre
     progress : bool or callable
         ``True``: a progress bar on stderr (:func:`microimpact.io.progress_bar`); a callable
         receives one line per figure (``"[3/9] fig04 ... done (0.41 s)"``); ``False``: quiet.
+    workers : int, optional
+        Processes drawing the figures (this one included). Default: 2 when this process may run
+        on more than one core and one of them is idle (1-minute load average), else 1. The
+        files are the same bytes whatever the number.
 
     Notes
     -----
+    With more than one worker, the other processes (Python interpreters running
+    ``microimpact.paper._worker``) start at once and draw figures from their tables while this one draws others; they write
+    no file (this process writes every file, in the order of the figures), they draw with this
+    process's rcParams and in the package's style, and a figure they cannot draw is drawn here.
+    Fonts added at run time (``matplotlib.font_manager.fontManager.addfont``) are not seen by
+    them: use ``workers=1`` for such figures.
+
     The output folder owns only what it wrote (:func:`microimpact.io.owned_directory`):
     its files are staged and committed only when all are complete; an existing
     ``out_dir`` is written into only when a manifest of an earlier run lists every
@@ -263,57 +306,108 @@ def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progre
     bad = [f for f in formats if f not in _FORMATS]
     if bad or not formats:
         raise ValueError(f"formats must be among {', '.join(_FORMATS)}, got {', '.join(formats) or 'none'}")
+    n_proc = _processes(workers)
     inputs = [v for v in (data or {}).values() if isinstance(v, (str, os.PathLike))]
     data = _normalize_data(data)
-    emit, inline = _progress_fn(progress)
-    from ..io import atomic_write, check_output_path, owned_directory, progress_bar
+    emit, _inline = _progress_fn(progress)
+    from ..io import check_output_path
 
     out = Path(out_dir)
     check_output_path(out, directory=True)
-    report = PaperReport(out_dir=out)
-    from ..figures import style as _style
+    # The other processes start now: their imports overlap this one's work.
+    helpers = [_worker.Helper() for _ in range(n_proc - 1)]
+    try:
+        for h in helpers:
+            h.start()
+        return _reproduce(PaperReport(out_dir=out), t0, data, formats, inputs, helpers, progress, emit)
+    finally:
+        for h in helpers:
+            h.close()
 
-    plt = _style.pyplot()
+
+def _reproduce(report, t0, data, formats, inputs, helpers, progress, emit) -> PaperReport:
+    """:func:`reproduce` once its inputs are checked and its helpers started."""
+    from ..io import atomic_write, owned_directory, progress_bar
+
+    out = report.out_dir
     pngs = {}
     n = len(FIGURES)
     bar = progress_bar(n + 1, "paper", unit="step", disable=progress is not True)
     # Staged, then committed with a manifest of what was written (microimpact.io.owned_directory).
     with bar, owned_directory(out, "paper", inputs=inputs) as tmp:
-        for i, (stem, title, _caption) in enumerate(FIGURES, start=1):
+        # Every table first (each is its figure's CSV): the figures are then drawn from them, here
+        # from the first on and by the helpers from the last on, until the two meet.
+        tables, seconds = [], []
+        for stem, title, _caption in FIGURES:
             t1 = time.perf_counter()
-            head = f"[{i}/{n}] {stem} {title} ..."
-            if inline:
-                emit(head, end="")
             bar.set_description(f"paper {stem}")
-            table, draw = _MAKERS[stem](data)
+            table = _TABLES[stem](data)
             write_table(
                 tmp / f"{stem}.csv", table, title=f"Fig. {int(stem[3:])}: {title}", columns=figs.COLUMNS, source=_SOURCE
             )
             report.tables[stem] = out / f"{stem}.csv"
-            with _style.style():
-                ax = draw(table)
-                fig = (np.ravel(ax)[0]).figure
-                try:
-                    images = _render(fig, formats)
-                    pngs[stem] = images["png"]
-                    files = []
-                    for fmt in formats:
-                        with atomic_write(tmp / f"{stem}.{fmt}", "wb") as fh:
-                            fh.write(images[fmt])
-                        files.append(out / f"{stem}.{fmt}")
-                finally:
-                    plt.close(fig)
-            report.figures[stem] = files
-            bar.update(1)
-            tail = f" done ({time.perf_counter() - t1:.2f} s)"
-            emit(tail if inline else head + tail)
+            tables.append((stem, table))
+            seconds.append(time.perf_counter() - t1)
+        # The comparison too, while a helper is still starting: at the end it would run alone.
         t1 = time.perf_counter()
-        head = f"[report] comparing {len(PAPER_QUOTES)} quoted numbers and {len(PAPER_STATEMENTS)} statements ..."
-        if inline:
-            emit(head, end="")
-        bar.set_description("paper report")
         report.comparison = compare_with_paper()
         report.statements = check_statements()
+        compared = time.perf_counter() - t1
+        queue = collections.deque(range(n))
+        lock = threading.Lock()
+        answers = {}
+
+        def done(i, answer):
+            answers[i] = answer
+
+        rc = _rc_snapshot() if helpers else None
+        for h in helpers:
+            h.feed(queue, lock, tables, rc, formats, done)
+        written = 0
+
+        def write_ready():
+            nonlocal written
+            while written < n and written in answers:
+                stem, title, _caption = FIGURES[written]
+                _status, images, said, spent = answers.pop(written)
+                for message, category, filename, lineno in said:
+                    warnings.warn_explicit(message, category, filename, lineno)
+                pngs[stem] = images["png"]
+                files = []
+                for fmt in formats:
+                    with atomic_write(tmp / f"{stem}.{fmt}", "wb") as fh:
+                        fh.write(images[fmt])
+                    files.append(out / f"{stem}.{fmt}")
+                report.figures[stem] = files
+                bar.update(1)
+                emit(f"[{written + 1}/{n}] {stem} {title} ... done ({seconds[written] + spent:.2f} s)")
+                written += 1
+
+        def draw_here(i):
+            t1 = time.perf_counter()
+            images = draw_figure(*tables[i], formats)
+            answers[i] = ("ok", images, [], time.perf_counter() - t1)
+
+        while True:
+            with lock:
+                if not queue:
+                    break
+                i = queue.popleft()
+            bar.set_description(f"paper {tables[i][0]}")
+            draw_here(i)
+            write_ready()
+        for h in helpers:
+            h.finish()
+        for h in helpers:
+            h.close()  # done with it: its CPU is the report's
+            for i in h.failed:
+                draw_here(i)
+        write_ready()
+        if written != n:  # pragma: no cover - every figure is drawn here or by a helper
+            raise RuntimeError(f"paper: {n - written} figures were not drawn")
+        t1 = time.perf_counter() - compared
+        head = f"[report] comparing {len(PAPER_QUOTES)} quoted numbers and {len(PAPER_STATEMENTS)} statements ..."
+        bar.set_description("paper report")
         write_table(
             tmp / "comparison.csv",
             {
@@ -356,5 +450,5 @@ def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progre
         bar.update(1)
     report.elapsed = time.perf_counter() - t0
     tail = f" done ({time.perf_counter() - t1:.2f} s)"
-    emit(tail if inline else head + tail)
+    emit(head + tail)
     return report
