@@ -407,6 +407,8 @@ def _entry(key, rec: Record) -> dict | None:
             if {call, loop} <= set(t):
                 fixed[call] = t[call] - t[loop]
                 rows.append((call, f"{_fmt_t(t[call])} = loop {_fmt_t(t[loop])} + {_fmt_t(fixed[call])}"))
+        if "restitution loop the library runs" in t:
+            rows.append(("restitution loop the library runs, alone", _fmt_t(t["restitution loop the library runs"])))
         m["fixed_s"] = fixed
         if "pair.restitution(V)" in fixed:
             met = bool(fixed["pair.restitution(V)"] <= 5e-6)

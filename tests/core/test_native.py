@@ -99,6 +99,12 @@ def test_calls_the_kept_loop_cannot_take_go_to_numba(tmp_path):
     out = np.empty((NOUT, V.size))
     threaded(V.size, wide, *ARGS, params, out)
     assert not used and _same(out, want)
+    frozen = V.copy()
+    frozen.setflags(write=False)  # read-only: its address from numpy's interface, not a writable view
+    for loop in (serial, threaded):
+        out = np.empty((NOUT, V.size))
+        loop(V.size, frozen, *ARGS, params, out)
+        assert not used and _same(out, want)
     raw = np.zeros(V.nbytes + 1, dtype=np.uint8)
     odd = raw[1:].view(np.float64)  # an unaligned column: numba's loop
     odd[:] = V

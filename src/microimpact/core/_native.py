@@ -33,6 +33,7 @@ or CPU, or that cannot be written, only means numba's route.
 
 from __future__ import annotations
 
+import ctypes
 import hashlib
 import json
 import os
@@ -499,6 +500,20 @@ class _Shared:
         return _parse(data)
 
 
+_addressof, _c_char = ctypes.addressof, ctypes.c_char
+_Slots = ctypes.c_void_p * 2
+
+
+def _address(a) -> int:
+    """The address of ``a``'s first element: through ctypes' buffer view where the array can be
+    written (0.33 us), else numpy's array interface (1.1 us; a read-only array). A call on 1e3
+    speeds reads two of them; it was a sixth of what the call added around its loop."""
+    try:
+        return _addressof(_c_char.from_buffer(a))
+    except (TypeError, ValueError, BufferError):
+        return a.__array_interface__["data"][0]
+
+
 class NativeLoop:
     """A loaded loop, called like numba's (``loop(n, *inputs, params, out)``); see the module docstring."""
 
@@ -537,7 +552,7 @@ class NativeLoop:
                 ):
                     return None
                 offsets.append(len(args))
-                args += [a.__array_interface__["data"][0], a.strides[0] // 8]
+                args += [_address(a), a.strides[0] // 8]
             elif type(a) is float or isinstance(a, float):
                 args.append(a)
             else:
@@ -554,7 +569,7 @@ class NativeLoop:
             and out.strides[1] % 8 == 0
         ):
             return None
-        args += [pp, out.__array_interface__["data"][0], out.strides[0] // 8, out.strides[1] // 8]
+        args += [pp, _address(out), out.strides[0] // 8, out.strides[1] // 8]
         return args, offsets
 
     def __call__(self, n, *rest):
@@ -571,8 +586,8 @@ class NativeLoop:
             args, offsets = prepared
             blocks = max(1, min(_threads(), n // 1024)) if self._threaded else 1
             if blocks == 1:
-                ret, exc = ctypes.c_void_p(), ctypes.c_void_p()
-                if s.function(ctypes.byref(ret), ctypes.byref(exc), n, *args) == 0:
+                slots = _Slots()  # the status slots numba's convention writes (return value, exception)
+                if s.function(_addressof(slots), _addressof(slots) + 8, n, *args) == 0:
                     return None
             else:
                 edges = [n * k // blocks for k in range(blocks + 1)]
