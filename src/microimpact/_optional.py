@@ -50,59 +50,45 @@ def without_dask_probe():
     answers None, xarray's own answer without dask: none is; both ask dask as before once anything
     has imported it. A no-op once dask is imported, or where xarray keeps no such cache or check.
     """
-    with _no_dask_collection_probe(), _no_dask_array_probe(), _no_dask_scheduler_probe():
+    with _answered_without_dask(), _no_dask_array_probe():
         yield
+
+
+#: xarray's checks that import dask to answer, and their answer while dask is not imported: no dask
+#: collection exists (``is_dask_collection``) and no dask scheduler is active (``get_dask_scheduler``,
+#: whose name ``writers`` holds apart from ``locks``).
+_DASK_CHECKS = (
+    ("xarray.namedarray.utils", "is_dask_collection", False),
+    ("xarray.backends.locks", "get_dask_scheduler", None),
+    ("xarray.backends.writers", "get_dask_scheduler", None),
+)
 
 
 @contextlib.contextmanager
-def _no_dask_scheduler_probe():
-    try:
-        from xarray.backends import locks, writers
-    except ImportError:  # pragma: no cover - another xarray layout: nothing to skip
-        yield
-        return
+def _answered_without_dask():
+    """Each of :data:`_DASK_CHECKS` answers its value without importing dask while dask is not imported
+    (by anyone, in any thread), and asks dask as before once it is; given back on the way out."""
     swapped = []
-    for module in (locks, writers):  # writers holds its own name for locks' function
-        original = getattr(module, "get_dask_scheduler", None)
+    for where, name, answer in _DASK_CHECKS:
+        try:
+            module = importlib.import_module(where)
+        except ImportError:  # pragma: no cover - another xarray layout: nothing to skip
+            continue
+        original = getattr(module, name, None)
         if "dask" in sys.modules or not callable(original):
             continue
 
-        def get_dask_scheduler(get=None, collection=None, _original=original):
-            # No dask scheduler can be active before dask is imported (by anyone, in any thread).
-            return _original(get, collection) if "dask" in sys.modules else None
+        def check(*args, _original=original, _answer=answer, **kwargs):
+            return _original(*args, **kwargs) if "dask" in sys.modules else _answer
 
-        module.get_dask_scheduler = get_dask_scheduler
-        swapped.append((module, original, get_dask_scheduler))
+        setattr(module, name, check)
+        swapped.append((module, name, original, check))
     try:
         yield
     finally:
-        for module, original, ours in swapped:
-            if module.get_dask_scheduler is ours:
-                module.get_dask_scheduler = original
-
-
-@contextlib.contextmanager
-def _no_dask_collection_probe():
-    try:
-        from xarray.namedarray import utils
-    except ImportError:  # pragma: no cover - another xarray layout: nothing to skip
-        yield
-        return
-    original = getattr(utils, "is_dask_collection", None)
-    if "dask" in sys.modules or not callable(original):
-        yield
-        return
-
-    def is_dask_collection(x):
-        # A dask collection can exist only once dask is imported (by anyone, in any thread).
-        return "dask" in sys.modules and original(x)
-
-    utils.is_dask_collection = is_dask_collection
-    try:
-        yield
-    finally:
-        if utils.is_dask_collection is is_dask_collection:
-            utils.is_dask_collection = original
+        for module, name, original, ours in swapped:
+            if getattr(module, name) is ours:
+                setattr(module, name, original)
 
 
 @contextlib.contextmanager

@@ -36,13 +36,7 @@ def cache_info() -> dict:
     """
     info = _arrays.cache_info()
     files = _owned_tables_and_calibrations(cache_dir())
-    size = 0
-    for p in files:
-        try:
-            size += p.stat().st_size
-        except OSError:
-            pass
-    return {**info, "files": info["files"] + len(files), "bytes": info["bytes"] + size}
+    return {**info, "files": info["files"] + len(files), "bytes": info["bytes"] + _core_cache.total_bytes(files)}
 
 
 def clear_cache() -> int:

@@ -593,9 +593,7 @@ class NativeLoop:
                 edges = [n * k // blocks for k in range(blocks + 1)]
                 status = [0] * blocks
 
-                def run(
-                    k, arrays=None
-                ):  # arrays: kept alive by the thread while it runs (an interrupt may end this call)
+                def run(k):  # the caller's arrays outlive every block: _join_all waits for all of them
                     lo, hi = edges[k], edges[k + 1]
                     a = list(args)
                     for pos in offsets:
@@ -604,7 +602,7 @@ class NativeLoop:
                     ret, exc = ctypes.c_void_p(), ctypes.c_void_p()
                     status[k] = s.function(ctypes.byref(ret), ctypes.byref(exc), hi - lo, *a)
 
-                workers = [threading.Thread(target=run, args=(k, (inputs, out)), daemon=True) for k in range(1, blocks)]
+                workers = [threading.Thread(target=run, args=(k,), daemon=True) for k in range(1, blocks)]
                 try:
                     for w in workers:
                         w.start()

@@ -632,12 +632,7 @@ def cache_info() -> dict:
     """
     folder = cache_dir()
     files = _owned_cache_files(folder)
-    size = 0
-    for p in files:
-        try:
-            size += p.stat().st_size
-        except OSError:
-            pass
+    size = _cache.total_bytes(files)
     probe = folder if folder.exists() else next((p for p in folder.parents if p.exists()), folder)
     return {"folder": str(folder), "files": len(files), "bytes": size, "writable": os.access(probe, os.W_OK)}
 

@@ -31,7 +31,16 @@ if TYPE_CHECKING:
 # hashlib and pathlib load where they are used: a command that never touches the cache (one impact
 # on the command line) does not pay for them (OpenSSL's hashlib alone is 2-6 ms of a 130 ms start).
 
-__all__ = ["cache_dir", "core_hash", "locked", "load_array", "store_array", "write_atomic", "owned_tables"]
+__all__ = [
+    "cache_dir",
+    "core_hash",
+    "locked",
+    "load_array",
+    "store_array",
+    "write_atomic",
+    "owned_tables",
+    "total_bytes",
+]
 #: Bumped when the file layout of :func:`store_array` changes.
 _FORMAT = b"microimpact-array-1\n"
 
@@ -203,3 +212,14 @@ def owned_tables(folder: Path | None = None) -> list:
     stems = {p.stem for p in owned}
     locks = [p for p in entries if p.suffix == ".lock" and p.stem in stems and p.is_file() and not p.is_symlink()]
     return owned + locks
+
+
+def total_bytes(paths) -> int:
+    """The summed size of ``paths`` in bytes (a file gone or unreadable meanwhile counts 0)."""
+    size = 0
+    for p in paths:
+        try:
+            size += p.stat().st_size
+        except OSError:
+            pass
+    return size
