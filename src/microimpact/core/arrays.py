@@ -82,6 +82,14 @@ _PY_COST: dict = {}  # measured time of one Python call [s] of each function
 _KERNELS: dict = {}
 _JITABLE_SET: set = set()  # JITABLE's functions as evaluate has met them (JITABLE is a list, in order)
 _READY: set = set()  # compiled loops called once already in this process (loaded or compiled)
+#: serial loop -> its entry for evaluate's usual call on an ``out`` evaluate allocated (a kept loop's
+#: :meth:`~microimpact.core._native.NativeLoop.usual`, which skips the checks that call needs not)
+_USUAL_CALLS: dict = {}
+#: ``(fn, number of inputs, nout, with params)`` -> ``call(n, inputs, params, out)``: the serial
+#: loop :func:`evaluate`'s usual call on fewer than 2048 elements has reached once, ready and timed.
+#: Such a call can then only go there (the engine is "numba" once a loop is ready, threads start at
+#: 2048 elements), so the next ones skip the way to it (1 us of a call on 1e3 speeds, issue 25).
+_LANES: dict = {}
 _LOCK_NAMES: dict = {}  # compiled loop -> (folder, name) of its file lock
 _LOCK = threading.Lock()  # dask evaluates blocks in threads: one thread builds a loop, the others wait
 
@@ -287,6 +295,7 @@ def _build(fn, kinds: str, nout: int, with_params: bool):
         loops = _native.pending(
             entry, fn, kinds, nout, with_params, numba_loops, lambda what: _warn_cache(_native.folder(), what)
         )
+    _USUAL_CALLS[loops[0]] = loops[0].usual
     return loops
 
 
@@ -501,6 +510,18 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
         Shape ``(nout,) + broadcast shape``, float64.
     """
     first = arrays[0] if arrays else None
+    if out is None and backend is None and type(first) is np.ndarray and first.dtype is _F64 and first.ndim == 1:
+        lane = _LANES.get((fn, len(arrays), nout, params is not None))
+        if lane is not None:
+            n = first.shape[0]
+            if 1 < n < 2048 and first.strides[0] and not _forced():
+                for a in arrays[1:]:
+                    if type(a) is not float:
+                        break
+                else:
+                    out = np.empty((nout, n))
+                    lane(n, [*arrays], () if params is None else tuple(params), out)
+                    return out
     usual = type(first) is np.ndarray and first.ndim == 1 and first.dtype is _F64 and first.size > 1
     if usual:  # the usual call: speeds as a 1-D float64 array (not a broadcast one), the rest floats
         for a in arrays[1:]:
@@ -519,7 +540,9 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
         n, flats, steps, kinds = _flat(arrays, shape)
     if out is None:
         out = np.empty((nout, n))
+        quick = usual  # evaluate's own out, the speeds a 1-D float64 array, the rest floats
     else:
+        quick = False
         if not (
             isinstance(out, np.ndarray)
             and out.dtype == np.float64
@@ -565,7 +588,13 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
         if threads:
             _call(parallel, n, flats, p, out)
         elif cost is not None and serial in _READY:  # the usual call: straight to the loop (what _call ends in)
-            serial(n, *flats, p, out)
+            usual_call = _USUAL_CALLS.get(serial) if quick else None
+            if usual_call is not None:
+                usual_call(n, flats, p, out)
+            else:
+                serial(n, *flats, p, out)
+            if quick and backend is None and n < 2048 and not forced:
+                _LANES[(fn, len(arrays), nout, with_params)] = usual_call or functools.partial(_lane_call, serial)
         elif cost is None and n >= 256 and bool(serial.signatures):  # compiled already: time it
             t0 = time.perf_counter()
             _call(serial, n, flats, p, out)
@@ -583,6 +612,10 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
     else:
         raise ValueError(f"backend must be one of {', '.join(BACKENDS)}; got {engine!r}")
     return out if len(shape) == 1 else out.reshape((nout,) + shape)  # out is (nout, n) here
+
+
+def _lane_call(serial, n, inputs, params, out):
+    serial(n, *inputs, params, out)
 
 
 def registered() -> list:
