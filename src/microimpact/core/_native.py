@@ -595,7 +595,11 @@ class NativeLoop:
         s = self._s
         if s.state == "ready" and s.usual == len(inputs) and (not params or s.nparams is not None):
             first = inputs[0]
-            address, stride = _address(first), first.strides[0]
+            try:
+                address = _addressof(_c_char.from_buffer(first))
+            except (TypeError, ValueError, BufferError):
+                address = first.__array_interface__["data"][0]  # read-only
+            stride = first.strides[0]
             if not (address | stride) & 7 and first.dtype is s.f8:  # aligned, in the machine's byte order
                 if s.nparams is None:
                     pp = None

@@ -85,7 +85,7 @@ _READY: set = set()  # compiled loops called once already in this process (loade
 #: serial loop -> its entry for evaluate's usual call on an ``out`` evaluate allocated (a kept loop's
 #: :meth:`~microimpact.core._native.NativeLoop.usual`, which skips the checks that call needs not)
 _USUAL_CALLS: dict = {}
-#: ``(fn, number of inputs, nout, with params)`` -> ``call(n, inputs, params, out)``: the serial
+#: ``fn`` -> ``((number of inputs, nout, with params), call(n, inputs, params, out))``: the serial
 #: loop :func:`evaluate`'s usual call on fewer than 2048 elements has reached once, ready and timed.
 #: Such a call can then only go there (the engine is "numba" once a loop is ready, threads start at
 #: 2048 elements), so the next ones skip the way to it (1 us of a call on 1e3 speeds, issue 25).
@@ -511,8 +511,8 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
     """
     first = arrays[0] if arrays else None
     if out is None and backend is None and type(first) is np.ndarray and first.dtype is _F64 and first.ndim == 1:
-        lane = _LANES.get((fn, len(arrays), nout, params is not None))
-        if lane is not None:
+        lane = _LANES.get(fn)
+        if lane is not None and lane[0] == (len(arrays), nout, params is not None):
             n = first.shape[0]
             if 1 < n < 2048 and first.strides[0] and not _forced():
                 for a in arrays[1:]:
@@ -520,7 +520,7 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
                         break
                 else:
                     out = np.empty((nout, n))
-                    lane(n, [*arrays], () if params is None else tuple(params), out)
+                    lane[1](n, [*arrays], () if params is None else tuple(params), out)
                     return out
     usual = type(first) is np.ndarray and first.ndim == 1 and first.dtype is _F64 and first.size > 1
     if usual:  # the usual call: speeds as a 1-D float64 array (not a broadcast one), the rest floats
@@ -594,7 +594,7 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
             else:
                 serial(n, *flats, p, out)
             if quick and backend is None and n < 2048 and not forced:
-                _LANES[(fn, len(arrays), nout, with_params)] = usual_call or functools.partial(_lane_call, serial)
+                _LANES[fn] = ((len(arrays), nout, with_params), usual_call or functools.partial(_lane_call, serial))
         elif cost is None and n >= 256 and bool(serial.signatures):  # compiled already: time it
             t0 = time.perf_counter()
             _call(serial, n, flats, p, out)
