@@ -7,8 +7,9 @@ engines give bitwise the same numbers, because both run the very same source:
   loop is loaded in this process (numba not imported, no kept machine code run: importing numba
   costs ~0.35 s here, loading kept code ~0.1 s, the loop ~1-3 us per element),
   unless one element, timed, shows that the loop would take longer than :data:`PYTHON_BUDGET`
-  (a model that integrates its equation of motion: ~1 ms per element); and whenever
-  ``MICROIMPACT_BACKEND=python``.
+  (a model that integrates its equation of motion: ~1 ms per element), or that the Python loops
+  over the function in this process would together pass it (many small calls: rent until the rent
+  has paid the price of buying, then buy); and whenever ``MICROIMPACT_BACKEND=python``.
 * ``"numba"``: a loop generated once per function as a small Python file in a cache directory,
   compiled by numba with ``cache=True`` (so a new process loads machine code instead of compiling);
   every ``@jitable`` function of the core is registered with
@@ -78,6 +79,7 @@ PYTHON_BUDGET = 0.25
 PARALLEL_WORK = 2e-4
 _COST: dict = {}  # measured serial time per element [s] of each compiled loop
 _PY_COST: dict = {}  # measured time of one Python call [s] of each function
+_PY_SPENT: dict = {}  # estimated time [s] this process has spent on each function in Python loops
 
 _KERNELS: dict = {}
 _JITABLE_SET: set = set()  # JITABLE's functions as evaluate has met them (JITABLE is a list, in order)
@@ -568,7 +570,9 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
         engine = forced or _unforced_engine(n)  # backend_for(n), reading the environment once
         if engine == "python" and not forced and n > 8:
             # A small array in Python only pays while the function is cheap: time one element once
-            # per function (the same numbers either way) and compile when the loop would take longer.
+            # per function (the same numbers either way) and compile when the loop would take longer,
+            # or when this process has already spent that long on the function in Python (many small
+            # calls: a script's loop over 1e3 speeds goes compiled after ~0.25 s, not never).
             cost = _PY_COST.get(fn)
             if cost is None:
                 t0 = time.perf_counter()
@@ -577,8 +581,11 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
                     *((tuple(params),) if params is not None else ()),
                 )
                 cost = _PY_COST[fn] = time.perf_counter() - t0
-            if cost * n > PYTHON_BUDGET:
+            spent = _PY_SPENT.get(fn, 0.0) + cost * n
+            if spent > PYTHON_BUDGET:
                 engine = "numba"
+            else:
+                _PY_SPENT[fn] = spent
     with_params = params is not None
     if engine == "numba":
         serial, parallel = _kernels(fn, kinds, nout, with_params)
