@@ -608,7 +608,16 @@ class NativeLoop:
                 else:
                     return self(n, *inputs, params, out)
                 status = s.function(
-                    _SCRATCH, _SCRATCH + 8, n, address, stride >> 3, *inputs[1:], pp, _addressof(_c_char.from_buffer(out)), n, 1
+                    _SCRATCH,
+                    _SCRATCH + 8,
+                    n,
+                    address,
+                    stride >> 3,
+                    *inputs[1:],
+                    pp,
+                    _addressof(_c_char.from_buffer(out)),
+                    n,
+                    1,
                 )
                 if status == 0:
                     return None
