@@ -446,6 +446,7 @@ def _shape(arrays):
 #: for ``size``, ``strides`` or ``flat`` builds an array each time (5 us per call of 1e3 speeds).
 _SCALARS = (float, np.floating)
 _F64 = np.dtype(np.float64)  # native float64 arrays share this descriptor: "is" before "==" (0.15 us)
+_NP_F64 = np.float64
 _USUAL: dict = {}  # number of arguments -> (steps, kinds) of the usual call (evaluate)
 
 
@@ -518,7 +519,7 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
             n = first.shape[0]
             if 1 < n < 2048 and first.strides[0] and not _forced():
                 for a in arrays[1:]:
-                    if type(a) is not float:
+                    if type(a) is not float and type(a) is not _NP_F64:
                         break
                 else:
                     out = np.empty((nout, n))
@@ -527,7 +528,7 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
     usual = type(first) is np.ndarray and first.ndim == 1 and first.dtype is _F64 and first.size > 1
     if usual:  # the usual call: speeds as a 1-D float64 array (not a broadcast one), the rest floats
         for a in arrays[1:]:
-            if type(a) is not float:
+            if type(a) is not float and type(a) is not _NP_F64:  # float64 scalars are typed as floats
                 usual = False
                 break
         usual = usual and first.strides[0] != 0
