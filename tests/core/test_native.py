@@ -140,6 +140,21 @@ def test_the_usual_call_checks_what_evaluate_leaves_to_it(tmp_path):
             serial.usual(V.size, [V, *ARGS], wrong, out)
 
 
+def test_the_loop_writes_its_status_slot_on_every_call(tmp_path):
+    """numba's convention writes the return value into the first status slot even when the call
+    succeeds: the slots a call passes must outlive it (a freed pair was overwritten), which the
+    module's one shared pair does."""
+    serial, _, used = _loops(tmp_path, seed.restitution_at, "as", 1, None)
+    V = np.linspace(0.5, 90.0, 100)
+    for call in (lambda out: serial(V.size, V, VY, (), out), lambda out: serial.usual(V.size, [V, VY], (), out)):
+        _native._SCRATCH_SLOTS[0] = 0x5A5A
+        out = np.empty((1, V.size))
+        call(out)
+        assert _native._SCRATCH_SLOTS[0] is None  # NULL written, into memory the module owns
+        assert _same(out[0], [seed.restitution_at(float(v), VY) for v in V])
+    assert not used
+
+
 def test_an_entry_that_is_not_sound_is_not_loaded(tmp_path):
     path = tmp_path / "entry.bin"
     assert _native.build(seed.outcome, "assss", NOUT, 0, path)

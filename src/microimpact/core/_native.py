@@ -505,9 +505,12 @@ class _Shared:
 
 _addressof, _c_char = ctypes.addressof, ctypes.c_char
 _Slots = ctypes.c_void_p * 2
-#: Status slots for serial calls: numba's convention writes them only when the loop fails (its
-#: value and exception), and a failed call is read from the status returned, never from them, so
-#: every call may share these (allocating a pair per call was 0.1 us, issue 25).
+#: Status slots for serial calls. numba's convention has the loop write its return value there
+#: on every call (a NULL for these loops), its exception when it fails: they must stay allocated
+#: while it runs (a pair freed before the call was overwritten: memory corruption, which a file
+#: name overwritten by eight zero bytes in the full suite showed).
+#: Nothing reads them (a failure is the status returned), so every call, from any thread, may
+#: write into this one pair (allocating a pair per call was 0.1 us, issue 25).
 _SCRATCH_SLOTS = _Slots()
 _SCRATCH = _addressof(_SCRATCH_SLOTS)
 
@@ -635,8 +638,7 @@ class NativeLoop:
             args, offsets = prepared
             blocks = max(1, min(_threads(), n // 1024)) if self._threaded else 1
             if blocks == 1:
-                slots = _addressof(_Slots())  # the status slots numba's convention writes (value, exception)
-                if s.function(slots, slots + 8, n, *args) == 0:
+                if s.function(_SCRATCH, _SCRATCH + 8, n, *args) == 0:
                     return None
             else:
                 edges = [n * k // blocks for k in range(blocks + 1)]
