@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import collections
 import contextlib
+import functools
 import io
 import os
 import sys
@@ -213,14 +214,70 @@ def _render(fig, formats) -> dict:
     return images
 
 
+_MATHTEXT = {"depth": 0, "parses": {}}
+
+
+@contextlib.contextmanager
+def one_mathtext_cache():
+    """While inside: every mathtext parser of this process shares one cache of parsed strings.
+
+    matplotlib caches a parse per parser object, and each renderer makes its own parser: a label was
+    parsed by the layout's renderer, again by the PDF's and again by the PNG's (at 300 dpi), and
+    again for every figure that repeats it (an axis label, the strain band's note). A parse is a
+    function of the parser's state (its output type), of the call's arguments (string, dpi, font,
+    antialiasing, hinting; matplotlib's own cache keys on these) and of the rcParams it reads (the
+    ``mathtext.*`` and ``font.*`` family settings), so one cache keyed on all of them returns what
+    each parser would have computed: the same bytes in every file, half the parses. Nested uses share the outer cache, which goes when the outermost ends. Where
+    matplotlib's parser is not the one this was written for (no ``_parse_cached`` wrapping a
+    function), nothing changes.
+    """
+    from matplotlib.mathtext import MathTextParser
+
+    cached = MathTextParser.__dict__.get("_parse_cached")
+    parse = getattr(cached, "__wrapped__", None)
+    if _MATHTEXT["depth"] == 0 and not callable(parse):
+        yield
+        return
+    if _MATHTEXT["depth"] == 0:
+        import matplotlib as mpl
+
+        parses = _MATHTEXT["parses"]
+        rc_names = [k for k in mpl.rcParams if k.startswith("mathtext.") or k.startswith("font.")]
+
+        @functools.wraps(parse)
+        def shared(self, *args):
+            rc = tuple(tuple(v) if isinstance(v, list) else v for v in map(mpl.rcParams.__getitem__, rc_names))
+            key = (type(self), tuple(sorted(vars(self).items())), args, rc)
+            try:
+                return parses[key]
+            except KeyError:
+                result = parses[key] = parse(self, *args)
+                return result
+            except TypeError:  # a part of the key that does not hash: as matplotlib would
+                return cached(self, *args)
+
+        MathTextParser._parse_cached = shared
+        _MATHTEXT["restore"] = cached
+    _MATHTEXT["depth"] += 1
+    try:
+        yield
+    finally:
+        _MATHTEXT["depth"] -= 1
+        if _MATHTEXT["depth"] == 0:
+            MathTextParser._parse_cached = _MATHTEXT.pop("restore")
+            _MATHTEXT["parses"].clear()
+
+
 def draw_figure(stem, table, formats, rc=None) -> dict:
     """``{format: bytes}`` of figure ``stem`` drawn from its ``table`` (:func:`_render`), in the package's
     style over ``rc`` (the caller's rcParams, for a figure drawn in another process) or the current
-    rcParams. The same bytes in any process, whatever it drew before."""
+    rcParams. The same bytes in any process, whatever it drew before (parsed mathtext is shared
+    with the other figures drawn inside one :func:`one_mathtext_cache`)."""
     from ..figures import style as _style
 
     plt = _style.pyplot()
     with contextlib.ExitStack() as stack:
+        stack.enter_context(one_mathtext_cache())
         if rc is not None:
             stack.enter_context(plt.rc_context(rc))
         stack.enter_context(_style.style())
@@ -388,20 +445,21 @@ def _reproduce(report, t0, data, formats, inputs, helpers, progress, emit) -> Pa
             images = draw_figure(*tables[i], formats)
             answers[i] = ("ok", images, [], time.perf_counter() - t1)
 
-        while True:
-            with lock:
-                if not queue:
-                    break
-                i = queue.popleft()
-            bar.set_description(f"paper {tables[i][0]}")
-            draw_here(i)
-            write_ready()
-        for h in helpers:
-            h.finish()
-        for h in helpers:
-            h.close()  # done with it: its CPU is the report's
-            for i in h.failed:
+        with one_mathtext_cache():  # a label is parsed once for all figures (per dpi)
+            while True:
+                with lock:
+                    if not queue:
+                        break
+                    i = queue.popleft()
+                bar.set_description(f"paper {tables[i][0]}")
                 draw_here(i)
+                write_ready()
+            for h in helpers:
+                h.finish()
+            for h in helpers:
+                h.close()  # done with it: its CPU is the report's
+                for i in h.failed:
+                    draw_here(i)
         write_ready()
         if written != n:  # pragma: no cover - every figure is drawn here or by a helper
             raise RuntimeError(f"paper: {n - written} figures were not drawn")

@@ -39,7 +39,7 @@ def main() -> int:
     import matplotlib.backends.backend_pdf  # noqa: F401
 
     from ..figures import style
-    from ._driver import draw_figure
+    from ._driver import draw_figure, one_mathtext_cache
 
     style.pyplot()
     pickle.dump(_READY, out)
@@ -48,25 +48,26 @@ def main() -> int:
         rc, formats = pickle.load(inp)
     except EOFError:
         return 0
-    while True:
-        try:
-            stem, table = pickle.load(inp)
-        except EOFError:
-            return 0
-        t0 = time.perf_counter()
-        try:
-            with warnings.catch_warnings(record=True) as caught:
-                warnings.simplefilter("always")
-                images = draw_figure(stem, table, formats, rc)
-            said = [(w.message, w.category, w.filename, w.lineno) for w in caught]
-            answer = ("ok", images, said, time.perf_counter() - t0)
-        except Exception as exc:  # the caller draws this figure itself, and meets the error there
-            answer = ("error", repr(exc), [], 0.0)
-        try:
-            pickle.dump(answer, out)
-        except Exception:  # an answer that does not pickle (a warning's odd message): the caller redraws
-            pickle.dump(("error", "answer not picklable", [], 0.0), out)
-        out.flush()
+    with one_mathtext_cache():  # mathtext parsed once for all the figures this process draws
+        while True:
+            try:
+                stem, table = pickle.load(inp)
+            except EOFError:
+                return 0
+            t0 = time.perf_counter()
+            try:
+                with warnings.catch_warnings(record=True) as caught:
+                    warnings.simplefilter("always")
+                    images = draw_figure(stem, table, formats, rc)
+                said = [(w.message, w.category, w.filename, w.lineno) for w in caught]
+                answer = ("ok", images, said, time.perf_counter() - t0)
+            except Exception as exc:  # the caller draws this figure itself, and meets the error there
+                answer = ("error", repr(exc), [], 0.0)
+            try:
+                pickle.dump(answer, out)
+            except Exception:  # an answer that does not pickle (a warning's odd message): the caller redraws
+                pickle.dump(("error", "answer not picklable", [], 0.0), out)
+            out.flush()
 
 
 def _boot() -> str:
