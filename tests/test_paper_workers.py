@@ -27,6 +27,14 @@ STEMS = [f[0] for f in FIGURES]
 FORMATS = ["png", "pdf"]
 
 
+def _env():
+    env = dict(os.environ)
+    env["PYTHONPATH"] = str(ROOT / "src") + os.pathsep + env.get("PYTHONPATH", "")
+    for key in [k for k in env if k.startswith("COV_CORE_") or k == "COVERAGE_PROCESS_START"]:
+        env.pop(key)
+    return env
+
+
 def _tables(stems):
     return [(stem, _driver._TABLES[stem]({})) for stem in stems]
 
@@ -79,32 +87,44 @@ def test_a_worker_draws_the_same_bytes_as_this_process_with_its_rcparams(mode):
     assert isinstance(h.proc, subprocess.Popen) == (mode == "new-interpreter")
 
 
-@pytest.mark.skipif(not _worker.can_fork(), reason="no fork here")
-def test_a_forked_worker_never_returns_into_the_callers_code(monkeypatch):
+_NEVER_RETURNS = """
+import collections, os, threading
+from microimpact.paper import _driver, _worker
+
+assert _worker.can_fork()
+parent = os.getpid()
+
+
+def serve(inp, out):
+    raise SystemExit(0)
+
+
+_worker._serve = serve
+h = _worker.Helper()
+h.start()
+if os.getpid() != parent:  # the bug the test is for: the worker came back here
+    os._exit(99)
+queue, answers = collections.deque([0]), {}
+tables = [("fig06", _driver._TABLES["fig06"]({}))]
+h.feed(queue, threading.Lock(), tables, _driver._rc_snapshot(), ["png"], answers.__setitem__)
+h.thread.join(30)
+print(type(h.proc).__name__, h.thread.is_alive(), answers, list(queue) + h.failed, h.proc.wait(timeout=30))
+h.close()
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="workers are forked on Linux")
+def test_a_forked_worker_never_returns_into_the_callers_code():
     """Whatever ends a forked worker (here its loop raising SystemExit, as a ``sys.exit`` would) ends it
     with ``os._exit``: it never unwinds into the code that forked it (its ``finally`` blocks would
-    remove the caller's staging folder). Were it to return, it would leave through this test's
-    ``os._exit(99)``."""
-    parent = os.getpid()
-
-    def serve(inp, out):
-        raise SystemExit(0)
-
-    monkeypatch.setattr(_worker, "_serve", serve)
-    h = _worker.Helper()
-    try:
-        h.start()
-        if os.getpid() != parent:  # pragma: no cover - the bug this test is for
-            os._exit(99)
-        assert isinstance(h.proc, _worker._Forked)
-        queue, answers = collections.deque([0]), {}
-        h.feed(queue, threading.Lock(), _tables(["fig06"]), _driver._rc_snapshot(), FORMATS, answers.__setitem__)
-        h.thread.join(30)
-        assert not h.thread.is_alive() and answers == {}
-        assert list(queue) + h.failed == [0]  # the caller draws the figure
-        assert h.proc.wait(timeout=30) == 1
-    finally:
-        h.close()
+    remove the caller's staging folder). Were it to return, it would leave through ``os._exit(99)``.
+    (In a new interpreter: one that runs no other thread, as the command.)"""
+    proc = subprocess.run(
+        [sys.executable, "-c", _NEVER_RETURNS], capture_output=True, text=True, env=_env(), timeout=300
+    )
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    # the worker ended with status 1, holding no answer; the caller draws the figure
+    assert proc.stdout.split() == ["_Forked", "False", "{}", "[0]", "1"]
 
 
 def _files(out):
@@ -134,6 +154,34 @@ def test_two_workers_write_the_same_files_as_one(tmp_path, mode):
     assert one.figures.keys() == two.figures.keys() and list(two.figures) == STEMS
     # progress in the figures' order, whoever drew them
     assert [ln.split()[1] for ln in lines[: len(STEMS)]] == STEMS and lines[-1].startswith("[report]")
+
+
+_FORKED_FILES = """
+import sys
+from microimpact import paper
+from microimpact.paper import _worker
+
+assert _worker.can_fork()
+forks = []
+fork = _worker._fork
+_worker._fork = lambda: forks.append(1) or fork()
+paper.reproduce(sys.argv[1], workers=1, progress=False)  # this process's fonts are open when it forks
+paper.reproduce(sys.argv[2], workers=2, progress=False)
+print(len(forks))
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="workers are forked on Linux")
+def test_a_forked_worker_writes_the_same_files_as_one_process(tmp_path):
+    """In a process that runs no other thread (as the command; not this test process), the second
+    process is forked, after this one has drawn figures and opened its fonts: the same files."""
+    argv = [sys.executable, "-c", _FORKED_FILES, str(tmp_path / "one"), str(tmp_path / "two")]
+    proc = subprocess.run(argv, capture_output=True, text=True, env=_env(), timeout=600)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    assert proc.stdout.split() == ["1"]  # one worker, forked
+    a, b = _files(tmp_path / "one"), _files(tmp_path / "two")
+    assert sorted(a) == sorted(b) and len(a) == 3 * len(STEMS) + 4
+    assert [name for name in a if a[name] != b[name]] == []
 
 
 @pytest.fixture(scope="module")

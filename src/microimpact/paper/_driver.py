@@ -298,9 +298,20 @@ def one_mathtext_cache():
             _MATHTEXT["parses"].clear()
 
 
-def forget_mathtext() -> None:
-    """Empty the shared parse cache of :func:`one_mathtext_cache` (a forked process: its parses hold
-    fonts opened before the fork)."""
+def forget_open_fonts() -> None:
+    """In a forked process: drop every font opened before the fork, and what holds one. A font file
+    opened before it is one open file shared with the other process (one read position for both):
+    glyphs read through it while the other reads too could be wrong. matplotlib drops its own open
+    fonts at a fork (``font_manager``); parsed mathtext holds fonts, so its caches go too (matplotlib's
+    and :func:`one_mathtext_cache`'s)."""
+    from matplotlib import font_manager
+    from matplotlib.mathtext import MathTextParser
+
+    font_manager._get_font.cache_clear()
+    cached = MathTextParser.__dict__.get("_parse_cached")
+    for cache in (cached, getattr(cached, "__wrapped__", None), _MATHTEXT.get("restore")):
+        if hasattr(cache, "cache_clear"):
+            cache.cache_clear()
     _MATHTEXT["parses"].clear()
 
 

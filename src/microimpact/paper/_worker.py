@@ -135,6 +135,8 @@ def _fork():
     process's imports (a new interpreter imports them again, about 1 CPU-s). The child answers jobs
     until the end of its input and leaves with ``os._exit``: it never returns into this process's
     code (its ``finally`` blocks, its staging folder), whatever happens."""
+    from ._driver import forget_open_fonts
+
     _prepare()
     jobs_r, jobs_w = os.pipe()
     answers_r, answers_w = os.pipe()
@@ -155,7 +157,7 @@ def _fork():
             for fd in (jobs_w, answers_r, *_KEPT_FDS):
                 os.close(fd)
             os.dup2(2, 1)  # the caller's standard output is its own
-            _forget_open_fonts()
+            forget_open_fonts()  # their files' read position is the caller's too
             out = os.fdopen(answers_w, "wb")
             pickle.dump(_READY, out)
             out.flush()
@@ -168,22 +170,6 @@ def _fork():
     os.close(answers_w)
     _KEPT_FDS.update((jobs_w, answers_r))
     return _Forked(pid, os.fdopen(jobs_w, "wb"), os.fdopen(answers_r, "rb"))
-
-
-def _forget_open_fonts() -> None:
-    """In a forked worker: drop every font this process opened before the fork. A font file opened
-    before it is one open file shared with the caller (one read position for both processes); glyphs
-    read through it while the caller reads too could be wrong. matplotlib drops its open fonts at a
-    fork itself (``font_manager``); parsed mathtext keeps its fonts, so its caches go too."""
-    from matplotlib import font_manager
-    from matplotlib.mathtext import MathTextParser
-
-    from ._driver import forget_mathtext
-
-    font_manager._get_font.cache_clear()
-    with contextlib.suppress(AttributeError):
-        MathTextParser._parse_cached.cache_clear()
-    forget_mathtext()
 
 
 def _boot() -> str:
