@@ -80,3 +80,45 @@ def test_backend_variable_is_read_at_every_call(monkeypatch, value):
         assert arrays.backend_for(10**6) == (value.strip().lower() or "numba")
     monkeypatch.delenv("MICROIMPACT_BACKEND")
     assert arrays.backend_for(10**6) == "numba"
+
+
+class _Float(float):
+    """A float subclass: not what the lane takes (its arithmetic could be anything)."""
+
+
+def test_a_lane_goes_only_where_the_general_route_would(monkeypatch):
+    """After evaluate's usual call has found its loop, the next ones take the lane straight to it:
+    bitwise the general route's numbers, and only for the calls that route would send there (a
+    backend forced by argument or by ``MICROIMPACT_BACKEND``, threads from 2048 elements, a float
+    subclass, an ``out`` of one's own, a 2-D array all take the general route)."""
+    V = np.linspace(0.5, 120.0, 700)
+    Vy = 0.37
+    arrays.evaluate(seed.restitution_at, V, Vy, backend="numba")  # compiled (or loaded)
+    arrays.evaluate(seed.restitution_at, V, Vy)
+    arrays.evaluate(seed.restitution_at, V, Vy)
+    key = seed.restitution_at
+    assert arrays._LANES[key][0] == (2, 1, False)
+    want = np.array([seed.restitution_at(float(v), Vy) for v in V])
+    lane, taken = arrays._LANES[key][1], []
+
+    def spy(*args):
+        taken.append(args[0])
+        return lane(*args)
+
+    monkeypatch.setitem(arrays._LANES, key, ((2, 1, False), spy))
+    assert arrays.evaluate(seed.restitution_at, V, Vy)[0].tobytes() == want.tobytes()
+    assert arrays.evaluate(seed.restitution_at, V, np.float64(Vy))[0].tobytes() == want.tobytes()
+    assert taken == [V.size, V.size]  # a float64 scalar is typed as a float
+    others = [
+        lambda: arrays.evaluate(seed.restitution_at, V, Vy, backend="python"),
+        lambda: arrays.evaluate(seed.restitution_at, V, _Float(Vy)),
+        lambda: arrays.evaluate(seed.restitution_at, V, Vy, out=np.empty((1, V.size))),
+        lambda: arrays.evaluate(seed.restitution_at, V[None, :], Vy)[:, 0],
+    ]
+    for other in others:
+        assert other()[0].tobytes() == want.tobytes()
+    big = np.linspace(0.5, 120.0, 4096)
+    arrays.evaluate(seed.restitution_at, big, Vy)
+    monkeypatch.setenv("MICROIMPACT_BACKEND", "python")
+    assert arrays.evaluate(seed.restitution_at, V, Vy)[0].tobytes() == want.tobytes()
+    assert taken == [V.size, V.size]

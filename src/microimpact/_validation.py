@@ -156,6 +156,13 @@ def check_velocity(name: str, value, *, scalar: bool = False):
     closed form's limit gives ``e = 0`` with an infinite rebound speed, which
     contradicts ``V_r = e V``), so it is an error rather than a result.
     """
+    if type(value) is np.ndarray and value.dtype is _F64 and value.ndim == 1 and not scalar:
+        # the usual call, as below without three calls (a tenth of what a call on 1e3 speeds adds, issue 25)
+        if not value.shape[0]:
+            return value
+        bits = value.view(_U64)
+        if bits.item(bits.argmax()) < _INF_BITS:
+            return value
     arr = _as_float_array(name, value)
     if arr.size and not _nonnegative_finite(arr):
         bad = ~(arr >= 0) | np.isinf(arr)
@@ -167,7 +174,8 @@ def check_velocity(name: str, value, *, scalar: bool = False):
 
 
 #: The bits of float64 ``+inf`` as an unsigned integer.
-_INF_BITS = np.uint64(0x7FF0000000000000)
+_INF_BITS = 0x7FF0000000000000
+_U64 = np.dtype(np.uint64)
 
 
 def _nonnegative_finite(arr: np.ndarray) -> bool:
@@ -176,11 +184,12 @@ def _nonnegative_finite(arr: np.ndarray) -> bool:
     IEEE 754: read as unsigned integers, the bit patterns of exactly those numbers (sign bit clear,
     exponent not all ones) lie below that of ``+inf``; a negative number (sign bit set), ``inf`` and
     every NaN lie at or above it. One integer maximum instead of a float minimum and maximum (1 us
-    of the fixed cost of an array call, issue 25). ``-0.0`` reads as False: callers check again
+    of the fixed cost of an array call, issue 25), found by ``argmax`` (0.24 us on 1e3 speeds,
+    where the ufunc's reduction takes 0.95 us). ``-0.0`` reads as False: callers check again
     element by element.
     """
-    bits = arr.view(np.uint64)
-    return bool((np.maximum.reduce(bits) if bits.ndim == 1 else np.maximum.reduce(bits, axis=None)) < _INF_BITS)
+    bits = arr.view(_U64)
+    return bits.item(bits.argmax()) < _INF_BITS
 
 
 #: Below this ``p_y`` [Pa] the yield velocity is checked for underflow (no real material comes near it).

@@ -260,7 +260,8 @@ class ImpactResult:
     @property
     def any_large_strain(self) -> bool:
         """True if any impact lies outside the small-strain range."""
-        return bool(np.any(self.large_strain))
+        flags = self.large_strain
+        return bool(flags.any() if type(flags) is np.ndarray else np.any(flags))
 
     def to_dict(self) -> dict:
         """All quantities as a dict of arrays (or scalars)."""
@@ -944,7 +945,8 @@ class ContactPair:
         else:
             V = check_velocity("velocity", velocity)
             out = impact.outcome_arrays(mod, V, *(np.float64(a) for a in self._args), p)
-            res = ImpactResult._trusted({k: _scalar_or_array(v) for k, v in out.items()})
+            # arrays of V's shape, or 0-d ones for a 0-d V (then numpy scalars, as for one speed)
+            res = ImpactResult._trusted(out if V.ndim else {k: v[()] for k, v in out.items()})
             flagged = res.any_large_strain
             vmin = None
         if warn and flagged and not _ignored(LargeStrainWarning):
@@ -1203,7 +1205,8 @@ class ContactPair:
             return np.float64(_seed.restitution_at(V, self.yield_velocity))
         # the pair's own V_y was checked with the pair: only the speeds are (a fixed cost per call)
         V = check_velocity("velocity", velocity)
-        return _scalar_or_array(_evaluate(_seed.restitution_at, V, self.yield_velocity)[0])
+        e = _evaluate(_seed.restitution_at, V, self.yield_velocity)[0]
+        return e if e.ndim else e[()]
 
     def dem_time_step(self, velocity, *, model: str = models.DEFAULT, steps_per_contact=50, **params) -> float:
         """A DEM time step [s] that resolves the contact: the shortest contact time of ``model`` at

@@ -219,3 +219,29 @@ print(bool(np.array_equal(a, b)))
 """
     out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True).stdout.split()
     assert out == ["False", "True", "True"]
+
+
+def test_many_small_calls_go_compiled_once_python_has_cost_enough():
+    """Small calls stay in Python only until the Python loops over the function have together cost
+    PYTHON_BUDGET in this process (set small here): then the compiled loop runs, with the numbers of
+    the Python loop bit for bit."""
+    import subprocess
+    import sys
+
+    code = """
+import sys, numpy as np
+from microimpact.core import arrays
+from microimpact.core.models import thornton_ning_2016 as seed
+arrays.PYTHON_BUDGET = 0.02
+V = np.linspace(1.0, 100.0, 500)
+first = arrays.evaluate(seed.restitution_at, V, 0.37)
+print("numba" in sys.modules or bool(arrays._KERNELS))
+calls = 1
+while not arrays._KERNELS and calls < 10000:
+    assert arrays.evaluate(seed.restitution_at, V, 0.37).tobytes() == first.tobytes()
+    calls += 1
+print(bool(arrays._KERNELS), 2 < calls < 10000)
+print(arrays.evaluate(seed.restitution_at, V, 0.37).tobytes() == first.tobytes())
+"""
+    out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True).stdout.split()
+    assert out == ["False", "True", "True", "True"]

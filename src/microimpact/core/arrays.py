@@ -7,8 +7,9 @@ engines give bitwise the same numbers, because both run the very same source:
   loop is loaded in this process (numba not imported, no kept machine code run: importing numba
   costs ~0.35 s here, loading kept code ~0.1 s, the loop ~1-3 us per element),
   unless one element, timed, shows that the loop would take longer than :data:`PYTHON_BUDGET`
-  (a model that integrates its equation of motion: ~1 ms per element); and whenever
-  ``MICROIMPACT_BACKEND=python``.
+  (a model that integrates its equation of motion: ~1 ms per element), or that the Python loops
+  over the function in this process would together pass it (many small calls: rent until the rent
+  has paid the price of buying, then buy); and whenever ``MICROIMPACT_BACKEND=python``.
 * ``"numba"``: a loop generated once per function as a small Python file in a cache directory,
   compiled by numba with ``cache=True`` (so a new process loads machine code instead of compiling);
   every ``@jitable`` function of the core is registered with
@@ -78,10 +79,19 @@ PYTHON_BUDGET = 0.25
 PARALLEL_WORK = 2e-4
 _COST: dict = {}  # measured serial time per element [s] of each compiled loop
 _PY_COST: dict = {}  # measured time of one Python call [s] of each function
+_PY_SPENT: dict = {}  # estimated time [s] this process has spent on each function in Python loops
 
 _KERNELS: dict = {}
 _JITABLE_SET: set = set()  # JITABLE's functions as evaluate has met them (JITABLE is a list, in order)
 _READY: set = set()  # compiled loops called once already in this process (loaded or compiled)
+#: serial loop -> its entry for evaluate's usual call on an ``out`` evaluate allocated (a kept loop's
+#: :meth:`~microimpact.core._native.NativeLoop.usual`, which skips the checks that call needs not)
+_USUAL_CALLS: dict = {}
+#: ``fn`` -> ``((number of inputs, nout, with params), call(n, inputs, params, out))``: the serial
+#: loop :func:`evaluate`'s usual call on fewer than 2048 elements has reached once, ready and timed.
+#: Such a call can then only go there (the engine is "numba" once a loop is ready, threads start at
+#: 2048 elements), so the next ones skip the way to it (1 us of a call on 1e3 speeds, issue 25).
+_LANES: dict = {}
 _LOCK_NAMES: dict = {}  # compiled loop -> (folder, name) of its file lock
 _LOCK = threading.Lock()  # dask evaluates blocks in threads: one thread builds a loop, the others wait
 
@@ -287,6 +297,7 @@ def _build(fn, kinds: str, nout: int, with_params: bool):
         loops = _native.pending(
             entry, fn, kinds, nout, with_params, numba_loops, lambda what: _warn_cache(_native.folder(), what)
         )
+    _USUAL_CALLS[loops[0]] = loops[0].usual
     return loops
 
 
@@ -435,6 +446,7 @@ def _shape(arrays):
 #: for ``size``, ``strides`` or ``flat`` builds an array each time (5 us per call of 1e3 speeds).
 _SCALARS = (float, np.floating)
 _F64 = np.dtype(np.float64)  # native float64 arrays share this descriptor: "is" before "==" (0.15 us)
+_NP_F64 = np.float64
 _USUAL: dict = {}  # number of arguments -> (steps, kinds) of the usual call (evaluate)
 
 
@@ -501,10 +513,22 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
         Shape ``(nout,) + broadcast shape``, float64.
     """
     first = arrays[0] if arrays else None
+    if out is None and backend is None and type(first) is np.ndarray and first.dtype is _F64 and first.ndim == 1:
+        lane = _LANES.get(fn)
+        if lane is not None and lane[0] == (len(arrays), nout, params is not None):
+            n = first.shape[0]
+            if 1 < n < 2048 and first.strides[0] and not _forced():
+                for a in arrays[1:]:
+                    if type(a) is not float and type(a) is not _NP_F64:
+                        break
+                else:
+                    out = np.empty((nout, n))
+                    lane[1](n, [*arrays], () if params is None else tuple(params), out)
+                    return out
     usual = type(first) is np.ndarray and first.ndim == 1 and first.dtype is _F64 and first.size > 1
     if usual:  # the usual call: speeds as a 1-D float64 array (not a broadcast one), the rest floats
         for a in arrays[1:]:
-            if type(a) is not float:
+            if type(a) is not float and type(a) is not _NP_F64:  # float64 scalars are typed as floats
                 usual = False
                 break
         usual = usual and first.strides[0] != 0
@@ -519,7 +543,9 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
         n, flats, steps, kinds = _flat(arrays, shape)
     if out is None:
         out = np.empty((nout, n))
+        quick = usual  # evaluate's own out, the speeds a 1-D float64 array, the rest floats
     else:
+        quick = False
         if not (
             isinstance(out, np.ndarray)
             and out.dtype == np.float64
@@ -545,7 +571,9 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
         engine = forced or _unforced_engine(n)  # backend_for(n), reading the environment once
         if engine == "python" and not forced and n > 8:
             # A small array in Python only pays while the function is cheap: time one element once
-            # per function (the same numbers either way) and compile when the loop would take longer.
+            # per function (the same numbers either way) and compile when the loop would take longer,
+            # or when this process has already spent that long on the function in Python (many small
+            # calls: a script's loop over 1e3 speeds goes compiled after ~0.25 s, not never).
             cost = _PY_COST.get(fn)
             if cost is None:
                 t0 = time.perf_counter()
@@ -554,8 +582,11 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
                     *((tuple(params),) if params is not None else ()),
                 )
                 cost = _PY_COST[fn] = time.perf_counter() - t0
-            if cost * n > PYTHON_BUDGET:
+            spent = _PY_SPENT.get(fn, 0.0) + cost * n
+            if spent > PYTHON_BUDGET:
                 engine = "numba"
+            else:
+                _PY_SPENT[fn] = spent
     with_params = params is not None
     if engine == "numba":
         serial, parallel = _kernels(fn, kinds, nout, with_params)
@@ -565,7 +596,13 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
         if threads:
             _call(parallel, n, flats, p, out)
         elif cost is not None and serial in _READY:  # the usual call: straight to the loop (what _call ends in)
-            serial(n, *flats, p, out)
+            usual_call = _USUAL_CALLS.get(serial) if quick else None
+            if usual_call is not None:
+                usual_call(n, flats, p, out)
+            else:
+                serial(n, *flats, p, out)
+            if quick and backend is None and n < 2048 and not forced:
+                _LANES[fn] = ((len(arrays), nout, with_params), usual_call or functools.partial(_lane_call, serial))
         elif cost is None and n >= 256 and bool(serial.signatures):  # compiled already: time it
             t0 = time.perf_counter()
             _call(serial, n, flats, p, out)
@@ -583,6 +620,10 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
     else:
         raise ValueError(f"backend must be one of {', '.join(BACKENDS)}; got {engine!r}")
     return out if len(shape) == 1 else out.reshape((nout,) + shape)  # out is (nout, n) here
+
+
+def _lane_call(serial, n, inputs, params, out):
+    serial(n, *inputs, params, out)
 
 
 def registered() -> list:
