@@ -27,6 +27,14 @@ STEMS = [f[0] for f in FIGURES]
 FORMATS = ["png", "pdf"]
 
 
+def _env():
+    env = dict(os.environ)
+    env["PYTHONPATH"] = str(ROOT / "src") + os.pathsep + env.get("PYTHONPATH", "")
+    for key in [k for k in env if k.startswith("COV_CORE_") or k == "COVERAGE_PROCESS_START"]:
+        env.pop(key)
+    return env
+
+
 def _tables(stems):
     return [(stem, _driver._TABLES[stem]({})) for stem in stems]
 
@@ -43,7 +51,19 @@ def _feed(helper, tables, rc, formats=FORMATS):
     return answers, helper.failed
 
 
-def test_a_worker_draws_the_same_bytes_as_this_process_with_its_rcparams():
+@pytest.fixture(params=["forked", "new-interpreter"])
+def mode(request, monkeypatch):
+    """Each test of a worker runs with a worker forked from this process (where it can be) and with a
+    new interpreter."""
+    if request.param == "forked":
+        if not _worker.can_fork():
+            pytest.skip("no fork here (not Linux, or another thread runs)")
+    else:
+        monkeypatch.setattr(_worker, "can_fork", lambda: False)
+    return request.param
+
+
+def test_a_worker_draws_the_same_bytes_as_this_process_with_its_rcparams(mode):
     import matplotlib as mpl
 
     tables = _tables(["fig06", "fig09"])
@@ -64,6 +84,47 @@ def test_a_worker_draws_the_same_bytes_as_this_process_with_its_rcparams():
         assert images == here_rc[stem], stem  # png and pdf, byte for byte
         assert images["png"] != here[stem]["png"]  # the rcParams did reach the worker
     assert h.proc.poll() is not None  # closed: the process has ended
+    assert isinstance(h.proc, subprocess.Popen) == (mode == "new-interpreter")
+
+
+_NEVER_RETURNS = """
+import collections, os, threading
+from microimpact.paper import _driver, _worker
+
+assert _worker.can_fork()
+parent = os.getpid()
+
+
+def serve(inp, out):
+    raise SystemExit(0)
+
+
+_worker._serve = serve
+h = _worker.Helper()
+h.start()
+if os.getpid() != parent:  # the bug the test is for: the worker came back here
+    os._exit(99)
+queue, answers = collections.deque([0]), {}
+tables = [("fig06", _driver._TABLES["fig06"]({}))]
+h.feed(queue, threading.Lock(), tables, _driver._rc_snapshot(), ["png"], answers.__setitem__)
+h.thread.join(30)
+print(type(h.proc).__name__, h.thread.is_alive(), answers, list(queue) + h.failed, h.proc.wait(timeout=30))
+h.close()
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="workers are forked on Linux")
+def test_a_forked_worker_never_returns_into_the_callers_code():
+    """Whatever ends a forked worker (here its loop raising SystemExit, as a ``sys.exit`` would) ends it
+    with ``os._exit``: it never unwinds into the code that forked it (its ``finally`` blocks would
+    remove the caller's staging folder). Were it to return, it would leave through ``os._exit(99)``.
+    (In a new interpreter: one that runs no other thread, as the command.)"""
+    proc = subprocess.run(
+        [sys.executable, "-c", _NEVER_RETURNS], capture_output=True, text=True, env=_env(), timeout=300
+    )
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    # the worker ended with status 1, holding no answer; the caller draws the figure
+    assert proc.stdout.split() == ["_Forked", "False", "{}", "[0]", "1"]
 
 
 def _files(out):
@@ -83,7 +144,7 @@ def _files(out):
     return files
 
 
-def test_two_workers_write_the_same_files_as_one(tmp_path):
+def test_two_workers_write_the_same_files_as_one(tmp_path, mode):
     one = paper.reproduce(tmp_path / "one", workers=1, progress=False)
     lines = []
     two = paper.reproduce(tmp_path / "two", workers=2, progress=lines.append)
@@ -93,6 +154,34 @@ def test_two_workers_write_the_same_files_as_one(tmp_path):
     assert one.figures.keys() == two.figures.keys() and list(two.figures) == STEMS
     # progress in the figures' order, whoever drew them
     assert [ln.split()[1] for ln in lines[: len(STEMS)]] == STEMS and lines[-1].startswith("[report]")
+
+
+_FORKED_FILES = """
+import sys
+from microimpact import paper
+from microimpact.paper import _worker
+
+assert _worker.can_fork()
+forks = []
+fork = _worker._fork
+_worker._fork = lambda: forks.append(1) or fork()
+paper.reproduce(sys.argv[1], workers=1, progress=False)  # this process's fonts are open when it forks
+paper.reproduce(sys.argv[2], workers=2, progress=False)
+print(len(forks))
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="workers are forked on Linux")
+def test_a_forked_worker_writes_the_same_files_as_one_process(tmp_path):
+    """In a process that runs no other thread (as the command; not this test process), the second
+    process is forked, after this one has drawn figures and opened its fonts: the same files."""
+    argv = [sys.executable, "-c", _FORKED_FILES, str(tmp_path / "one"), str(tmp_path / "two")]
+    proc = subprocess.run(argv, capture_output=True, text=True, env=_env(), timeout=600)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    assert proc.stdout.split() == ["1"]  # one worker, forked
+    a, b = _files(tmp_path / "one"), _files(tmp_path / "two")
+    assert sorted(a) == sorted(b) and len(a) == 3 * len(STEMS) + 4
+    assert [name for name in a if a[name] != b[name]] == []
 
 
 @pytest.fixture(scope="module")
@@ -194,6 +283,7 @@ def _marked(mark):
 @pytest.mark.parametrize("group", [False, True], ids=["to-the-command", "to-the-group"])
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
 def test_an_interrupt_ends_the_worker_with_the_command(tmp_path, sig, group):
+    # (the command runs no other thread: on Linux its worker is forked from it)
     """SIGINT or SIGTERM to the command (a process manager) or to its whole process group (a Ctrl-C
     at a terminal): exit 128 + signal, one line, nothing written, and no worker left running."""
     mark = f"MICROIMPACT_TEST_MARK={uuid.uuid4().hex}"
@@ -236,22 +326,70 @@ def test_an_interrupt_ends_the_worker_with_the_command(tmp_path, sig, group):
 
 
 @pytest.mark.parametrize(
-    ("cores", "load", "frozen", "expected"),
+    ("cores", "load", "frozen", "fork", "expected"),
     [
-        (1, 0.0, False, 1),
-        (2, 0.5, False, 2),
-        (2, 1.0, False, 2),
-        (2, 1.5, False, 1),
-        (8, 6.5, False, 2),
-        (4, 0.0, True, 1),
+        (1, 0.0, False, False, 1),
+        (2, 0.5, False, False, 2),
+        (2, 1.0, False, False, 2),
+        (2, 1.5, False, False, 1),
+        (8, 6.5, False, False, 2),
+        (4, 0.0, True, False, 1),
+        (1, 0.0, False, True, 1),
+        (2, 1.5, False, True, 2),
+        (2, 1.99, False, True, 2),
+        (2, 2.0, False, True, 1),
+        (2, 3.5, False, True, 1),
+        (4, 0.0, True, True, 2),
     ],
 )
-def test_default_workers_need_an_idle_core_and_a_python(monkeypatch, cores, load, frozen, expected):
-    """By default a second process only where one of the cores this process may use is idle (on a
-    busy machine its imports would only add work) and where sys.executable is a Python."""
+def test_default_workers_need_an_idle_core(monkeypatch, cores, load, frozen, fork, expected):
+    """By default a second process only where one of the cores this process may use is idle: a whole
+    core for a new interpreter (on a busy machine its imports would only add work; and only where
+    sys.executable is a Python), part of one for a worker forked from this process (it shares the
+    imports)."""
     monkeypatch.setattr(os, "sched_getaffinity", lambda pid: set(range(cores)), raising=False)
     monkeypatch.setattr(os, "getloadavg", lambda: (load, load, load), raising=False)
+    monkeypatch.setattr(_worker, "can_fork", lambda: fork)
     if frozen:
         monkeypatch.setattr(sys, "frozen", True, raising=False)
     assert _driver._processes(None) == expected
     assert _driver._processes(3) == 3 and _driver._processes(50) == len(STEMS)
+
+
+_SUBSET = """
+import io, sys
+from microimpact.paper._driver import defer_font_subsetting
+deferred = defer_font_subsetting() if sys.argv[1] == "defer" else False
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import matplotlib.backends.backend_pdf
+loaded_before = type(sys.modules["fontTools.subset"]) is type(sys)  # a lazy module's type is not yet a module's
+fig = plt.figure(figsize=(2, 1))
+fig.text(0.1, 0.5, "Type 42: $\\\\alpha_p$ 1.2 GPa")
+out = sys.stdout.buffer
+with plt.rc_context({"pdf.fonttype": 42, "ps.fonttype": 42}):
+    for fmt in ("pdf", "eps"):
+        buf = io.BytesIO()
+        fig.savefig(buf, format=fmt, metadata={"CreationDate": None} if fmt == "pdf" else None)
+        out.write(buf.getvalue() + b"\\n--8<--\\n")
+out.write(repr((deferred, loaded_before, type(sys.modules["fontTools.subset"]) is type(sys))).encode())
+"""
+
+
+def test_font_subsetting_deferred_embeds_the_same_type42_fonts():
+    """``paper`` defers ``fontTools.subset`` to its first use: a PDF and an EPS embedding a subset of a
+    TrueType font (Type 42) are the same bytes as with the module imported as matplotlib imports it,
+    and the module is loaded only when the first font is subset."""
+    env = dict(os.environ, SOURCE_DATE_EPOCH="0")
+    env["PYTHONPATH"] = str(ROOT / "src") + os.pathsep + env.get("PYTHONPATH", "")
+    runs = {}
+    for how in ("defer", "eager"):
+        proc = subprocess.run([sys.executable, "-c", _SUBSET, how], capture_output=True, env=env, timeout=300)
+        assert proc.returncode == 0, proc.stderr.decode()[-2000:]
+        *files, flags = proc.stdout.split(b"\n--8<--\n")
+        runs[how] = (files, flags.decode())
+    assert runs["defer"][1] == "(True, False, True)" and runs["eager"][1] == "(False, True, True)"
+    pdf, eps = runs["defer"][0]
+    assert b"/FontFile2" in pdf and b"/CIDFontType2" in pdf  # a TrueType subset, embedded
+    assert runs["defer"][0] == runs["eager"][0]

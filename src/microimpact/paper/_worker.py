@@ -1,13 +1,16 @@
 """Figures of :func:`~microimpact.paper.reproduce` drawn in a second process, beside the first.
 
-The worker (:func:`main`, started by :class:`Helper` as ``python -c`` code, never by hand) reads pickled
-jobs on its standard input and writes pickled answers to the standard output it was given; it
+The worker is forked from the caller where that is safe (:func:`can_fork`: Linux, no other thread),
+once the caller has imported matplotlib, so that it shares the caller's imports; elsewhere it is a
+new interpreter (:func:`main`, started by :class:`Helper` as ``python -c`` code, never by hand).
+Either reads pickled jobs from a pipe and writes pickled answers to another (:func:`_serve`); it
 writes no file. The first message is the caller's rcParams and image formats; each job is a
 figure's stem and table, answered with the figure's image bytes (:func:`._driver.draw_figure`, the same
 function the caller draws its own figures with: a figure's bytes do not depend on the process
 that draws it nor on the figures drawn before it) and the warnings raised while drawing, which
 the caller raises again. SIGINT is ignored (a Ctrl-C reaches the whole process group; the caller
-handles it and ends this process); an end of input ends it.
+handles it and ends this process); SIGTERM ends it at once; an end of input ends it. A forked worker
+leaves by ``os._exit`` whatever happens: it never runs the caller's code after the fork.
 """
 
 from __future__ import annotations
@@ -27,46 +30,146 @@ _READY = "ready"
 
 
 def main() -> int:
-    """The worker's loop (the child side)."""
+    """The worker's loop (the child side), in a new interpreter."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     # The answers go to the pipe that was the standard output; anything a library prints goes to stderr.
     out = os.fdopen(os.dup(1), "wb")
     os.dup2(2, 1)
     inp = sys.stdin.buffer
-    # what the first figure needs, before saying ready: pyplot and the default formats' printers
+    from ._driver import defer_font_subsetting
+
+    defer_font_subsetting()
+    _prepare()
+    pickle.dump(_READY, out)
+    out.flush()
+    return _serve(inp, out)
+
+
+def _prepare() -> None:
+    """What the first figure needs: pyplot and the default formats' printers."""
     import matplotlib.backends.backend_agg  # noqa: F401
     import matplotlib.backends.backend_pdf  # noqa: F401
 
     from ..figures import style
-    from ._driver import draw_figure
 
     style.pyplot()
-    pickle.dump(_READY, out)
-    out.flush()
+
+
+def _serve(inp, out) -> int:
+    """Answer jobs read from ``inp`` on ``out`` until the end of ``inp``."""
+    from ._driver import draw_figure, one_mathtext_cache
+
     try:
         rc, formats = pickle.load(inp)
     except EOFError:
         return 0
-    while True:
+    with one_mathtext_cache():  # mathtext parsed once for all the figures this process draws
+        while True:
+            try:
+                stem, table = pickle.load(inp)
+            except EOFError:
+                return 0
+            t0 = time.perf_counter()
+            try:
+                with warnings.catch_warnings(record=True) as caught:
+                    warnings.simplefilter("always")
+                    images = draw_figure(stem, table, formats, rc)
+                said = [(w.message, w.category, w.filename, w.lineno) for w in caught]
+                answer = ("ok", images, said, time.perf_counter() - t0)
+            except Exception as exc:  # the caller draws this figure itself, and meets the error there
+                answer = ("error", repr(exc), [], 0.0)
+            try:
+                pickle.dump(answer, out)
+            except Exception:  # an answer that does not pickle (a warning's odd message): the caller redraws
+                pickle.dump(("error", "answer not picklable", [], 0.0), out)
+            out.flush()
+
+
+# ----------------------------------------------------------------------------- a forked worker
+# The ends of the pipes this process keeps for its forked workers: a worker forked later closes them
+# (else a worker would not see the end of its input when this process ends).
+_KEPT_FDS: set = set()
+
+
+def can_fork() -> bool:
+    """True where a worker is forked from this process rather than started as a new interpreter: Linux
+    (macOS's system libraries do not survive a fork), and no thread but this one (a lock another
+    thread held at the fork would stay held in the worker)."""
+    return sys.platform.startswith("linux") and hasattr(os, "fork") and threading.active_count() == 1
+
+
+class _Forked:
+    """A forked worker, with the part of :class:`subprocess.Popen`'s interface :class:`Helper` uses."""
+
+    def __init__(self, pid, stdin, stdout):
+        self.pid, self.stdin, self.stdout = pid, stdin, stdout
+        self.returncode = None
+
+    def poll(self):
+        if self.returncode is None:
+            try:
+                pid, status = os.waitpid(self.pid, os.WNOHANG)
+            except ChildProcessError:  # pragma: no cover - reaped elsewhere
+                self.returncode = -1
+            else:
+                if pid:
+                    self.returncode = os.waitstatus_to_exitcode(status)
+        return self.returncode
+
+    def kill(self):
+        with contextlib.suppress(ProcessLookupError):
+            os.kill(self.pid, signal.SIGKILL)
+
+    def wait(self, timeout=None):
+        end = None if timeout is None else time.monotonic() + timeout
+        while self.poll() is None:
+            if end is not None and time.monotonic() > end:
+                raise subprocess.TimeoutExpired(f"worker {self.pid}", timeout)
+            time.sleep(0.005)
+        return self.returncode
+
+
+def _fork():
+    """A worker forked from this process once it has imported what the figures need: it shares this
+    process's imports (a new interpreter imports them again, about 1 CPU-s). The child answers jobs
+    until the end of its input and leaves with ``os._exit``: it never returns into this process's
+    code (its ``finally`` blocks, its staging folder), whatever happens."""
+    from ._driver import forget_open_fonts
+
+    _prepare()
+    jobs_r, jobs_w = os.pipe()
+    answers_r, answers_w = os.pipe()
+    for stream in (sys.stdout, sys.stderr):  # nothing buffered here is written twice
+        with contextlib.suppress(Exception):
+            stream.flush()
+    try:
+        pid = os.fork()
+    except OSError:
+        for fd in (jobs_r, jobs_w, answers_r, answers_w):
+            os.close(fd)
+        raise
+    if pid == 0:  # the worker
+        code = 1
         try:
-            stem, table = pickle.load(inp)
-        except EOFError:
-            return 0
-        t0 = time.perf_counter()
-        try:
-            with warnings.catch_warnings(record=True) as caught:
-                warnings.simplefilter("always")
-                images = draw_figure(stem, table, formats, rc)
-            said = [(w.message, w.category, w.filename, w.lineno) for w in caught]
-            answer = ("ok", images, said, time.perf_counter() - t0)
-        except Exception as exc:  # the caller draws this figure itself, and meets the error there
-            answer = ("error", repr(exc), [], 0.0)
-        try:
-            pickle.dump(answer, out)
-        except Exception:  # an answer that does not pickle (a warning's odd message): the caller redraws
-            pickle.dump(("error", "answer not picklable", [], 0.0), out)
-        out.flush()
+            signal.signal(signal.SIGINT, signal.SIG_IGN)  # a Ctrl-C reaches the group: the caller ends this
+            signal.signal(signal.SIGTERM, signal.SIG_DFL)
+            for fd in (jobs_w, answers_r, *_KEPT_FDS):
+                os.close(fd)
+            os.dup2(2, 1)  # the caller's standard output is its own
+            forget_open_fonts()  # their files' read position is the caller's too
+            out = os.fdopen(answers_w, "wb")
+            pickle.dump(_READY, out)
+            out.flush()
+            code = _serve(os.fdopen(jobs_r, "rb"), out)
+        except BaseException:  # noqa: BLE001 - whatever it is, this process leaves here
+            pass
+        finally:
+            os._exit(code)
+    os.close(jobs_r)
+    os.close(answers_w)
+    _KEPT_FDS.update((jobs_w, answers_r))
+    return _Forked(pid, os.fdopen(jobs_w, "wb"), os.fdopen(answers_r, "rb"))
 
 
 def _boot() -> str:
@@ -109,6 +212,12 @@ class Helper:
         self._stop = False
 
     def start(self) -> None:
+        if can_fork():
+            try:
+                self.proc = _fork()
+                return
+            except OSError:  # no fork here (a process limit): a new interpreter, as elsewhere
+                self.proc = None
         try:
             self.proc = subprocess.Popen(
                 [sys.executable, "-c", _boot()],
@@ -179,6 +288,8 @@ class Helper:
         if self.thread is not None:
             self.thread.join(1.0)
         for pipe in (proc.stdin, proc.stdout):
+            with contextlib.suppress(Exception):
+                _KEPT_FDS.discard(pipe.fileno())
             try:
                 pipe.close()
             except Exception:
