@@ -72,8 +72,9 @@ BACKENDS = ("numba", "python")
 SMALL = 4096
 #: From this many elements on, the compiled loop runs on all cores.
 PARALLEL_MIN = 50_000
-#: Estimated time [s] of the Python loop over a small array beyond which it is compiled instead
-#: (importing numba and loading a cached loop cost about 0.4 s).
+#: Estimated time [s] of Python loops over small arrays of one function beyond which it is
+#: compiled instead: one call's, or all the calls' in this process together (loading kept machine
+#: code costs about 0.1 s, importing numba and loading its cached loop about 0.4 s).
 PYTHON_BUDGET = 0.25
 #: Estimated work [s] of one array from which threads are used below PARALLEL_MIN (never below 2048).
 PARALLEL_WORK = 2e-4
