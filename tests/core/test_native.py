@@ -114,30 +114,28 @@ def test_calls_the_kept_loop_cannot_take_go_to_numba(tmp_path):
     assert len(used) == 1 and _same(out, want)
 
 
-def test_the_usual_call_checks_what_evaluate_leaves_to_it(tmp_path):
-    """``usual`` (evaluate's call on an ``out`` it allocated) checks only the first array and the
-    parameters: a strided or read-only column is taken in place; an unaligned one, parameters of
-    another count or type go to numba's loop; every answer is the core's."""
+def test_the_lane_checks_what_evaluate_leaves_to_it(tmp_path):
+    """A lane (evaluate's usual call, its result allocated inside) checks only the first array and
+    the parameters: a strided or read-only column is taken in place; an unaligned one, parameters
+    of another count or type go to numba's loop; every answer is the core's."""
     V = np.linspace(0.5, 90.0, 1500)
     params = (2e-6, 1.0)
     serial, _, used = _loops(tmp_path, visco.outcome, "assss", NOUT, len(params))
+    run = serial.lane(NOUT)
     want = _scalar(visco.outcome, [V] + [np.full(V.size, x) for x in ARGS], params)
     frozen = V.copy()
     frozen.setflags(write=False)
     for column in (V, np.repeat(V, 2)[::2], frozen, V[::-1].copy()[::-1]):
-        out = np.full((NOUT, V.size), -1.0)
-        serial.usual(V.size, [column, *ARGS], params, out)
-        assert not used and _same(out, want)
+        out = run(V.size, (column, *ARGS), params)
+        assert out.shape == (NOUT, V.size) and not used and _same(out, want)
     raw = np.zeros(V.nbytes + 1, dtype=np.uint8)
     odd = raw[1:].view(np.float64)
     odd[:] = V
-    out = np.full((NOUT, V.size), -1.0)
-    serial.usual(V.size, [odd, *ARGS], params, out)
-    assert len(used) == 1 and _same(out, want)
+    assert len(used) == 0 and _same(run(V.size, (odd, *ARGS), params), want) and len(used) == 1
     for wrong in ((2e-6,), (2e-6, 1)):
-        out = np.full((NOUT, V.size), -1.0)
         with pytest.raises(Exception):  # numba's loop refuses them as it always did
-            serial.usual(V.size, [V, *ARGS], wrong, out)
+            run(V.size, (V, *ARGS), wrong)
+    assert serial.lane(NOUT) is not None and _loops(tmp_path, visco.outcome, "aaaaa", NOUT, 2)[0].lane(NOUT) is None
 
 
 def test_the_loop_writes_its_status_slot_on_every_call(tmp_path):
@@ -146,10 +144,15 @@ def test_the_loop_writes_its_status_slot_on_every_call(tmp_path):
     module's one shared pair does."""
     serial, _, used = _loops(tmp_path, seed.restitution_at, "as", 1, None)
     V = np.linspace(0.5, 90.0, 100)
-    for call in (lambda out: serial(V.size, V, VY, (), out), lambda out: serial.usual(V.size, [V, VY], (), out)):
-        _native._SCRATCH_SLOTS[0] = 0x5A5A
+
+    def general():
         out = np.empty((1, V.size))
-        call(out)
+        serial(V.size, V, VY, (), out)
+        return out
+
+    for call in (general, lambda: serial.lane(1)(V.size, (V, VY), ())):
+        _native._SCRATCH_SLOTS[0] = 0x5A5A
+        out = call()
         assert _native._SCRATCH_SLOTS[0] is None  # NULL written, into memory the module owns
         assert _same(out[0], [seed.restitution_at(float(v), VY) for v in V])
     assert not used

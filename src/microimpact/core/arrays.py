@@ -84,10 +84,9 @@ _PY_SPENT: dict = {}  # estimated time [s] this process has spent on each functi
 _KERNELS: dict = {}
 _JITABLE_SET: set = set()  # JITABLE's functions as evaluate has met them (JITABLE is a list, in order)
 _READY: set = set()  # compiled loops called once already in this process (loaded or compiled)
-#: serial loop -> its entry for evaluate's usual call on an ``out`` evaluate allocated (a kept loop's
-#: :meth:`~microimpact.core._native.NativeLoop.usual`, which skips the checks that call needs not)
-_USUAL_CALLS: dict = {}
-#: ``fn`` -> ``((number of inputs, nout, with params), call(n, inputs, params, out))``: the serial
+#: serial kept loop -> its :meth:`~microimpact.core._native.NativeLoop.lane` (a lane's own call)
+_LANE_MAKERS: dict = {}
+#: ``fn`` -> ``((number of inputs, nout, with params), run(n, inputs, params) -> out)``: the serial
 #: loop :func:`evaluate`'s usual call on fewer than 2048 elements has reached once, ready and timed.
 #: Such a call can then only go there (the engine is "numba" once a loop is ready, threads start at
 #: 2048 elements), so the next ones skip the way to it (1 us of a call on 1e3 speeds, issue 25).
@@ -297,7 +296,7 @@ def _build(fn, kinds: str, nout: int, with_params: bool):
         loops = _native.pending(
             entry, fn, kinds, nout, with_params, numba_loops, lambda what: _warn_cache(_native.folder(), what)
         )
-    _USUAL_CALLS[loops[0]] = loops[0].usual
+    _LANE_MAKERS[loops[0]] = loops[0].lane
     return loops
 
 
@@ -522,9 +521,7 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
                     if type(a) is not float and type(a) is not _NP_F64:
                         break
                 else:
-                    out = np.empty((nout, n))
-                    lane[1](n, [*arrays], () if params is None else tuple(params), out)
-                    return out
+                    return lane[1](n, arrays, () if params is None else tuple(params))
     usual = type(first) is np.ndarray and first.ndim == 1 and first.dtype is _F64 and first.size > 1
     if usual:  # the usual call: speeds as a 1-D float64 array (not a broadcast one), the rest floats
         for a in arrays[1:]:
@@ -596,13 +593,10 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
         if threads:
             _call(parallel, n, flats, p, out)
         elif cost is not None and serial in _READY:  # the usual call: straight to the loop (what _call ends in)
-            usual_call = _USUAL_CALLS.get(serial) if quick else None
-            if usual_call is not None:
-                usual_call(n, flats, p, out)
-            else:
-                serial(n, *flats, p, out)
+            serial(n, *flats, p, out)
             if quick and backend is None and n < 2048 and not forced:
-                _LANES[fn] = ((len(arrays), nout, with_params), usual_call or functools.partial(_lane_call, serial))
+                run = _LANE_MAKERS[serial](nout) if serial in _LANE_MAKERS else None
+                _LANES[fn] = ((len(arrays), nout, with_params), run or functools.partial(_lane_call, serial, nout))
         elif cost is None and n >= 256 and bool(serial.signatures):  # compiled already: time it
             t0 = time.perf_counter()
             _call(serial, n, flats, p, out)
@@ -622,8 +616,10 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
     return out if len(shape) == 1 else out.reshape((nout,) + shape)  # out is (nout, n) here
 
 
-def _lane_call(serial, n, inputs, params, out):
+def _lane_call(serial, nout, n, inputs, params):
+    out = np.empty((nout, n))
     serial(n, *inputs, params, out)
+    return out
 
 
 def registered() -> list:
