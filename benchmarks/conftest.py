@@ -426,6 +426,9 @@ def _entry(key, rec: Record) -> dict | None:
             one = t.get("end to end, one process")
             if one:
                 rows += [("one process (--workers 1)", f"{_fmt_t(one)} = {one / mpl:.3g}x")]
+        if m.get("load average (1 min)"):
+            lo, hi = m["load average (1 min)"]
+            rows += [("1-minute load average during the runs", f"{lo:.2f}-{hi:.2f}")]
     if not headline:
         headline = "incomplete: " + ", ".join(sorted(t)) if t else "no timings"
     return {
