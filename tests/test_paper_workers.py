@@ -393,3 +393,24 @@ def test_font_subsetting_deferred_embeds_the_same_type42_fonts():
     pdf, eps = runs["defer"][0]
     assert b"/FontFile2" in pdf and b"/CIDFontType2" in pdf  # a TrueType subset, embedded
     assert runs["defer"][0] == runs["eager"][0]
+
+
+def test_no_fork_once_numbas_threading_layer_has_started():
+    """numba's threads are not Python's (``threading.active_count`` does not see them) and its GNU
+    OpenMP layer is not fork-safe: once a parallel loop has run, workers start as new interpreters."""
+    pytest.importorskip("numba")
+    code = """
+import sys
+import numpy as np
+from microimpact.core import arrays
+from microimpact.core.models import thornton_ning_2016 as seed
+from microimpact.paper import _worker
+before = _worker.can_fork()
+serial, parallel = arrays._numba_loops(seed.restitution_at, "as", 1, False)
+V = np.linspace(1.0, 100.0, 60000)
+out = np.empty((1, V.size))
+parallel(V.size, V, 0.37, (), out)
+print(before == sys.platform.startswith("linux"), _worker.can_fork())
+"""
+    out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True).stdout.split()
+    assert out == ["True", "False"]

@@ -95,8 +95,13 @@ _KEPT_FDS: set = set()
 def can_fork() -> bool:
     """True where a worker is forked from this process rather than started as a new interpreter: Linux
     (macOS's system libraries do not survive a fork), and no thread but this one (a lock another
-    thread held at the fork would stay held in the worker)."""
-    return sys.platform.startswith("linux") and hasattr(os, "fork") and threading.active_count() == 1
+    thread held at the fork would stay held in the worker), numba's threading layer included: its
+    threads are not Python's, and of its layers only ``workqueue`` and TBB are fork-safe on Linux,
+    GNU OpenMP is not (numba 0.68, ``numba/np/ufunc/parallel.py``, the "forksafe" choice). So no
+    fork once that layer has started (a compiled loop over 50,000 values or more)."""
+    parallel = sys.modules.get("numba.np.ufunc.parallel")
+    started = bool(getattr(parallel, "_is_initialized", False))
+    return sys.platform.startswith("linux") and hasattr(os, "fork") and threading.active_count() == 1 and not started
 
 
 class _Forked:
