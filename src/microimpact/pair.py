@@ -154,7 +154,8 @@ def _ignored(category) -> bool:
 
 
 def _scalar_or_array(x):
-    x = np.asarray(x)
+    if type(x) is not np.ndarray:
+        x = np.asarray(x)
     return x[()] if x.ndim == 0 else x
 
 
@@ -1205,8 +1206,7 @@ class ContactPair:
             return np.float64(_seed.restitution_at(V, self.yield_velocity))
         # the pair's own V_y was checked with the pair: only the speeds are (a fixed cost per call)
         V = check_velocity("velocity", velocity)
-        e = _evaluate(_seed.restitution_at, V, self.yield_velocity)[0]
-        return e if e.ndim else e[()]
+        return _scalar_or_array(_evaluate(_seed.restitution_at, V, self.yield_velocity)[0])
 
     def dem_time_step(self, velocity, *, model: str = models.DEFAULT, steps_per_contact=50, **params) -> float:
         """A DEM time step [s] that resolves the contact: the shortest contact time of ``model`` at

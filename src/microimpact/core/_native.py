@@ -349,8 +349,6 @@ def _function(header: dict, obj: bytes, kinds: str, nout: int):
     name it needs that this process lacks)."""
     if header.get("kinds") != kinds or header.get("nout") != nout or header.get("host") != _host():
         return None
-    import ctypes
-
     import llvmlite.binding as ll
 
     # every name the code takes from outside must resolve (else MCJIT ends the process): the loop's
@@ -466,8 +464,6 @@ class _Shared:
         self.usual = 0
 
     def ready(self, function, nparams):
-        import ctypes
-
         import numpy as np
 
         self.f8, self.ndarray = np.dtype(np.float64), np.ndarray
@@ -475,6 +471,17 @@ class _Shared:
         self.function, self.nparams, self.state = function, nparams, "ready"
         #: how many inputs the usual call (one array, then floats) has, else 0 (see NativeLoop.lane)
         self.usual = len(self.kinds) if self.kinds[:1] == "a" and "a" not in self.kinds[1:] else 0
+
+    def params_pointer(self, params):
+        """What the loop takes for ``params``: a C array of them, None for a loop that takes none (or
+        whose parameters are none: never read then), or :data:`_REFUSED` (another count, or a
+        parameter that is no float: numba's loop)."""
+        n = self.nparams
+        if not params:
+            return None if not n else _REFUSED
+        if n and len(params) == n and all(isinstance(x, float) for x in params):
+            return self.params_type(*params)
+        return _REFUSED
 
     def prepare(self, params) -> None:
         """First call of a pending loop: load the entry another process wrote meanwhile, or compile
@@ -510,7 +517,7 @@ class _Shared:
 
 _addressof, _c_char = ctypes.addressof, ctypes.c_char
 _Slots = ctypes.c_void_p * 2
-#: Status slots for serial calls. numba's convention has the loop write its return value there
+#: Status slots for every call. numba's convention has the loop write its return value there
 #: on every call (a NULL for these loops), its exception when it fails: they must stay allocated
 #: while it runs (a pair freed before the call was overwritten: memory corruption, which a file
 #: name overwritten by eight zero bytes in the full suite showed).
@@ -518,6 +525,8 @@ _Slots = ctypes.c_void_p * 2
 #: write into this one pair (allocating a pair per call was 0.1 us, issue 25).
 _SCRATCH_SLOTS = _Slots()
 _SCRATCH = _addressof(_SCRATCH_SLOTS)
+#: :meth:`_Shared.params_pointer` for parameters the loop cannot take.
+_REFUSED = object()
 
 
 def _address(a) -> int:
@@ -561,14 +570,9 @@ class NativeLoop:
         a quarter of what the call added around its loop, issue 25)."""
         s = self._s
         f8, ndarray = s.f8, s.ndarray
-        if s.nparams is None:
-            if params:
-                return None
-            pp = None
-        elif len(params) != s.nparams or not all(isinstance(x, float) for x in params):
+        pp = s.params_pointer(params)
+        if pp is _REFUSED:
             return None
-        else:
-            pp = s.params_type(*params) if params else None
         offsets, args = [], []
         for c, a in zip(s.kinds, inputs):
             if c == "a":
@@ -608,27 +612,24 @@ class NativeLoop:
             return None
         import numpy as np
 
-        function, f8, nparams, params_type, count = s.function, s.f8, s.nparams, s.params_type, s.usual
-        empty, call, addressof, view, scratch = np.empty, self.__call__, _addressof, _c_char.from_buffer, _SCRATCH
-        no_params = params_type() if nparams == 0 else None  # never read by the loop: one for every call
+        function, f8, count, pointer, takes = s.function, s.f8, s.usual, s.params_pointer, bool(s.nparams)
+        empty, call, address_of, addressof, view, scratch = (
+            np.empty,
+            self.__call__,
+            _address,
+            _addressof,
+            _c_char.from_buffer,
+            _SCRATCH,
+        )
 
         def run(n, inputs, params):
             out = empty((nout, n))
             first = inputs[0]
-            try:
-                address = addressof(view(first))
-            except (TypeError, ValueError, BufferError):
-                address = first.__array_interface__["data"][0]  # read-only
-            stride = first.strides[0]
+            address, stride = address_of(first), first.strides[0]
             if not (address | stride) & 7 and first.dtype is f8 and len(inputs) == count:
-                if not params:
-                    pp = None if nparams is None else no_params if nparams == 0 else False
-                elif nparams and len(params) == nparams and all(isinstance(x, float) for x in params):
-                    pp = params_type(*params)
-                else:
-                    pp = False
-                if pp is not False:
-                    a = addressof(view(out))
+                pp = pointer(params) if params or takes else None  # no parameters for a loop that takes none
+                if pp is not _REFUSED:
+                    a = addressof(view(out))  # out is this function's own: writeable, C-contiguous
                     if function(scratch, scratch + 8, n, address, stride >> 3, *inputs[1:], pp, a, n, 1) == 0:
                         return out
             call(n, *inputs, params, out)  # any other call, or an error in the loop (numba's loop raises it)
@@ -660,8 +661,7 @@ class NativeLoop:
                     for pos in offsets:
                         a[pos] += lo * a[pos + 1] * 8
                     a[-3] += lo * a[-1] * 8
-                    ret, exc = ctypes.c_void_p(), ctypes.c_void_p()
-                    status[k] = s.function(ctypes.byref(ret), ctypes.byref(exc), hi - lo, *a)
+                    status[k] = s.function(_SCRATCH, _SCRATCH + 8, hi - lo, *a)
 
                 workers = [threading.Thread(target=run, args=(k,), daemon=True) for k in range(1, blocks)]
                 try:

@@ -85,8 +85,6 @@ _PY_SPENT: dict = {}  # estimated time [s] this process has spent on each functi
 _KERNELS: dict = {}
 _JITABLE_SET: set = set()  # JITABLE's functions as evaluate has met them (JITABLE is a list, in order)
 _READY: set = set()  # compiled loops called once already in this process (loaded or compiled)
-#: serial kept loop -> its :meth:`~microimpact.core._native.NativeLoop.lane` (a lane's own call)
-_LANE_MAKERS: dict = {}
 #: ``fn`` -> ``((number of inputs, nout, with params), run(n, inputs, params) -> out)``: the serial
 #: loop :func:`evaluate`'s usual call on fewer than 2048 elements has reached once, ready and timed.
 #: Such a call can then only go there (the engine is "numba" once a loop is ready, threads start at
@@ -297,7 +295,6 @@ def _build(fn, kinds: str, nout: int, with_params: bool):
         loops = _native.pending(
             entry, fn, kinds, nout, with_params, numba_loops, lambda what: _warn_cache(_native.folder(), what)
         )
-    _LANE_MAKERS[loops[0]] = loops[0].lane
     return loops
 
 
@@ -513,16 +510,6 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
         Shape ``(nout,) + broadcast shape``, float64.
     """
     first = arrays[0] if arrays else None
-    if out is None and backend is None and type(first) is np.ndarray and first.dtype is _F64 and first.ndim == 1:
-        lane = _LANES.get(fn)
-        if lane is not None and lane[0] == (len(arrays), nout, params is not None):
-            n = first.shape[0]
-            if 1 < n < 2048 and first.strides[0] and not _forced():
-                for a in arrays[1:]:
-                    if type(a) is not float and type(a) is not _NP_F64:
-                        break
-                else:
-                    return lane[1](n, arrays, () if params is None else tuple(params))
     usual = type(first) is np.ndarray and first.ndim == 1 and first.dtype is _F64 and first.size > 1
     if usual:  # the usual call: speeds as a 1-D float64 array (not a broadcast one), the rest floats
         for a in arrays[1:]:
@@ -530,6 +517,11 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
                 usual = False
                 break
         usual = usual and first.strides[0] != 0
+        if usual and out is None and backend is None:  # the lane, once the loop is known (_LANES)
+            lane = _LANES.get(fn)
+            if lane is not None and lane[0] == (len(arrays), nout, params is not None):
+                if first.shape[0] < 2048 and not _forced():
+                    return lane[1](first.shape[0], arrays, () if params is None else tuple(params))
     if usual:
         shape = first.shape
         n, flats = first.size, [*arrays]
@@ -596,7 +588,8 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
         elif cost is not None and serial in _READY:  # the usual call: straight to the loop (what _call ends in)
             serial(n, *flats, p, out)
             if quick and backend is None and n < 2048 and not forced:
-                run = _LANE_MAKERS[serial](nout) if serial in _LANE_MAKERS else None
+                make = getattr(serial, "lane", None)  # a kept loop's own lane (core._native)
+                run = make(nout) if make is not None else None
                 _LANES[fn] = ((len(arrays), nout, with_params), run or functools.partial(_lane_call, serial, nout))
         elif cost is None and n >= 256 and bool(serial.signatures):  # compiled already: time it
             t0 = time.perf_counter()

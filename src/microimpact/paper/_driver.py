@@ -153,9 +153,8 @@ class PaperReport:
 
 
 def _progress_fn(progress):
-    if callable(progress):
-        return (lambda msg, end="\n": progress(msg) if end == "\n" else None), False
-    return (lambda msg, end="\n": None), False
+    """One line per figure to ``progress`` where it is a callable, else nowhere (the bar shows it)."""
+    return progress if callable(progress) else (lambda msg: None)
 
 
 def _normalize_data(data):
@@ -426,7 +425,7 @@ def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progre
     n_proc = _processes(workers)
     inputs = [v for v in (data or {}).values() if isinstance(v, (str, os.PathLike))]
     data = _normalize_data(data)
-    emit, _inline = _progress_fn(progress)
+    emit = _progress_fn(progress)
     from ..io import check_output_path
 
     out = Path(out_dir)

@@ -31,8 +31,7 @@ _READY = "ready"
 
 def main() -> int:
     """The worker's loop (the child side), in a new interpreter."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    _worker_signals()
     # The answers go to the pipe that was the standard output; anything a library prints goes to stderr.
     out = os.fdopen(os.dup(1), "wb")
     os.dup2(2, 1)
@@ -41,6 +40,18 @@ def main() -> int:
 
     defer_font_subsetting()
     _prepare()
+    return _ready_then_serve(inp, out)
+
+
+def _worker_signals() -> None:
+    """SIGINT ignored (a Ctrl-C reaches the whole process group: the caller ends this process);
+    SIGTERM ends it at once."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+def _ready_then_serve(inp, out) -> int:
+    """Say the worker is ready, then answer jobs (:func:`_serve`)."""
     pickle.dump(_READY, out)
     out.flush()
     return _serve(inp, out)
@@ -157,16 +168,12 @@ def _fork():
     if pid == 0:  # the worker
         code = 1
         try:
-            signal.signal(signal.SIGINT, signal.SIG_IGN)  # a Ctrl-C reaches the group: the caller ends this
-            signal.signal(signal.SIGTERM, signal.SIG_DFL)
+            _worker_signals()
             for fd in (jobs_w, answers_r, *_KEPT_FDS):
                 os.close(fd)
             os.dup2(2, 1)  # the caller's standard output is its own
             forget_open_fonts()  # their files' read position is the caller's too
-            out = os.fdopen(answers_w, "wb")
-            pickle.dump(_READY, out)
-            out.flush()
-            code = _serve(os.fdopen(jobs_r, "rb"), out)
+            code = _ready_then_serve(os.fdopen(jobs_r, "rb"), os.fdopen(answers_w, "wb"))
         except BaseException:  # noqa: BLE001 - whatever it is, this process leaves here
             pass
         finally:
