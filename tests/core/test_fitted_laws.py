@@ -285,6 +285,7 @@ def test_energy_balance_against_scipy_quad(mod, law, twin, ey):
 
     if mod is ke and twin:
         pytest.skip("Kogut & Etsion: one frame")
+    tight = dict(epsabs=0.0, epsrel=2e-14, limit=200)
     Y = E0 / 10.0**ey
     p = _params(mod, Y=Y, twin=twin)
     V1, a1 = _switch_speed(mod, law, E0, R0, M0, p)
@@ -296,14 +297,14 @@ def test_energy_balance_against_scipy_quad(mod, law, twin, ey):
         astar = o["max_approach"]
         pieces = [0.0] + [b for b in breaks if b < astar] + [astar]
         W = sum(
-            quad(lambda a: fl.loading_force(law, a, E0, R0, Y, 0.3, twin), lo, hi, epsabs=0.0, epsrel=2e-14, limit=200)[0]
+            quad(lambda a: fl.loading_force(law, a, E0, R0, Y, 0.3, twin), lo, hi, **tight)[0]
             for lo, hi in zip(pieces[:-1], pieces[1:])
         )
         assert W == pytest.approx(0.5 * M0 * V * V, rel=1e-12)
         if o["restitution"] == 1.0:  # the band past a jump: reversible
             continue
         d, Rb = fl.unloading(law, astar, E0, R0, Y, 0.3, twin)[1:3]
-        Wu = quad(lambda a: hertz.force(a - d, E0, Rb), max(d, 0.0), astar, epsabs=0.0, epsrel=2e-14, limit=200)[0]
+        Wu = quad(lambda a: hertz.force(a - d, E0, Rb), max(d, 0.0), astar, **tight)[0]
         assert o["restitution"] == pytest.approx(math.sqrt(Wu / W), rel=1e-12)
         checked += 1
     assert checked >= 4
