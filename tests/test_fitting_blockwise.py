@@ -254,3 +254,39 @@ def test_viscoelastic_e_by_groups_is_the_outcomes_field_bit_for_bit(monkeypatch,
     np.testing.assert_array_equal(e, full)
     alone = evaluate(mod.restitution_only, V, E, R, m, p_y, params=params)[0]
     np.testing.assert_array_equal(alone, full)
+
+
+@pytest.mark.parametrize(
+    "model, name, params",
+    [
+        ("thornton_ning_1998_adhesive_plastic", "limiting_pressure", {"work_of_adhesion": 0.001}),
+        ("liggghts_thornton_ning", "k", None),
+        ("liggghts_thornton_ning", "density", None),
+        ("thornton_ning_1998_adhesive_plastic", "yield_velocity", {"work_of_adhesion": 0.001}),
+        ("liggghts_thornton_ning", "effective_modulus", None),
+        ("hertz_viscoelastic", "effective_modulus", {"dissipative_constant": 1e-9}),
+        ("kogut_etsion_ekk", "density", {"yield_strength": 5e7}),
+    ],
+)
+def test_a_fits_evaluations_skip_the_pair_and_give_its_numbers(model, name, params):
+    """A fit of a pair parameter evaluates e from the pair's four values (values_at: the
+    effective_values call that ContactPair.vary makes) rather than a validated pair per evaluation,
+    and its start's grid in one array call (restitution_rows): both bit for bit the route through
+    the pair, at every u of a grid and beyond it."""
+    from microimpact.fitting._models import FitModel, restitution_of
+
+    mdl = FitModel(SILICON, (name,), model=model, model_params=params, yield_strength=1e8)
+    V = np.array([0.5, 3.0, 7.0, 7.0, 20.0, 60.0, 150.0])
+    us = np.linspace(-3.0, 3.0, 13)[:, None]
+    rows = mdl.restitution_rows(us, V)
+    for u, row in zip(us, rows):
+        pair, own = mdl.split(u)
+        assert mdl.values_at(u[0]) == (
+            pair.effective_modulus,
+            pair.effective_radius,
+            pair.effective_mass,
+            pair.limiting_pressure,
+        )
+        through_pair = restitution_of(model, pair, own, V)
+        np.testing.assert_array_equal(mdl.restitution(u, V), through_pair)
+        np.testing.assert_array_equal(row, through_pair)

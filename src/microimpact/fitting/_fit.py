@@ -202,12 +202,10 @@ def fit_data(
                 ]
             )
         else:
-            lad = []
-            for vy in vy_grid:
-                ug = u0.copy()
-                ug[0] = float(mdl.u_of_yield_velocity(vy))
-                lad.append(np.sum(np.abs((es - mdl.restitution(ug, Vs)) * ws)))
-            lad = np.asarray(lad)
+            us = np.tile(u0, (vy_grid.size, 1))
+            us[:, 0] = [float(mdl.u_of_yield_velocity(vy)) for vy in vy_grid]
+            rows = mdl.restitution_rows(us, Vs)  # one array call where only the pair's values change
+            lad = np.asarray([np.sum(np.abs((es - row) * ws)) for row in rows])
         u0[0] = float(mdl.u_of_yield_velocity(vy_grid[int(np.argmin(lad))]))
 
     if f_scale is None:

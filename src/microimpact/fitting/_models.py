@@ -127,13 +127,21 @@ def _outcome_of(model_name, pair, params, V, fields=("restitution", "rebound_vel
     )
     params = tuple(float(x) for x in params)
     if fields == ("restitution",):  # what fitting and ranking compare: e alone (the model's hook)
-        if _group_hooks(module) is not None and np.all(V > 0):
-            return {"restitution": _restitution_by_group(module, V, E, R, m, p_y, params)}
-        _compile_if_costly(module, V.size, outcome=module.restitution_only is None)
-        return {"restitution": np.asarray(restitution_arrays(module, V.ravel(), E, R, m, p_y, params)).reshape(V.shape)}
+        return {"restitution": restitution_of_values(module, V.ravel(), E, R, m, p_y, params).reshape(V.shape)}
     _compile_if_costly(module, V.size, outcome=True)
     out = outcome_arrays(module, V.ravel(), E, R, m, p_y, params)
     return {f: np.asarray(out[f], dtype=float).reshape(V.shape) for f in fields}
+
+
+def restitution_of_values(module, V, E, R, m, p_y, params):
+    """``e`` [-] of a registry model at the speeds ``V`` [m/s] (1-D) for the pair's values ``E*`` [Pa],
+    ``R*`` [m], ``m*`` [kg], ``p_y`` [Pa] (floats, or arrays like ``V``): once per distinct group where
+    the model declares one, else its ``restitution_only`` hook, else its outcome's field; compiled
+    where its declared cost says so (:func:`_compile_if_costly`)."""
+    if _group_hooks(module) is not None and np.all(V > 0):
+        return _restitution_by_group(module, V, E, R, m, p_y, params)
+    _compile_if_costly(module, V.size, outcome=module.restitution_only is None)
+    return np.asarray(restitution_arrays(module, V, E, R, m, p_y, params))
 
 
 def _group_hooks(module):
@@ -312,18 +320,37 @@ class FitModel:
             return self.base.vary(yield_velocity=theta)
         return self.pair.vary(**{self.name: theta})
 
+    def values_at(self, u):
+        """``(E*, R*, m*, p_y)`` [Pa, m, kg, Pa] of :meth:`pair_at` without building the pair: the same
+        :meth:`ContactPair.effective_values <microimpact.pair.ContactPair.effective_values>` call
+        that :meth:`ContactPair.vary <microimpact.pair.ContactPair.vary>` makes, so the same floats
+        (a fit's evaluations and its start's grid need only these; a pair costs its validation)."""
+        theta = float(self.ref * math.exp(float(u)))
+        if self.name == "k":
+            values = self.pair.effective_values(limiting_pressure=theta * self.yield_strength)
+        elif self.name == "yield_velocity":
+            values = self.base.effective_values(yield_velocity=theta)
+        else:
+            values = self.pair.effective_values(**{self.name: theta})
+        return tuple(float(x) for x in values)
+
+    def _by_values(self):
+        """True where ``e`` needs the pair's four values only (a registry model without the face's
+        ``e(V, V_y)``), so that :meth:`restitution` can skip building a pair."""
+        return self.name is not None and self.model not in _rules() and fast_restitution(self.model) is None
+
+    def _own_params(self, u):
+        vals = dict(self.values)
+        i = 0 if self.name is None else 1
+        for j, n in enumerate(self.own_free):
+            vals[n] = float(self.refs[i + j] * math.exp(float(u[i + j])))
+        return tuple(vals[n] for n in self.own)
+
     def split(self, u):
         """``(pair, params)`` at ``u``: the pair and the model's parameter tuple."""
         u = np.atleast_1d(np.asarray(u, dtype=float))
-        i = 0
-        pair = self.pair
-        if self.name is not None:
-            pair = self.pair_at(u[0])
-            i = 1
-        vals = dict(self.values)
-        for j, n in enumerate(self.own_free):
-            vals[n] = float(self.refs[i + j] * math.exp(float(u[i + j])))
-        return pair, tuple(vals[n] for n in self.own)
+        pair = self.pair if self.name is None else self.pair_at(u[0])
+        return pair, self._own_params(u)
 
     def theta(self, u):
         """Free parameters in their own units at ``u``."""
@@ -340,8 +367,26 @@ class FitModel:
         if self.name is not None and not self.own and fast_restitution(self.model) is not None:
             u0 = float(np.atleast_1d(u)[0])
             return restitution_of(self.model, _YieldOnly(self.ref_vy * math.exp(self.exponent * u0)), (), V)
+        if self._by_values():
+            u = np.atleast_1d(np.asarray(u, dtype=float))
+            V = np.asarray(V, dtype=float)
+            values = self.values_at(u[0])
+            e = restitution_of_values(model_module(self.model), V.ravel(), *values, self._own_params(u))
+            return e.reshape(V.shape)
         pair, params = self.split(u)
         return restitution_of(self.model, pair, params, V)
+
+    def restitution_rows(self, us, V):
+        """``e(V)`` [-] at each row ``u`` of ``us`` (a 2-D array: one row per point of the start's
+        grid), bit for bit :meth:`restitution` at each: in one array call where only the pair's
+        values change from row to row (:meth:`values_at`)."""
+        us = np.asarray(us, dtype=float)
+        V = np.asarray(V, dtype=float).ravel()
+        if not self._by_values() or not np.array_equal(us[:, 1:], np.broadcast_to(us[:1, 1:], us[:, 1:].shape)):
+            return np.array([self.restitution(u, V) for u in us])
+        values = np.repeat(np.array([self.values_at(u[0]) for u in us]), V.size, axis=0)
+        e = restitution_of_values(model_module(self.model), np.tile(V, len(us)), *values.T, self._own_params(us[0]))
+        return e.reshape(len(us), V.size)
 
     def outcome(self, u, V, fields=("restitution", "rebound_velocity", "contact_time")):
         pair, params = self.split(u)
