@@ -231,3 +231,26 @@ def test_e_by_distinct_groups_is_the_outcomes_field_bit_for_bit(monkeypatch, par
     e = _models._restitution_by_group(mod, V, E, R, m, p_y, params)
     np.testing.assert_array_equal(e, full)
     assert np.unique(g).size <= 10 < V.size  # the point of it: a handful of integrations, not one per speed
+
+
+@pytest.mark.parametrize("backend", ["python", "numba"])
+@pytest.mark.parametrize("params", [(0.0, 1.0), (1e-9, 1.0), (1e-9, 0.0), (3e-7, 1.0), (3e-6, 0.0), (-1.0, 1.0)])
+def test_viscoelastic_e_by_groups_is_the_outcomes_field_bit_for_bit(monkeypatch, params, backend):
+    """The viscoelastic law's e is one function of kappa = A/T (distinct at each speed): fitting
+    integrates once per distinct kappa of the data and must give the outcome's field exactly, on
+    either engine, with the force clipped or not, where a particle is captured (e = 0 without
+    clipping at large kappa: 6 of these speeds with A = 3e-6 s) and for out-of-bounds parameters (NaN, as the outcome)."""
+    from microimpact.core import models as zoo
+    from microimpact.impact import outcome_arrays
+
+    monkeypatch.setenv("MICROIMPACT_BACKEND", backend)
+    mod = zoo.get("hertz_viscoelastic")
+    V = np.concatenate([np.geomspace(1e-3, 1e3, 40), [7.0, 7.0, 50.0]])
+    E, R, m, p_y = (
+        np.asarray(x) for x in (SILICON.effective_modulus, SILICON.effective_radius, SILICON.effective_mass, 1e8)
+    )
+    full = outcome_arrays(mod, V, E, R, m, p_y, params)["restitution"]
+    e = _models._restitution_by_group(mod, V, E, R, m, p_y, params)
+    np.testing.assert_array_equal(e, full)
+    alone = evaluate(mod.restitution_only, V, E, R, m, p_y, params=params)[0]
+    np.testing.assert_array_equal(alone, full)

@@ -33,6 +33,7 @@ PARAMS: dict = {
     "kogut_etsion_ekk": (1e6, 0.3),  # Y [Pa], nu
     "jkr_elastic_adhesive": (0.05,),  # gamma [J/m^2]
     "thornton_ning_1998_elastic_adhesive": (0.05,),  # G [J/m^2]
+    "hertz_viscoelastic": (1e-7, 1.0),  # A [s]: kappa from ~0 to beyond 1 in the boxes; force clipped
 }
 
 HOOKED = [name for name in zoo.available() if zoo.get(name).restitution_only is not None]

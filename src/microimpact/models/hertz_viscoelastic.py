@@ -41,7 +41,7 @@ def _dissipative_constant(V, e_t, limit, pv):
             return 0.0
 
         def f(kappa):
-            return law.scaled_impact(kappa, limit == 1.0)[0] - e0
+            return law.scaled_restitution(kappa, limit == 1.0, 0.5) - e0
 
         hi = 1.0
         while f(hi) > 0.0:

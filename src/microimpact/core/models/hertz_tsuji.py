@@ -54,7 +54,7 @@ from .. import hertz
 from .._jit import jitable
 from . import LIMIT_FORCE, Parameter, checks, deprecated_names
 from ._common import dem_outcome, in_bounds, nan_outcome
-from .hertz_viscoelastic import scaled_damped_hertz
+from .hertz_viscoelastic import scaled_damped_hertz, scaled_restitution
 
 NAME = "hertz_tsuji"
 TITLE = "Hertz with Tsuji's nonlinear damping (LAMMPS damping tsuji/coeff_restitution, LIGGGHTS hertz)"
@@ -140,7 +140,7 @@ def restitution_of_group(kappa, params):
     ``restitution`` of :func:`outcome`, bit for bit; NaN for parameters out of bounds."""
     if not in_bounds(params, BOUNDS):
         return math.nan
-    return scaled_damped_hertz(kappa, params[1] == 1.0, 0.25)[0]
+    return scaled_restitution(kappa, params[1] == 1.0, 0.25)
 
 
 @jitable
