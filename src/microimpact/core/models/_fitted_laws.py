@@ -21,7 +21,9 @@ Jackson & Green's exponent ``B`` (``S_y/E``) and hardness (``a/R``) differ.
 
 Quadrature: composite Gauss-Legendre (24 points a panel) in ``ln alpha``, where every force here
 is smooth; the loading time near the maximum approach in ``s = (alpha* - alpha)^(1/2)``, which
-removes the turning point's inverse square root.
+removes the turning point's inverse square root. A quadrature computes what the law needs besides
+the approach once (:func:`law_constants`) and evaluates the force at its nodes from it, by the same
+operations as :func:`loading_force`.
 """
 
 from __future__ import annotations
@@ -99,6 +101,37 @@ def jg_critical_force(E, R, Y, nu):
 
 
 @jitable
+def jg_exponent(E, Y):
+    """``B = 0.14 exp(23 S_y/E)`` [-] (Ghaednia et al. 2019 eq. 24; the exponent's argument capped at 700)."""
+    return 0.14 * math.exp(min(23.0 * Y / E, 700.0))
+
+
+@jitable
+def jg_constants(E, R, Y, nu):
+    """What Jackson & Green's law needs besides ``x``, computed once for many forces:
+    ``(delta_c, C, F_c, B, a_0, R)`` [m, -, N, -, m, m], ``a_0 = R pi C S_y/(2E)`` (eqs. 5, 6, 29, 24, 23)."""
+    C = jg_coefficient(nu)
+    return (
+        jg_critical_interference(E, R, Y, nu),
+        C,
+        jg_critical_force(E, R, Y, nu),
+        jg_exponent(E, Y),
+        R * (math.pi * C * Y / (2.0 * E)),
+        R,
+    )
+
+
+@jitable
+def _jg_radius(x, k):
+    """Eq. 23's radius [m] at ``x`` with the constants ``k`` of :func:`jg_constants` (``(x/1.9)^B`` as
+    ``exp(B ln(x/1.9))``, the logarithm the overflow test needs anyway)."""
+    lr = math.log(x / JG_SWITCH)
+    if lr > 0.0 and k[3] * lr + math.log(x) > 700.0:
+        return math.nan
+    return k[4] * math.sqrt(x * math.exp(k[3] * lr))
+
+
+@jitable
 def jg_contact_radius(x, E, R, Y, nu):
     """Elastic-plastic contact radius ``a = R (pi C S_y/(2E)) (x (x/1.9)^B)^(1/2)`` [m] at ``x = delta/delta_c``.
 
@@ -109,11 +142,7 @@ def jg_contact_radius(x, E, R, Y, nu):
     ``x (x/1.9)^B`` leaves the float range: the radius is then NaN on every path (Python's ``**``
     raised OverflowError where the compiled loop gave NaN), and so is the impact's outcome.
     """
-    B = 0.14 * math.exp(min(23.0 * Y / E, 700.0))
-    r = x / JG_SWITCH
-    if r > 1.0 and B * math.log(r) + math.log(x) > 700.0:
-        return math.nan
-    return R * (math.pi * jg_coefficient(nu) * Y / (2.0 * E)) * math.sqrt(x * r**B)
+    return _jg_radius(x, jg_constants(E, R, Y, nu))
 
 
 @jitable
@@ -123,26 +152,38 @@ def jg_hardness_ratio(a, R):
 
 
 @jitable
+def _jg_force(x, k):
+    """Eq. 27's force [N] at ``x`` with the constants ``k`` of :func:`jg_constants` (``x^p`` as
+    ``exp(p ln x)``: one logarithm for both powers)."""
+    H = jg_hardness_ratio(_jg_radius(x, k), k[5])
+    lx = math.log(x)
+    elastic = math.exp(-0.25 * math.exp(5.0 / 12.0 * lx)) * x * math.sqrt(x)
+    plastic = 4.0 * H / k[1] * (1.0 - math.exp(-math.exp(5.0 / 9.0 * lx) / 25.0)) * x
+    return k[2] * (elastic + plastic)
+
+
+@jitable
 def jg_plastic_force(x, E, R, Y, nu):
     """Jackson & Green's elastic-plastic force [N] at ``x = delta/delta_c`` (Ghaednia et al. 2019 eq. 27):
 
     ``F/F_c = exp(-x^(5/12)/4) x^(3/2) + 4 (H_G/S_y)/C (1 - exp(-x^(5/9)/25)) x``, with the hardness
     of eq. 28 at the contact radius of eq. 23 (eq. 30 with ``E_t = 0`` is this force).
     """
-    C = jg_coefficient(nu)
-    H = jg_hardness_ratio(jg_contact_radius(x, E, R, Y, nu), R)
-    elastic = math.exp(-0.25 * x ** (5.0 / 12.0)) * x * math.sqrt(x)
-    plastic = 4.0 * H / C * (1.0 - math.exp(-(x ** (5.0 / 9.0)) / 25.0)) * x
-    return jg_critical_force(E, R, Y, nu) * (elastic + plastic)
+    return _jg_force(x, jg_constants(E, R, Y, nu))
+
+
+@jitable
+def _jg_loading(delta, E, R, k):
+    """:func:`jg_loading_force` with the constants ``k`` of :func:`jg_constants`."""
+    if delta <= JG_SWITCH * k[0]:
+        return hertz.force(delta, E, R)
+    return _jg_force(delta / k[0], k)
 
 
 @jitable
 def jg_loading_force(delta, E, R, Y, nu):
     """Loading force [N]: Hertz up to ``1.9 delta_c`` (Ghaednia et al. 2019 eq. 1 and Sec. 3.2), eq. 27 beyond."""
-    dc = jg_critical_interference(E, R, Y, nu)
-    if delta <= JG_SWITCH * dc:
-        return hertz.force(delta, E, R)
-    return jg_plastic_force(delta / dc, E, R, Y, nu)
+    return _jg_loading(delta, E, R, jg_constants(E, R, Y, nu))
 
 
 # ------------------------------------------------------------------------------ Kogut & Etsion
@@ -257,19 +298,50 @@ def ekk_unloading(alpha_max, P_max, a_max, E):
 
 
 @jitable
-def critical_approach(law, E, R, Y, nu, twin):
-    """The critical (yield-inception) approach ``alpha_c`` [m] in the pair's frame."""
+def law_constants(law, E, R, Y, nu, twin):
+    """The law in its frame, computed once for the many forces of a quadrature:
+    ``(s, E_l, R_l, Y, nu, critical interference, ...)``, for Jackson & Green the rest of
+    :func:`jg_constants` (:func:`frame`; the law's critical interference in its frame)."""
     El, Rl, s = frame(E, R, twin)
     if law == JACKSON_GREEN:
-        return jg_critical_interference(El, Rl, Y, nu) / s
-    return ke_critical_interference(El, Rl, Y, nu) / s
+        k = jg_constants(El, Rl, Y, nu)
+        return (s, El, Rl, Y, nu, k[0], k[1], k[2], k[3], k[4], k[5])
+    return (s, El, Rl, Y, nu, ke_critical_interference(El, Rl, Y, nu), 0.0, 0.0, 0.0, 0.0, Rl)
+
+
+@jitable
+def _critical(c):
+    """:func:`critical_approach` from :func:`law_constants`."""
+    return c[5] / c[0]
+
+
+@jitable
+def _switch(law, c):
+    """:func:`switch_approach` from :func:`law_constants`."""
+    ac = _critical(c)
+    return JG_SWITCH * ac if law == JACKSON_GREEN else ac
+
+
+@jitable
+def _force(law, alpha, c):
+    """:func:`loading_force` from :func:`law_constants`."""
+    if alpha <= 0.0:
+        return 0.0
+    if law == JACKSON_GREEN:
+        return _jg_loading(c[0] * alpha, c[1], c[2], (c[5], c[6], c[7], c[8], c[9], c[10]))
+    return ke_loading_force(c[0] * alpha, c[1], c[2], c[3], c[4])
+
+
+@jitable
+def critical_approach(law, E, R, Y, nu, twin):
+    """The critical (yield-inception) approach ``alpha_c`` [m] in the pair's frame."""
+    return _critical(law_constants(law, E, R, Y, nu, twin))
 
 
 @jitable
 def switch_approach(law, E, R, Y, nu, twin):
     """Approach [m] where the loading leaves Hertz's curve: ``1.9 alpha_c`` (Jackson & Green), ``alpha_c`` (Kogut & Etsion)."""
-    ac = critical_approach(law, E, R, Y, nu, twin)
-    return JG_SWITCH * ac if law == JACKSON_GREEN else ac
+    return _switch(law, law_constants(law, E, R, Y, nu, twin))
 
 
 @jitable
@@ -277,10 +349,7 @@ def loading_force(law, alpha, E, R, Y, nu, twin):
     """The law's loading force [N] at approach ``alpha`` [m] (pair's frame; 0 for ``alpha <= 0``)."""
     if alpha <= 0.0:
         return 0.0
-    El, Rl, s = frame(E, R, twin)
-    if law == JACKSON_GREEN:
-        return jg_loading_force(s * alpha, El, Rl, Y, nu)
-    return ke_loading_force(s * alpha, El, Rl, Y, nu)
+    return _force(law, alpha, law_constants(law, E, R, Y, nu, twin))
 
 
 @jitable
@@ -305,29 +374,31 @@ def _gl_work(law, lo, hi, E, R, Y, nu, twin):
     if n < 1:
         n = 1
     h = span / n
+    c = law_constants(law, E, R, Y, nu, twin)
     total = 0.0
     for k in range(n):
-        c = u0 + (k + 0.5) * h
+        mid = u0 + (k + 0.5) * h
         part = 0.0
         for i in range(24):
-            a = math.exp(c + 0.5 * h * GX[i])
-            part += GW[i] * loading_force(law, a, E, R, Y, nu, twin) * a
+            a = math.exp(mid + 0.5 * h * GX[i])
+            part += GW[i] * _force(law, a, c) * a
         total += 0.5 * h * part
     return total
 
 
 @jitable
-def _step_work(law, lo, hi, E, R, Y, nu, twin):
+def _step_work(law, lo, hi, E, R, Y, nu, twin, c):
     """``int_lo^hi P d alpha`` over a short step inside one smooth piece (``ln(hi/lo)`` below a
-    fiftieth of a panel): 6-point Gauss-Legendre in ``ln alpha`` for Jackson & Green, else exact."""
-    if law != JACKSON_GREEN or not lo >= switch_approach(law, E, R, Y, nu, twin):
+    fiftieth of a panel): 6-point Gauss-Legendre in ``ln alpha`` for Jackson & Green, else exact
+    (``c``: :func:`law_constants`)."""
+    if law != JACKSON_GREEN or not lo >= _switch(law, c):
         return loading_work(law, lo, hi, E, R, Y, nu, twin)
     u0 = math.log(lo)
     h = math.log(hi) - u0
     part = 0.0
     for i in range(6):
         a = math.exp(u0 + 0.5 * h * (GX6[i] + 1.0))
-        part += GW6[i] * loading_force(law, a, E, R, Y, nu, twin) * a
+        part += GW6[i] * _force(law, a, c) * a
     return 0.5 * h * part
 
 
@@ -424,7 +495,8 @@ def max_approach(law, V, E, R, m, Y, nu, twin):
     relative terms, about 1 here): the iterate after a relative step below ``STEP_DONE`` is exact
     to rounding, and is returned without a further quadrature.
     """
-    a1 = switch_approach(law, E, R, Y, nu, twin)
+    c = law_constants(law, E, R, Y, nu, twin)
+    a1 = _switch(law, c)
     K = 0.5 * m * V * V
     lnK = math.log(K) if K > 0.0 else -math.inf
     lo = a1
@@ -440,7 +512,7 @@ def max_approach(law, V, E, R, m, Y, nu, twin):
             lo = a
         else:
             return a
-        P = loading_force(law, a, E, R, Y, nu, twin)
+        P = _force(law, a, c)
         if W > 0.0:  # Newton in logarithms: du = ln(alpha_next/alpha)
             du = min((lnK - math.log(W)) * W / (P * a), 20.0)
             nxt = a * math.exp(du)
@@ -455,9 +527,9 @@ def max_approach(law, V, E, R, m, Y, nu, twin):
         du = math.log(nxt / a)
         if abs(du) < PANEL / 50.0:
             if nxt > a:
-                W += _step_work(law, a, nxt, E, R, Y, nu, twin)
+                W += _step_work(law, a, nxt, E, R, Y, nu, twin, c)
             else:
-                W -= _step_work(law, nxt, a, E, R, Y, nu, twin)
+                W -= _step_work(law, nxt, a, E, R, Y, nu, twin, c)
         elif nxt > a:
             W += loading_work(law, a, nxt, E, R, Y, nu, twin)
         else:
@@ -474,6 +546,7 @@ def _time_upper(law, lo, hi, astar, E, R, m, Y, nu, twin):
     ``int_alpha^alpha* P`` is accumulated node to node downward from ``hi``: no cancellation."""
     s_lo = math.sqrt(astar - hi)
     s_hi = math.sqrt(astar - lo)
+    c = law_constants(law, E, R, Y, nu, twin)
     total = 0.0
     prev = hi
     dW = loading_work(law, hi, astar, E, R, Y, nu, twin)
@@ -486,12 +559,12 @@ def _time_upper(law, lo, hi, astar, E, R, m, Y, nu, twin):
         for i in range(24):
             s = 0.5 * (a + b) + 0.5 * (b - a) * GX[i]
             x = astar - s * s
-            dW += _step_work(law, x, prev, E, R, Y, nu, twin)
+            dW += _step_work(law, x, prev, E, R, Y, nu, twin, c)
             prev = x
             if dW > 0.0:
                 part += GW[i] * 2.0 * s / math.sqrt(2.0 * dW / m)
             else:  # s^2 below the rounding of alpha*: the integrand's limit, 2 (2 P(alpha*)/m*)^(-1/2)
-                part += GW[i] * 2.0 / math.sqrt(2.0 * loading_force(law, astar, E, R, Y, nu, twin) / m)
+                part += GW[i] * 2.0 / math.sqrt(2.0 * _force(law, astar, c) / m)
         total += 0.5 * (b - a) * part
         a = b
     return total
@@ -507,15 +580,16 @@ def _time_lower(law, lo, hi, astar, Wstar, E, R, m, Y, nu, twin):
     if n < 1:
         n = 1
     h = span / n
+    c = law_constants(law, E, R, Y, nu, twin)
     total = 0.0
     prev = lo
     W = loading_work(law, 0.0, lo, E, R, Y, nu, twin)
     for k in range(n):
-        c = u0 + (k + 0.5) * h
+        mid = u0 + (k + 0.5) * h
         part = 0.0
         for i in range(24):
-            a = math.exp(c + 0.5 * h * GX[i])
-            W += _step_work(law, prev, a, E, R, Y, nu, twin)
+            a = math.exp(mid + 0.5 * h * GX[i])
+            W += _step_work(law, prev, a, E, R, Y, nu, twin, c)
             prev = a
             part += GW[i] * a / math.sqrt(2.0 * (Wstar - W) / m)
         total += 0.5 * h * part

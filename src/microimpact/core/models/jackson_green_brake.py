@@ -112,7 +112,7 @@ PARAMETERS = (
     ),
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
-#: Cost class (the contract's ``COST``): ``e`` and the outcome take 0.2 and 1.3 ms a point in Python.
+#: Cost class (the contract's ``COST``): ``e`` and the outcome take 0.14 and 0.85 ms a point in Python.
 COST = "slow"
 
 #: Largest ``Delta/R`` of Ghaednia et al.'s comparisons with finite elements (Figs. 8-12).
