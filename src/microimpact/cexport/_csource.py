@@ -152,7 +152,8 @@ int microimpact_wall_interaction(const double v_in[3], const double n_in[3], con
         return 1;
     }}
     ratio = V > 0.0 ? V_s / V : 0.0;
-    e = sqrt(fmax(e_p * e_p - ratio * ratio, 0.0));
+    e = e_p * e_p - ratio * ratio;
+    e = sqrt(0.0 > e ? 0.0 : e);           /* the core's max(e^2, 0), no call to fmax */
     jn = (1.0 + e) * V;                      /* normal impulse / m */
 
     /* tangential: slip of the contact point u_t = v_t + r n x omega */
@@ -453,7 +454,8 @@ _WHOLE_LAW_EDITS = (
         "    stuck = !(e2 > 0.0);\n",
     ),
     (
-        "    ratio = V > 0.0 ? V_s / V : 0.0;\n    e = sqrt(fmax(e_p * e_p - ratio * ratio, 0.0));\n",
+        "    ratio = V > 0.0 ? V_s / V : 0.0;\n    e = e_p * e_p - ratio * ratio;\n"
+        "    e = sqrt(0.0 > e ? 0.0 : e);           /* the core's max(e^2, 0), no call to fmax */\n",
         "    e = sqrt(e2);\n",
     ),
     (
