@@ -196,6 +196,16 @@ def test_c_wall_function_matches_the_core_bitwise(tmp_path, G, mu):
         assert wall.STUCK in seen
 
 
+def test_c_wall_skips_the_root_of_e_squared_only_where_it_is_e():
+    """Without adhesion the C wall function returns e_p for the core's sqrt(max(e_p^2 - 0, 0)): the same
+    bits because sqrt(RN(x^2)) = x unless x^2 is subnormal, and the seed's e_p is 0 or far above that
+    at every speed ratio up to the largest double (e_p ~ v^(-1/4) >= 1e-78)."""
+    v = np.concatenate([np.geomspace(1.0, 1.7e308, 200_000), [np.nextafter(1.0, 2.0), 1.7976931348623157e308]])
+    e = np.array([seed.restitution_at(x, 1.0) for x in v.tolist()])
+    assert e[e > 0.0].min() > 1e-78  # 0 only where v q overflows
+    assert np.array_equal(np.sqrt(np.maximum(e * e, 0.0)), e)
+
+
 def test_small_arrays_stay_in_python_only_while_that_is_cheap():
     """In a new process a small array of the seed's outcome runs in Python (numba not even imported);
     the same size of a model that integrates its equation of motion (~1 ms per element) is compiled,
