@@ -211,26 +211,34 @@ def test_the_two_parameter_band_of_the_contact_time_is_the_delta_method():
     np.testing.assert_allclose(pred.contact_time - pred.contact_time_lo, half, rtol=1e-4)
 
 
+def _e_by_groups_is_the_outcomes(monkeypatch, name, params, backend):
+    """``(model, (V, E*, R*, m*, p_y), outcome's e)`` on speeds from 1e-3 to 1e3 m/s (one repeated), the
+    silicon pair, on ``backend``, after asserting that fitting's e by distinct groups is the outcome's
+    field bit for bit."""
+    from microimpact.core import models as zoo
+    from microimpact.impact import outcome_arrays
+
+    monkeypatch.setenv("MICROIMPACT_BACKEND", backend)
+    mod = zoo.get(name)
+    V = np.concatenate([np.geomspace(1e-3, 1e3, 40), [7.0, 7.0, 50.0]])
+    args = (
+        V,
+        *(np.asarray(x) for x in (SILICON.effective_modulus, SILICON.effective_radius, SILICON.effective_mass, 1e8)),
+    )
+    full = outcome_arrays(mod, *args, params)["restitution"]
+    np.testing.assert_array_equal(_models._restitution_by_group(mod, *args, params), full)
+    return mod, args, full
+
+
 @pytest.mark.parametrize("backend", ["python", "numba"])
 @pytest.mark.parametrize("params", [(0.0, 1.0), (0.3, 1.0), (0.3, 0.0), (2.5, 1.0), (-1.0, 1.0)])
 def test_e_by_distinct_groups_is_the_outcomes_field_bit_for_bit(monkeypatch, params, backend):
     """Hertz-Tsuji's e depends on its damping ratio alone: fitting integrates once per distinct
     scaled damping kappa of the data (alpha_T up to rounding: at most 8 values over 1e-3..1e3 m/s) and must give the
     outcome's field exactly, on either engine (out-of-bounds parameters: NaN, as the outcome)."""
-    from microimpact.core import models as zoo
-    from microimpact.impact import outcome_arrays
-
-    monkeypatch.setenv("MICROIMPACT_BACKEND", backend)
-    mod = zoo.get("hertz_tsuji")
-    V = np.concatenate([np.geomspace(1e-3, 1e3, 40), [7.0, 7.0, 50.0]])
-    E, R, m, p_y = (
-        np.asarray(x) for x in (SILICON.effective_modulus, SILICON.effective_radius, SILICON.effective_mass, 1e8)
-    )
-    full = outcome_arrays(mod, V, E, R, m, p_y, params)["restitution"]
-    g = evaluate(mod.restitution_group, V, E, R, m, p_y, params=params)[0]
-    e = _models._restitution_by_group(mod, V, E, R, m, p_y, params)
-    np.testing.assert_array_equal(e, full)
-    assert np.unique(g).size <= 10 < V.size  # the point of it: a handful of integrations, not one per speed
+    mod, args, full = _e_by_groups_is_the_outcomes(monkeypatch, "hertz_tsuji", params, backend)
+    g = evaluate(mod.restitution_group, *args, params=params)[0]
+    assert np.unique(g).size <= 10 < args[0].size  # the point of it: a handful of integrations, not one per speed
 
 
 @pytest.mark.parametrize("backend", ["python", "numba"])
@@ -240,19 +248,8 @@ def test_viscoelastic_e_by_groups_is_the_outcomes_field_bit_for_bit(monkeypatch,
     integrates once per distinct kappa of the data and must give the outcome's field exactly, on
     either engine, with the force clipped or not, where a particle is captured (e = 0 without
     clipping at large kappa: 6 of these speeds with A = 3e-6 s) and for out-of-bounds parameters (NaN, as the outcome)."""
-    from microimpact.core import models as zoo
-    from microimpact.impact import outcome_arrays
-
-    monkeypatch.setenv("MICROIMPACT_BACKEND", backend)
-    mod = zoo.get("hertz_viscoelastic")
-    V = np.concatenate([np.geomspace(1e-3, 1e3, 40), [7.0, 7.0, 50.0]])
-    E, R, m, p_y = (
-        np.asarray(x) for x in (SILICON.effective_modulus, SILICON.effective_radius, SILICON.effective_mass, 1e8)
-    )
-    full = outcome_arrays(mod, V, E, R, m, p_y, params)["restitution"]
-    e = _models._restitution_by_group(mod, V, E, R, m, p_y, params)
-    np.testing.assert_array_equal(e, full)
-    alone = evaluate(mod.restitution_only, V, E, R, m, p_y, params=params)[0]
+    mod, args, full = _e_by_groups_is_the_outcomes(monkeypatch, "hertz_viscoelastic", params, backend)
+    alone = evaluate(mod.restitution_only, *args, params=params)[0]
     np.testing.assert_array_equal(alone, full)
 
 

@@ -268,6 +268,8 @@ class FitModel:
         if self.name is not None:
             self._init_pair_parameter(pair, self.name, yield_strength, finite_py)
         self.refs = np.array(([self.ref] if self.name else []) + [values[n] for n in self.own_free], dtype=float)
+        # e from the pair's four values alone (values_at): a registry model without the face's e(V, V_y)
+        self._by_values = self.name is not None and model not in _rules() and fast_restitution(model) is None
 
     def _init_pair_parameter(self, pair, name, yield_strength, finite_py):
         self.exponent = FREE_PARAMETERS[name]["exponent"]
@@ -311,33 +313,28 @@ class FitModel:
         self.ref_pair = self.pair_at(0.0) if not finite_py else pair
         self.ref_vy = self.ref_pair.yield_velocity
 
-    def pair_at(self, u) -> ContactPair:
-        """The pair with the free pair parameter at ``ref * exp(u)`` (via :meth:`ContactPair.vary`)."""
+    def _inputs_at(self, u):
+        """``(pair, inputs)``: the pair to vary and the inputs that set the free pair parameter to
+        ``ref * exp(u)`` (one rule for :meth:`pair_at` and :meth:`values_at`)."""
         theta = float(self.ref * math.exp(float(u)))
         if self.name == "k":
-            return self.pair.vary(limiting_pressure=theta * self.yield_strength)
+            return self.pair, {"limiting_pressure": theta * self.yield_strength}
         if self.name == "yield_velocity":
-            return self.base.vary(yield_velocity=theta)
-        return self.pair.vary(**{self.name: theta})
+            return self.base, {"yield_velocity": theta}
+        return self.pair, {self.name: theta}
+
+    def pair_at(self, u) -> ContactPair:
+        """The pair with the free pair parameter at ``ref * exp(u)`` (via :meth:`ContactPair.vary`)."""
+        pair, inputs = self._inputs_at(u)
+        return pair.vary(**inputs)
 
     def values_at(self, u):
         """``(E*, R*, m*, p_y)`` [Pa, m, kg, Pa] of :meth:`pair_at` without building the pair: the same
         :meth:`ContactPair.effective_values <microimpact.pair.ContactPair.effective_values>` call
         that :meth:`ContactPair.vary <microimpact.pair.ContactPair.vary>` makes, so the same floats
         (a fit's evaluations and its start's grid need only these; a pair costs its validation)."""
-        theta = float(self.ref * math.exp(float(u)))
-        if self.name == "k":
-            values = self.pair.effective_values(limiting_pressure=theta * self.yield_strength)
-        elif self.name == "yield_velocity":
-            values = self.base.effective_values(yield_velocity=theta)
-        else:
-            values = self.pair.effective_values(**{self.name: theta})
-        return tuple(float(x) for x in values)
-
-    def _by_values(self):
-        """True where ``e`` needs the pair's four values only (a registry model without the face's
-        ``e(V, V_y)``), so that :meth:`restitution` can skip building a pair."""
-        return self.name is not None and self.model not in _rules() and fast_restitution(self.model) is None
+        pair, inputs = self._inputs_at(u)
+        return tuple(float(x) for x in pair.effective_values(**inputs))
 
     def _own_params(self, u):
         vals = dict(self.values)
@@ -367,7 +364,7 @@ class FitModel:
         if self.name is not None and not self.own and fast_restitution(self.model) is not None:
             u0 = float(np.atleast_1d(u)[0])
             return restitution_of(self.model, _YieldOnly(self.ref_vy * math.exp(self.exponent * u0)), (), V)
-        if self._by_values():
+        if self._by_values:
             u = np.atleast_1d(np.asarray(u, dtype=float))
             V = np.asarray(V, dtype=float)
             values = self.values_at(u[0])
@@ -382,7 +379,7 @@ class FitModel:
         values change from row to row (:meth:`values_at`)."""
         us = np.asarray(us, dtype=float)
         V = np.asarray(V, dtype=float).ravel()
-        if not self._by_values() or not np.array_equal(us[:, 1:], np.broadcast_to(us[:1, 1:], us[:, 1:].shape)):
+        if not self._by_values or not np.all(us[:, 1:] == us[:1, 1:]):
             return np.array([self.restitution(u, V) for u in us])
         values = np.repeat(np.array([self.values_at(u[0]) for u in us]), V.size, axis=0)
         e = restitution_of_values(model_module(self.model), np.tile(V, len(us)), *values.T, self._own_params(us[0]))

@@ -23,7 +23,7 @@ function of ``kappa``, decreasing from 1 as ``V`` (or ``A``) grows, with
 ``1 - e = C kappa + O(kappa^2)``, ``C = 4/5 (5/4)^(3/5) B(3/5, 3/2) = 1.1534`` (the damping work
 along Hertz's trajectory; derived here and checked in the tests). That function has no closed form; it is computed here by integrating the
 scaled equation with Hairer's eighth-order Runge-Kutta method DOP853 (Dormand & Prince's 8(5,3)
-pair, :mod:`microimpact.core.dop853`) at a relative tolerance of 2e-13, its steps chosen by
+pair, :mod:`microimpact.core.dop853`) at a relative tolerance of 2e-14, its steps chosen by
 Gustafsson's predictive controller (the approach falls back to the end of the contact in ever
 shorter steps), starting from the series
 ``x = t - 4/15 kappa t^(5/2) - 4/35 t^(7/2) + 1/15 kappa^2 t^4`` at ``t = 1e-4`` (derived here),
@@ -97,6 +97,13 @@ def _acc(x, v, kappa, q):
         return 0.0
     s = math.sqrt(x)
     return -(x * s + kappa * _power(x, s, q) * v)
+
+
+@jitable(inline=True)
+def _weighted(w, y0, y5, y6, y7, y8, y9, y10, y11):
+    """``sum_j w_j y_j`` over the stages DOP853's weights use (0 and 5 to 11; ``w`` one of the
+    tuples :data:`~microimpact.core.dop853.B`, ``E5``, ``E3``), left to right."""
+    return w[0] * y0 + w[1] * y5 + w[2] * y6 + w[3] * y7 + w[4] * y8 + w[5] * y9 + w[6] * y10 + w[7] * y11
 
 
 @jitable
@@ -181,52 +188,12 @@ def _step(x, v, h, kappa, q):
         + dp.A11_10 * a10
     )
     a11 = _acc(x11, v11, kappa, q)
-    xn = x + h * (
-        dp.B0 * v0 + dp.B5 * v5 + dp.B6 * v6 + dp.B7 * v7 + dp.B8 * v8 + dp.B9 * v9 + dp.B10 * v10 + dp.B11 * v11
-    )
-    vn = v + h * (
-        dp.B0 * a0 + dp.B5 * a5 + dp.B6 * a6 + dp.B7 * a7 + dp.B8 * a8 + dp.B9 * a9 + dp.B10 * a10 + dp.B11 * a11
-    )
-    e5x = (
-        dp.E5_0 * v0
-        + dp.E5_5 * v5
-        + dp.E5_6 * v6
-        + dp.E5_7 * v7
-        + dp.E5_8 * v8
-        + dp.E5_9 * v9
-        + dp.E5_10 * v10
-        + dp.E5_11 * v11
-    )
-    e5v = (
-        dp.E5_0 * a0
-        + dp.E5_5 * a5
-        + dp.E5_6 * a6
-        + dp.E5_7 * a7
-        + dp.E5_8 * a8
-        + dp.E5_9 * a9
-        + dp.E5_10 * a10
-        + dp.E5_11 * a11
-    )
-    e3x = (
-        dp.E3_0 * v0
-        + dp.E3_5 * v5
-        + dp.E3_6 * v6
-        + dp.E3_7 * v7
-        + dp.E3_8 * v8
-        + dp.E3_9 * v9
-        + dp.E3_10 * v10
-        + dp.E3_11 * v11
-    )
-    e3v = (
-        dp.E3_0 * a0
-        + dp.E3_5 * a5
-        + dp.E3_6 * a6
-        + dp.E3_7 * a7
-        + dp.E3_8 * a8
-        + dp.E3_9 * a9
-        + dp.E3_10 * a10
-        + dp.E3_11 * a11
-    )
+    xn = x + h * _weighted(dp.B, v0, v5, v6, v7, v8, v9, v10, v11)
+    vn = v + h * _weighted(dp.B, a0, a5, a6, a7, a8, a9, a10, a11)
+    e5x = _weighted(dp.E5, v0, v5, v6, v7, v8, v9, v10, v11)
+    e5v = _weighted(dp.E5, a0, a5, a6, a7, a8, a9, a10, a11)
+    e3x = _weighted(dp.E3, v0, v5, v6, v7, v8, v9, v10, v11)
+    e3v = _weighted(dp.E3, a0, a5, a6, a7, a8, a9, a10, a11)
     sx = _TOL * (1e-3 + abs(xn))
     sv = _TOL * (1e-3 + abs(vn))
     e5x /= sx  # (squares written as products: Python's ``** 2`` is libm's pow, not always x * x)
