@@ -183,3 +183,42 @@ def test_python_api_refuses_dmt_with_its_reason(tmp_path):
         with pytest.raises(ValueError, match=r"adhesion must be one of .*e = 1 at every speed"):
             call()
     assert not (tmp_path / "t").exists()
+
+
+def test_help_names_the_rules_and_the_fits_choices(capsys):
+    """The help texts read their names only when printed (issue 25): they still list them all."""
+    from microimpact import fitting
+
+    assert main(["export", "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())  # argparse wraps the help to the terminal
+    assert "additive or " + WHOLE_LAW in text
+    assert ", ".join(fitting.LOSSES) in text and ", ".join(fitting.INTERVALS) in text
+
+
+def test_bad_loss_or_interval_is_one_line_and_writes_nothing(tmp_path, capsys):
+    data = tmp_path / "e.csv"
+    data.write_text("velocity,restitution\n20,0.8\n40,0.7\n60,0.6\n")
+    out = tmp_path / "cfd"
+    for option, bad in (("--loss", "l2"), ("--interval", "wilson"), ("--loss", "")):
+        assert main(["export", "--out", str(out), "--fit", str(data), option, bad]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and option in err and repr(bad) in err, err
+        assert "linear, soft_l1" in err or "auto, wald, profile" in err, err
+    assert not out.exists()
+
+
+def test_a_default_export_loads_no_model_it_does_not_run(tmp_path):
+    """``export`` without adhesion imports neither the fit nor a model that ``import microimpact`` does
+    not already load (every model was read to list the adhesion rules in the help: 10 ms of 140)."""
+    import sys
+
+    code = (
+        "import sys, microimpact\n"
+        "before = set(sys.modules)\n"
+        "from microimpact.cli import main\n"
+        f"assert main(['export', '--no-c', '--out', {str(tmp_path / 'cfd')!r}]) == 0\n"
+        "new = sorted(m for m in set(sys.modules) - before if m.startswith('microimpact.'))\n"
+        "print(','.join(m for m in new if m.startswith(('microimpact.fitting', 'microimpact.core.models.'))))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.splitlines()[-1] == "", out

@@ -118,6 +118,8 @@ def check_adhesion_rule(adhesion, name="adhesion"):
     would drop the plastic loss, and no source read here combines DMT adhesion with yield (the
     additive rule adds TN98's JKR loss, eq. 54, which DMT does not have).
     """
+    if isinstance(adhesion, str) and adhesion == ADDITIVE_RULE:  # the default: no model need be read
+        return adhesion
     rules = globals().get("ADHESION_RULES") or __getattr__("ADHESION_RULES")
     if isinstance(adhesion, str) and adhesion in rules:
         return adhesion

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from .._validation import check_nonnegative, check_positive
-from ..adhesion import STICKING_CONSTANT, WHOLE_LAW
+from ..adhesion import STICKING_CONSTANT
 from ..core.tangential import stiffness_ratio, stiffness_ratio_same_poisson
 from ._common import comment_text
 
@@ -434,7 +434,8 @@ def _mindlin_source(text, kappa, law="mindlin"):
     return head + table + anchor + tail
 
 
-#: The additive rule's lines and the whole law's replacements (each must occur once).
+#: The additive rule's lines and the whole law's replacements (each must occur once); ``{law}``: the
+#: whole law's model name (read from the models' declarations when a whole law's source is made).
 _WHOLE_LAW_EDITS = (
     (
         " *   normal:     the elastic-plastic restitution e_p(V/V_y) of Aerosol Sci. Tech. 50(4):321 (2016),\n"
@@ -442,7 +443,7 @@ _WHOLE_LAW_EDITS = (
         " *               e^2 = e_p^2 - (V_s/V)^2, stick when e_p V <= V_s,\n",
         " *   normal:     the whole adhesive elastic-plastic law of Thornton & Ning (1998), Powder Technol.\n"
         " *               99:154 (JKR loading, yield at the adhesion-reduced limiting pressure, plastic loading,\n"
-        f" *               unloading on the flattened radius R_p; microimpact's {WHOLE_LAW}),\n"
+        " *               unloading on the flattened radius R_p; microimpact's {law}),\n"
         " *               through its universal curve: e^2 = e_p^2 - (V_s/V)^2 + D(V/V_y, V_s/V_y), stick when\n"
         " *               e^2 <= 0, e_p(V/V_y) the seed's restitution (Aerosol Sci. Tech. 50(4):321 (2016),\n"
         " *               eqs. 22, 27, 28), D from the table below (bilinear),\n",
@@ -549,11 +550,13 @@ double microimpact_tn98_correction(double x, double y, int *outside)
 
 def _whole_law_source(text):
     """The additive source ``text`` (rigid or compliant) turned into the whole law's."""
+    from ..adhesion import WHOLE_LAW
+
     text = text.replace(_COMPLIANT_ROOT_OF_E2, _ROOT_OF_E2)  # a compliant source: its e is sqrt(e2) here too
     for old, new in _WHOLE_LAW_EDITS:
         if text.count(old) != 1:  # pragma: no cover - the template changed
             raise RuntimeError("the C template no longer has the additive rule's block")
-        text = text.replace(old, new)
+        text = text.replace(old, new.replace("{law}", WHOLE_LAW))
     text = text.replace("#include <math.h>\n", "#include <math.h>\n#include <stddef.h>\n", 1)
     anchor = "int microimpact_wall_interaction_flagged("
     head, tail = text.split(anchor, 1)

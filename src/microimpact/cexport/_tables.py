@@ -8,7 +8,6 @@ import numpy as np
 
 from .._validation import check_nonnegative
 from ..adhesion import (
-    WHOLE_LAW,
     adhesive_restitution,
     check_adhesion_rule,
     sticking_velocity,
@@ -170,18 +169,19 @@ def write_tables(
     return written
 
 
-#: Comment lines of the universal table for each adhesion rule.
-_UNIVERSAL_TEXT = {
-    "additive": [
-        "seed eq. 27 with the adhesive loss of Thornton & Ning (1998): e^2 = e_p^2 - (V_s/V)^2, "
-        "e = 0 (stick) when e_p V <= V_s",
-    ],
-    WHOLE_LAW: [
-        "the whole adhesive elastic-plastic law of Thornton & Ning (1998) (microimpact's " + WHOLE_LAW + "), through",
+def _universal_text(adhesion):
+    """Comment lines of the universal table for adhesion rule ``adhesion`` (checked: the additive rule
+    or the whole law, by its model name)."""
+    if adhesion == "additive":
+        return [
+            "seed eq. 27 with the adhesive loss of Thornton & Ning (1998): e^2 = e_p^2 - (V_s/V)^2, "
+            "e = 0 (stick) when e_p V <= V_s",
+        ]
+    return [
+        f"the whole adhesive elastic-plastic law of Thornton & Ning (1998) (microimpact's {adhesion}), through",
         "the table of its universal curve: e^2 = e_p^2 - (V_s/V)^2 + D(V/V_y, V_s/V_y), e = 0 (stick) where e^2 <= 0,",
         "e_p the seed's eq. 27 (microimpact.adhesion.whole_law_restitution; as wall_interaction and the C file)",
-    ],
-}
+    ]
 
 
 def write_universal_table(out_dir, v, s, adhesion="additive"):
@@ -203,7 +203,7 @@ def write_universal_table(out_dir, v, s, adhesion="additive"):
         path,
         [
             "microimpact: normal restitution e against V/V_y, one column per V_s/V_y",
-            *_UNIVERSAL_TEXT[adhesion],
+            *_universal_text(adhesion),
             "V: normal impact speed, V_y: yield velocity (eq. 28), V_s: sticking velocity",
             *extra,
         ],
@@ -230,7 +230,7 @@ def write_size_table(path, pair, d, p, V, G, extra=(), adhesion="additive"):
         )
         columns.append(("outside table", "1"))
         law = [
-            f"adhesion: {WHOLE_LAW} (Thornton & Ning 1998, the whole law, through its table); its capture "
+            f"adhesion: {adhesion} (Thornton & Ning 1998, the whole law, through its table); its capture "
             f"velocity {Vc:.10g} m/s",
         ]
     stuck = (Vs > 0.0) & (e == 0.0)

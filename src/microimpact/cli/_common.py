@@ -28,7 +28,25 @@ __all__ = [
     "parse_models",
     "parse_model_params",
     "parse_tangential",
+    "DeferredHelp",
 ]
+
+
+class DeferredHelp(str):
+    """An option's help text whose ``%(name)s`` fields are read from their source only when the help
+    is printed: argparse formats a help text with ``%`` then, and only then (as ``--version`` reads the
+    version only when asked). ``values``: name -> function returning the text. So that building a
+    command's parser does not import what only its help names (every model, to list the adhesion rules).
+    """
+
+    def __new__(cls, text: str, **values):
+        self = super().__new__(cls, text)
+        self._values = values
+        return self
+
+    def __mod__(self, params):
+        return str(self) % {**params, **{name: value() for name, value in self._values.items()}}
+
 
 #: Options of :func:`add_pair_arguments`: dest -> option as typed.
 PAIR_OPTIONS = {

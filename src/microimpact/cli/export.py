@@ -6,12 +6,13 @@ import argparse
 import math
 from pathlib import Path
 
-from ..adhesion import ADHESION_RULES, check_adhesion_rule, work_of_adhesion
+from .. import adhesion as _adhesion
+from ..adhesion import check_adhesion_rule, work_of_adhesion
 from ..cexport import DEFAULT_VS_OVER_VY, generate_c_source, write_band, write_c_source, write_tables
-from ..fitting import INTERVALS, LOSSES
 from ..materials import sphere_mass
 from ..oblique import DEM_LAWS as LAWS
 from ._common import (
+    DeferredHelp,
     add_pair_arguments,
     check_input_file,
     check_outputs,
@@ -59,10 +60,12 @@ def register(sub) -> None:
         "--adhesion",
         metavar="RULE",
         default="additive",
-        help="normal restitution with adhesion of the tables and the C file: "
-        + " or ".join(ADHESION_RULES)
-        + " (Thornton & Ning's whole adhesive elastic-plastic law, through the table of its universal curve; "
-        "the per-size tables gain an 'outside table' column); default %(default)s, Thornton & Ning's additive rule",
+        help=DeferredHelp(
+            "normal restitution with adhesion of the tables and the C file: %(rules)s (Thornton & Ning's whole "
+            "adhesive elastic-plastic law, through the table of its universal curve; the per-size tables gain an "
+            "'outside table' column); default %(default)s, Thornton & Ning's additive rule",
+            rules=lambda: " or ".join(_adhesion.ADHESION_RULES),
+        ),
     )
     p.add_argument("--friction", metavar="MU", default="0", help="Coulomb friction coefficient (default 0)")
     p.add_argument("--diameters", metavar="D", help="particle diameters [m], e.g. 1e-6,5e-6 (default: the pair's)")
@@ -107,9 +110,27 @@ def register(sub) -> None:
     )
     f.add_argument("--free", metavar="NAME", help="free parameter of the fit (default limiting_pressure)")
     f.add_argument("--confidence", metavar="P", help="confidence level of the band (default 0.95)")
-    f.add_argument("--loss", choices=LOSSES, help="least-squares loss of the fit (default linear)")
-    f.add_argument("--interval", choices=INTERVALS, help="interval of the fit (default auto)")
+    # the fit's names are read (and checked, in run) only when asked: importing the fit costs more than an export
+    f.add_argument(
+        "--loss",
+        metavar="LOSS",
+        help=DeferredHelp(
+            "least-squares loss of the fit: %(losses)s (default linear)", losses=lambda: _names("LOSSES")
+        ),
+    )
+    f.add_argument(
+        "--interval",
+        metavar="KIND",
+        help=DeferredHelp("interval of the fit: %(kinds)s (default auto)", kinds=lambda: _names("INTERVALS")),
+    )
     p.set_defaults(func=run)
+
+
+def _names(what: str) -> str:
+    """The fit's ``LOSSES`` or ``INTERVALS``, for a help text."""
+    from .. import fitting
+
+    return ", ".join(getattr(fitting, what))
 
 
 def run(args) -> int:
@@ -126,6 +147,12 @@ def run(args) -> int:
                 raise ValueError(f"--{dest} needs --fit DATA.csv (it sets the fit whose band is exported)")
     else:
         check_input_file(args.fit, "--fit")
+        from .. import fitting
+
+        for dest, allowed in (("loss", fitting.LOSSES), ("interval", fitting.INTERVALS)):
+            value = getattr(args, dest)
+            if value is not None and value not in allowed:
+                raise ValueError(f"--{dest} must be one of {', '.join(allowed)}; got {value!r}")
         if args.confidence is not None:
             c = parse_float(args.confidence, "--confidence")
             if not 0.0 < c < 1.0:
