@@ -316,7 +316,7 @@ def _entry(key, rec: Record) -> dict | None:
         for name, (base, goal) in GOALS.items():
             b = t.get(f"python -c '{base}'")
             if name in t and b:
-                r = t[name] / b
+                r = m.get(f"ratio: {name}", t[name] / b)
                 oks.append(r <= goal)
                 rows.append((f"{name} / {base}", f"{r:.3g}x (goal <= {goal:g}x)"))
                 parts.append(f"{name.split(' (')[0].removeprefix('microimpact ')} {r:.2g}x")
