@@ -89,8 +89,11 @@ static const microimpact_wall_params microimpact_wall_default MICROIMPACT_UNUSED
 #define MICROIMPACT_PI 3.141592653589793
 #define MICROIMPACT_STICKING_CONSTANT {stick}
 
+/* The formulas as static inline functions, which the wall function calls, each exported below by a
+   function of its own name (gcc -O2 did not inline the exported ones: the calls cost a tenth of the time). */
+
 /* Yield velocity, 1/2 m V_y^2 = 2/5 P_y alpha_y (eq. 28) [m/s]. */
-double microimpact_yield_velocity(double p_y, double E, double r, double m)
+static inline double microimpact__yield_velocity(double p_y, double E, double r, double m)
 {{
     double a_y, alpha_y, P_y;
     if (isinf(p_y)) return INFINITY;
@@ -101,7 +104,7 @@ double microimpact_yield_velocity(double p_y, double E, double r, double m)
 }}
 
 /* Thornton & Ning (1998) sticking velocity [m/s]; G is the work of adhesion. */
-double microimpact_sticking_velocity(double G, double E, double r, double m)
+static inline double microimpact__sticking_velocity(double G, double E, double r, double m)
 {{
     double g2;
     if (!(G > 0.0)) return 0.0;   /* no adhesion: skip the sixth root */
@@ -110,13 +113,28 @@ double microimpact_sticking_velocity(double G, double E, double r, double m)
 }}
 
 /* Seed restitution e_p(V/V_y), eq. 27 with eq. 22 (core: thornton_ning_2016.restitution). */
-double microimpact_restitution(double V, double V_y)
+static inline double microimpact__restitution(double V, double V_y)
 {{
     double v, q;
     v = isinf(V_y) ? 0.0 : V / V_y;
     if (!(v > 1.0)) return 1.0;
     q = sqrt((24.0 - 4.0 / (v * v)) * 0.2);   /* q = s / v, s = ((24 v^2 - 4)/5)^(1/2) */
     return 0.5 * q / sqrt(sqrt((1.0 + v * q) * (1.0 / 3.0)));   /* e = P^ / (A^(1/4) v), A = (1 + s)/3 */
+}}
+
+double microimpact_yield_velocity(double p_y, double E, double r, double m)
+{{
+    return microimpact__yield_velocity(p_y, E, r, m);
+}}
+
+double microimpact_sticking_velocity(double G, double E, double r, double m)
+{{
+    return microimpact__sticking_velocity(G, E, r, m);
+}}
+
+double microimpact_restitution(double V, double V_y)
+{{
+    return microimpact__restitution(V, V_y);
 }}
 
 int microimpact_wall_interaction(const double v_in[3], const double n_in[3], const double omega_in[3],
@@ -140,11 +158,11 @@ int microimpact_wall_interaction(const double v_in[3], const double n_in[3], con
 
     r = 0.5 * diameter;
     m = 4.0 / 3.0 * MICROIMPACT_PI * (r * r * r) * density;
-    V_y = microimpact_yield_velocity(params->limiting_pressure, params->effective_modulus, r, m);
-    V_s = microimpact_sticking_velocity(params->work_of_adhesion, params->effective_modulus, r, m);
+    V_y = microimpact__yield_velocity(params->limiting_pressure, params->effective_modulus, r, m);
+    V_s = microimpact__sticking_velocity(params->work_of_adhesion, params->effective_modulus, r, m);
 
     /* normal: seed restitution with the adhesive loss */
-    e_p = microimpact_restitution(V, V_y);
+    e_p = microimpact__restitution(V, V_y);
     stuck = (V_s > 0.0) && (e_p * V <= V_s);
     if (stuck) {{
         for (i = 0; i < 3; i++) {{ v_out[i] = 0.0; if (omega_out) omega_out[i] = 0.0; }}
@@ -462,10 +480,10 @@ _WHOLE_LAW_EDITS = (
     ),
     (
         "    /* normal: seed restitution with the adhesive loss */\n"
-        "    e_p = microimpact_restitution(V, V_y);\n"
+        "    e_p = microimpact__restitution(V, V_y);\n"
         "    stuck = (V_s > 0.0) && (e_p * V <= V_s);\n",
         "    /* normal: the whole law, e^2 = e_p^2 - (V_s/V)^2 + D (core.adhesion.corrected_restitution) */\n"
-        "    e_p = microimpact_restitution(V, V_y);\n"
+        "    e_p = microimpact__restitution(V, V_y);\n"
         "    ratio = V > 0.0 ? V_s / V : 0.0;\n"
         "    e2 = e_p * e_p - ratio * ratio\n"
         "         + microimpact_tn98_correction(isinf(V_y) ? 0.0 : V / V_y, isinf(V_y) ? 0.0 : V_s / V_y, outside_table);\n"
