@@ -470,9 +470,9 @@ def test_csv_rows_read_back_bit_for_bit_nan_inf_and_flags_spelled_as_before(tmp_
     x[:8] = [0.0, -0.0, 5e-324, -5e-324, 1.7976931348623157e308, 2.2250738585072014e-308, 1e-5, 1e16]
     flags = rng.random(x.size) < 0.5
     ints = rng.integers(-(2**40), 2**40, x.size)
-    buf = io.StringIO()
+    buf = io.BytesIO()
     msweep._write_rows(buf, [x, flags, ints])
-    lines = buf.getvalue().split("\n")
+    lines = buf.getvalue().decode("ascii").split("\n")
     assert lines[-1] == "" and len(lines) == x.size + 1 > msweep._CSV_FORMAT_ROWS
     cells = [line.split(",") for line in lines[:-1]]
     back = np.array([float(c[0]) for c in cells])
