@@ -171,11 +171,7 @@ int microimpact_wall_interaction(const double v_in[3], const double n_in[3], con
     }}
     ratio = V > 0.0 ? V_s / V : 0.0;
     e = e_p * e_p - ratio * ratio;
-    /* the core's sqrt(max(e^2, 0)), written without fmax (a libm call at -O2); without adhesion
-       (V_s = 0, so ratio = 0) it is e_p itself, bit for bit: sqrt(RN(x^2)) = x in binary floating
-       point unless x^2 is subnormal, and e_p is either 0 or above 1e-78 */
-    e = V_s > 0.0 ? sqrt(0.0 > e ? 0.0 : e) : e_p;
-    jn = (1.0 + e) * V;                      /* normal impulse / m */
+{root_of_e2}    jn = (1.0 + e) * V;                      /* normal impulse / m */
 
     /* tangential: slip of the contact point u_t = v_t + r n x omega */
     for (i = 0; i < 3; i++) vt[i] = v_in[i] - vn * n[i];
@@ -338,6 +334,7 @@ def generate_c_source(
         G=_c_double(G),
         mu=_c_double(mu),
         stick=repr(STICKING_CONSTANT),
+        root_of_e2=_ROOT_OF_E2,
     )
     text = text if kappa is None else _mindlin_source(text, kappa, tangential)
     return text if adhesion == "additive" else _whole_law_source(text)
@@ -375,7 +372,8 @@ def _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus):
     return stiffness_ratio_of(pair)
 
 
-#: The rigid source's root of ``e^2`` (see the template), which the compliant and whole-law sources replace.
+#: The rigid source's root of ``e^2`` (the template's ``{root_of_e2}``), which the compliant and whole-law
+#: sources replace.
 _ROOT_OF_E2 = (
     "    /* the core's sqrt(max(e^2, 0)), written without fmax (a libm call at -O2); without adhesion\n"
     "       (V_s = 0, so ratio = 0) it is e_p itself, bit for bit: sqrt(RN(x^2)) = x in binary floating\n"

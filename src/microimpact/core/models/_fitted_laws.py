@@ -300,19 +300,19 @@ def ekk_unloading(alpha_max, P_max, a_max, E):
 @jitable
 def law_constants(law, E, R, Y, nu, twin):
     """The law in its frame, computed once for the many forces of a quadrature:
-    ``(s, E_l, R_l, Y, nu, critical interference, ...)``, for Jackson & Green the rest of
-    :func:`jg_constants` (:func:`frame`; the law's critical interference in its frame)."""
+    ``(s, E_l, R_l, Y, nu, k)`` (:func:`frame`), ``k`` :func:`jg_constants` for Jackson & Green, for
+    Kogut & Etsion its critical interference first (the rest unused), so that ``k[0]`` is the law's
+    critical interference in its frame."""
     El, Rl, s = frame(E, R, twin)
     if law == JACKSON_GREEN:
-        k = jg_constants(El, Rl, Y, nu)
-        return (s, El, Rl, Y, nu, k[0], k[1], k[2], k[3], k[4], k[5])
-    return (s, El, Rl, Y, nu, ke_critical_interference(El, Rl, Y, nu), 0.0, 0.0, 0.0, 0.0, Rl)
+        return (s, El, Rl, Y, nu, jg_constants(El, Rl, Y, nu))
+    return (s, El, Rl, Y, nu, (ke_critical_interference(El, Rl, Y, nu), 0.0, 0.0, 0.0, 0.0, Rl))
 
 
 @jitable
 def _critical(c):
     """:func:`critical_approach` from :func:`law_constants`."""
-    return c[5] / c[0]
+    return c[5][0] / c[0]
 
 
 @jitable
@@ -328,7 +328,7 @@ def _force(law, alpha, c):
     if alpha <= 0.0:
         return 0.0
     if law == JACKSON_GREEN:
-        return _jg_loading(c[0] * alpha, c[1], c[2], (c[5], c[6], c[7], c[8], c[9], c[10]))
+        return _jg_loading(c[0] * alpha, c[1], c[2], c[5])
     return ke_loading_force(c[0] * alpha, c[1], c[2], c[3], c[4])
 
 
