@@ -459,6 +459,141 @@ print("ok")
     assert res.stdout.strip().endswith("ok")
 
 
+def _csv_threads_end(timeout=10.0):
+    """Wait until no thread of the CSV writer is left; True if none is."""
+    import threading
+    import time
+
+    t0 = time.monotonic()
+    while any(t.name.startswith("microimpact-csv") for t in threading.enumerate()):
+        if time.monotonic() - t0 > timeout:
+            return False
+        time.sleep(0.01)
+    return True
+
+
+def _csv_pieces(rng):
+    """Pieces as a sweep yields them: numeric columns of several lengths (none, one row, a few
+    formatting calls), a text column (a model dimension), and None after each block."""
+    pieces = []
+    for n in (0, 1, 7, 3 * 5 + 2, 40):
+        x = rng.integers(0, 2**64 - 1, n, dtype=np.uint64, endpoint=True).view(np.float64)
+        pieces.append([np.linspace(1.0, 2.0, n), x, rng.random(n) < 0.5, rng.integers(-9, 9, n)])
+        pieces.append(None)
+    pieces.append([np.array(["hertz", "seed", "jg"]), np.array([1.5, np.nan, -np.inf])])
+    pieces.append(None)
+    return pieces
+
+
+@pytest.mark.parametrize("window", [1, 2, 4])
+def test_csv_writer_threads_write_what_one_thread_writes(monkeypatch, window):
+    """The overlapped writer (a producer, two formatting threads, the writing thread) writes the
+    same bytes, in the same order, as formatting each piece in one thread; steps once per block;
+    and leaves no thread behind. Small pieces and a small window make every stage wait on the others."""
+    import io
+
+    monkeypatch.setattr(msweep, "_CSV_FORMAT_ROWS", 5)
+    monkeypatch.setattr(msweep, "_CSV_WINDOW", window)
+    pieces = _csv_pieces(np.random.default_rng(window))
+    serial = io.BytesIO()
+    for cols in pieces:
+        if cols is not None:
+            msweep._write_rows(serial, cols)
+    steps = []
+    threaded = io.BytesIO()
+    msweep._write_pieces(threaded, iter(pieces), lambda: steps.append(threaded.tell()))
+    assert threaded.getvalue() == serial.getvalue()
+    assert len(steps) == pieces.count(None) and steps == sorted(steps) and steps[-1] == len(serial.getvalue())
+    assert _csv_threads_end()
+
+
+class _FailingFile:
+    """A binary file whose ``fail_at``-th write raises ENOSPC."""
+
+    def __init__(self, fail_at):
+        self.writes = 0
+        self.fail_at = fail_at
+
+    def write(self, data):
+        self.writes += 1
+        if self.writes == self.fail_at:
+            raise OSError(28, "No space left on device")
+        return len(data)
+
+
+def _endless_pieces(made):
+    rng = np.random.default_rng(3)
+    while True:
+        made.append(1)
+        yield [rng.random(12), rng.random(12)]
+        yield None
+
+
+@pytest.mark.parametrize("where", ["producer", "write", "interrupt"])
+def test_csv_writer_raises_what_any_stage_raises_and_stops_the_others(monkeypatch, where):
+    """An error while producing (a block that fails to compute), while writing (a full disk) or an
+    interrupt in the writing thread is raised by the writer, and every stage stops: an endless
+    source of pieces is not drained, and no thread is left."""
+    monkeypatch.setattr(msweep, "_CSV_FORMAT_ROWS", 4)
+    monkeypatch.setattr(msweep, "_CSV_WINDOW", 2)
+    made = []
+    pieces = _endless_pieces(made)
+    fh, step = _FailingFile(fail_at=0), lambda: None
+    if where == "producer":
+
+        def failing():
+            yield from [[np.arange(9.0)], None, [np.arange(3.0)]]
+            raise ValueError("block 2 failed")
+
+        pieces, expected = failing(), ValueError
+    elif where == "write":
+        fh, expected = _FailingFile(fail_at=5), OSError
+    else:
+        calls = []
+
+        def step():
+            calls.append(1)
+            if len(calls) == 3:
+                raise KeyboardInterrupt
+
+        expected = KeyboardInterrupt
+    with pytest.raises(expected):
+        msweep._write_pieces(fh, pieces, step)
+    assert _csv_threads_end()
+    assert len(made) < 20  # the producer stopped within a few pieces of the window
+
+
+def test_csv_writer_asks_the_kernel_to_write_back_what_it_wrote(tmp_path, monkeypatch):
+    """Every _CSV_WRITEBACK_BYTES the bytes written since the last request, and only those, are
+    handed to posix_fadvise (DONTNEED starts their writeback); the file is what one thread writes."""
+    import io
+    import os
+
+    if not hasattr(os, "posix_fadvise"):
+        pytest.skip("no posix_fadvise on this system")
+    asked = []
+    real = os.posix_fadvise
+    monkeypatch.setattr(
+        os, "posix_fadvise", lambda fd, off, n, advice: (asked.append((off, n, advice)), real(fd, off, n, advice))
+    )
+    monkeypatch.setattr(msweep, "_CSV_FORMAT_ROWS", 64)
+    monkeypatch.setattr(msweep, "_CSV_WRITEBACK_BYTES", 4096)
+    rng = np.random.default_rng(7)
+    pieces = [[rng.random(500), rng.random(500)], None, [rng.random(300), rng.random(300)], None]
+    path = tmp_path / "w.csv"
+    with open(path, "wb") as fh:
+        fh.write(b"a,b\n")
+        msweep._write_pieces(fh, iter(pieces), lambda: None)
+    serial = io.BytesIO(b"a,b\n")
+    serial.seek(0, 2)
+    for cols in pieces[::2]:
+        msweep._write_rows(serial, cols)
+    assert path.read_bytes() == serial.getvalue()
+    assert asked and all(a == os.POSIX_FADV_DONTNEED for *_, a in asked)
+    assert asked[0][0] == 4 and all(o + n == o2 for (o, n, _), (o2, *_) in zip(asked, asked[1:]))
+    assert all(n >= 4096 for _, n, _ in asked) and len(serial.getvalue()) - sum(asked[-1][:2]) < 4096
+
+
 def test_csv_rows_read_back_bit_for_bit_nan_inf_and_flags_spelled_as_before(tmp_path):
     """The CSV writer's numbers read back bit for bit with Python's float() (random bit patterns,
     subnormals, the extremes, signed zeros), NaN as ``nan``, infinities as ``inf``/``-inf``,

@@ -20,6 +20,7 @@ xarray and dask are optional: ``pip install 'microimpact[sweep]'``.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import sys
 import warnings
@@ -100,8 +101,12 @@ _BYTES_PER_POINT = 600
 #: first dimension up to this size is computed once (``chunks="auto"`` makes them 362 x the other
 #: dimensions); a larger one in pieces, and a piece cut inside a dask chunk computes that chunk again.
 _CSV_SLAB_POINTS = 1 << 19
-#: Rows formatted per call of polars' CSV writer (about 15 MB of text).
-_CSV_FORMAT_ROWS = 1 << 15
+#: Rows formatted per call of polars' CSV writer (about 6 MB of text for a sweep's 22 columns).
+_CSV_FORMAT_ROWS = 1 << 14
+#: Pieces of :data:`_CSV_FORMAT_ROWS` rows queued to be formatted or written at once (bounds memory).
+_CSV_WINDOW = 4
+#: Bytes written between two requests that the kernel start writing them to the disk.
+_CSV_WRITEBACK_BYTES = 1 << 26
 
 
 # --------------------------------------------------------------------------- kernel
@@ -644,8 +649,10 @@ def sweep_to_csv(ds, path, *, progress=False, rows_per_block=None):
     exact form (they read back exactly; formatted by polars, ``nan``, ``inf``
     and ``-inf`` as such); booleans as 0/1. Rows run over the
     last dimension fastest. A lazy sweep is computed one block of the first
-    dimension at a time (split further when a block would exceed about 2.6e5
-    points), so memory stays bounded; ``progress=True`` draws a bar on stderr
+    dimension at a time (split further when a block would exceed about 5.2e5
+    points), so memory stays bounded; the next block is computed while the
+    last one's rows are formatted (two threads) and written (:func:`_write_pieces`:
+    the same bytes as one thread would write). ``progress=True`` draws a bar on stderr
     (:func:`microimpact.io.progress_bar`). The file is written to a temporary
     name beside ``path`` and renamed into place when complete.
 
@@ -681,51 +688,163 @@ def sweep_to_csv(ds, path, *, progress=False, rows_per_block=None):
             sub = ds.compute()
             _write_rows(fh, [np.atleast_1d(np.asarray(sub[c].values)) for c in columns])
             return path
-        with progress_bar(len(slabs), "sweep to CSV", unit="block", disable=not progress) as bar:
+
+        def pieces():  # computed one block at a time, in the producer thread of _write_pieces
             for outer, inner in slabs:
                 part = ds.isel(outer).compute()  # one block of the first dimension at a time
                 for sel in inner:
-                    _write_rows(fh, _piece_columns(part.isel(sel), dims, variables))
-                bar.update(1)
+                    yield _piece_columns(part.isel(sel), dims, variables)
+                yield None  # a block done: one step of the progress bar
+
+        with progress_bar(len(slabs), "sweep to CSV", unit="block", disable=not progress) as bar:
+            _write_pieces(fh, pieces(), lambda: bar.update(1))
     return path
 
 
 def _write_rows(fh, cols):
-    """Write the CSV rows of equal-length columns (numpy arrays) to the binary file ``fh`` (UTF-8).
+    """Write the CSV rows of equal-length columns (numpy arrays) to the binary file ``fh`` (UTF-8):
+    :func:`_format_rows` of every :data:`_CSV_FORMAT_ROWS` rows, in order, in this thread."""
+    import io
 
-    Numbers go through polars' compiled CSV writer, :data:`_CSV_FORMAT_ROWS` rows at a time: floats
-    in their shortest exact form (they read back bit for bit; the same digits as Python's ``repr``,
-    positional notation down to 1e-5), NaN written ``nan`` (as a null), infinities ``inf`` and
-    ``-inf``, booleans 0/1. Python's ``repr`` cost about 2 us a number, 20x the NetCDF write of the
-    same sweep (issue 25). Polars writes into one buffer, reused, whose bytes go to the file as they
-    are: its text as a Python string, encoded again for a text file, cost a third of the CSV sweep's
-    time at 10^7 points (copies into fresh memory). Text columns (a ``model`` dimension) take
-    :func:`microimpact.io.csv_rows`.
+    n = len(cols[0]) if cols else 0
+    buf = io.BytesIO()
+    for i in range(0, n, _CSV_FORMAT_ROWS):
+        with _format_rows(cols, i, i + _CSV_FORMAT_ROWS, buf) as text:
+            fh.write(text)
+
+
+def _format_rows(cols, start, stop, buf=None):
+    """The CSV text of rows ``start:stop`` of equal-length columns (numpy arrays), UTF-8: a
+    memoryview of ``buf`` (an :class:`io.BytesIO`, reused from its start; a new one by default),
+    to be released before ``buf`` is used again.
+
+    Numbers go through polars' compiled CSV writer: floats in their shortest exact form (they read
+    back bit for bit; the same digits as Python's ``repr``, positional notation down to 1e-5), NaN
+    written ``nan`` (as a null), infinities ``inf`` and ``-inf``, booleans 0/1. Python's ``repr``
+    cost about 2 us a number, 20x the NetCDF write of the same sweep (issue 25). Polars formats
+    with the GIL released, so two threads format two pieces at once (:func:`_write_pieces`). Text
+    columns (a ``model`` dimension) take :func:`microimpact.io.csv_rows`.
     """
     import io
 
     from .io import csv_rows
 
+    if buf is None:
+        buf = io.BytesIO()
+    buf.seek(0)
     if not all(c.dtype.kind in "biuf" for c in cols):
-        fh.writelines((row + "\n").encode("utf-8") for row in csv_rows(cols))
-        return
+        buf.writelines((row + "\n").encode("utf-8") for row in csv_rows([c[start:stop] for c in cols]))
+        return buf.getbuffer()[: buf.tell()]
     pl = require("polars", "CSV sweeps")
-    buf = io.BytesIO()
     names = [f"c{j}" for j in range(len(cols))]
+    part = {
+        name: (c[start:stop].astype(np.int8) if c.dtype.kind == "b" else c[start:stop]) for name, c in zip(names, cols)
+    }
+    frame = pl.DataFrame(part)
     floats = [name for name, c in zip(names, cols) if c.dtype.kind == "f"]
-    n = len(cols[0]) if cols else 0
-    for i in range(0, n, _CSV_FORMAT_ROWS):
-        part = {
-            name: (c[i : i + _CSV_FORMAT_ROWS].astype(np.int8) if c.dtype.kind == "b" else c[i : i + _CSV_FORMAT_ROWS])
-            for name, c in zip(names, cols)
-        }
-        frame = pl.DataFrame(part)
-        if floats:
-            frame = frame.with_columns(pl.col(floats).fill_nan(None))
-        buf.seek(0)
-        frame.write_csv(buf, include_header=False, null_value="nan", line_terminator="\n")
-        with buf.getbuffer() as text:
-            fh.write(text[: buf.tell()])
+    if floats:
+        frame = frame.with_columns(pl.col(floats).fill_nan(None))
+    frame.write_csv(buf, include_header=False, null_value="nan", line_terminator="\n")
+    return buf.getbuffer()[: buf.tell()]
+
+
+def _write_pieces(fh, pieces, step):
+    """Write the CSV rows of each list of equal-length columns that ``pieces`` yields to the binary
+    file ``fh``, in order, as :func:`_write_rows` would; call ``step()`` for each ``None`` it yields.
+
+    Three stages overlap on the machine's cores. A producer thread runs ``pieces`` (a lazy sweep's
+    blocks are computed there) and cuts each into :data:`_CSV_FORMAT_ROWS` rows; two threads
+    format them (:func:`_format_rows`: polars formats with the GIL released, so two pieces are
+    formatted at once); this thread alone writes to ``fh``, in the order produced. Serially, at
+    10^7 points, formatting took half the time, writing a fifth and computing a sixth (issue 25).
+    At most :data:`_CSV_WINDOW` pieces wait between the stages, so memory stays bounded; the text
+    buffers are reused. Every :data:`_CSV_WRITEBACK_BYTES` the kernel is asked to start writing
+    the new bytes to the disk (``posix_fadvise(..., POSIX_FADV_DONTNEED)``, which never drops
+    unwritten data): otherwise a few GB wait in the page cache, and the final ``fsync`` of
+    :func:`microimpact.io.atomic_write` waits seconds for them after all the work is done.
+
+    An exception in any stage, or an interrupt, is raised here once the formatting threads have
+    stopped; the producer stops at its next piece (a block being computed is finished first).
+    """
+    import io
+    import os
+    import queue
+    import threading
+    from concurrent.futures import ThreadPoolExecutor
+
+    end = object()
+    stop = threading.Event()
+    slots = queue.Queue(maxsize=_CSV_WINDOW)  # futures of formatted text, None (a block done), an exception
+    spare = queue.SimpleQueue()  # text buffers written and free again
+
+    def put(item):
+        while not stop.is_set():
+            try:
+                slots.put(item, timeout=0.1)
+                return True
+            except queue.Full:
+                pass
+        return False
+
+    def format_rows(cols, start):
+        try:
+            buf = spare.get_nowait()
+        except queue.Empty:
+            buf = io.BytesIO()
+        return buf, _format_rows(cols, start, start + _CSV_FORMAT_ROWS, buf)
+
+    def produce():
+        try:
+            for cols in pieces:
+                if cols is None:
+                    if not put(None):
+                        return
+                    continue
+                for start in range(0, len(cols[0]) if cols else 0, _CSV_FORMAT_ROWS):
+                    if stop.is_set() or not put(pool.submit(format_rows, cols, start)):
+                        return
+        except BaseException as exc:  # raised again in the writing thread
+            put(exc)
+        finally:
+            put(end)
+
+    fd, offset = _writeback_start(fh)
+    asked = offset
+    with ThreadPoolExecutor(2, thread_name_prefix="microimpact-csv-format") as pool:
+        producer = threading.Thread(target=produce, name="microimpact-csv-blocks", daemon=True)
+        producer.start()
+        try:
+            while (item := slots.get()) is not end:
+                if item is None:
+                    step()
+                    continue
+                if isinstance(item, BaseException):
+                    raise item
+                buf, text = item.result()
+                with text:
+                    fh.write(text)
+                    offset += len(text)
+                spare.put(buf)
+                if fd is not None and offset - asked >= _CSV_WRITEBACK_BYTES:
+                    with contextlib.suppress(OSError):  # an optimisation only
+                        os.posix_fadvise(fd, asked, offset - asked, os.POSIX_FADV_DONTNEED)
+                    asked = offset
+            producer.join()  # it has put its end: no thread outlives a completed write
+        finally:
+            stop.set()
+            pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _writeback_start(fh):
+    """``(fd, offset)``: the descriptor of ``fh`` (None where the kernel cannot be asked to start
+    writing back early) and its position, its buffer flushed."""
+    import os
+
+    try:
+        fh.flush()
+        return (fh.fileno() if hasattr(os, "posix_fadvise") else None), fh.tell()
+    except (AttributeError, OSError, ValueError):  # not a file of the system (a BytesIO in tests)
+        return None, 0
 
 
 def _piece_columns(sub, dims, variables):
