@@ -714,10 +714,10 @@ def _write_rows(fh, cols):
             fh.write(text)
 
 
-def _format_rows(cols, start, stop, buf=None):
+def _format_rows(cols, start, stop, buf):
     """The CSV text of rows ``start:stop`` of equal-length columns (numpy arrays), UTF-8: a
-    memoryview of ``buf`` (an :class:`io.BytesIO`, reused from its start; a new one by default),
-    to be released before ``buf`` is used again.
+    memoryview of ``buf`` (an :class:`io.BytesIO`, reused from its start), to be released before
+    ``buf`` is used again.
 
     Numbers go through polars' compiled CSV writer: floats in their shortest exact form (they read
     back bit for bit; the same digits as Python's ``repr``, positional notation down to 1e-5), NaN
@@ -726,12 +726,8 @@ def _format_rows(cols, start, stop, buf=None):
     with the GIL released, so two threads format two pieces at once (:func:`_write_pieces`). Text
     columns (a ``model`` dimension) take :func:`microimpact.io.csv_rows`.
     """
-    import io
-
     from .io import csv_rows
 
-    if buf is None:
-        buf = io.BytesIO()
     buf.seek(0)
     if not all(c.dtype.kind in "biuf" for c in cols):
         buf.writelines((row + "\n").encode("utf-8") for row in csv_rows([c[start:stop] for c in cols]))
