@@ -58,6 +58,12 @@ def _run(model, V, E, R, m, p_y, params, ts, rtol):
     if model.ends_at_zero_force(params):
 
         def zero_force(t, y):
+            # past the end of the contact the force law returns 0, not a negative force: a step that
+            # spans the zero crossing and the end of the approach would then see + ... 0 and report its
+            # end, not the crossing (Hertz-Tsuji with a weak damping: the force is negative over a stretch
+            # shorter than a step); a negative value there brackets the crossing inside the step
+            if y[0] <= sep:
+                return -1.0
             return g(y[0] * xs, y[1] * V, amax, E, R, m, p_y, params)
 
         zero_force.terminal = True

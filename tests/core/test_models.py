@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from scipy.special import beta
 
@@ -414,6 +414,9 @@ def test_jkr_without_adhesion_is_hertz():
     r=st.floats(-7.0, -2.0),
     rho=st.floats(500.0, 20000.0),
 )
+# a weak damping clipped at zero: the force is negative over a stretch shorter than one ODE step (the
+# reference integration once reported the end of the approach there, 5e-6 late)
+@example(V=0.0, alpha=1e-6, limit=1.0, Eexp=6.0, r=-2.0, rho=500.0)
 def test_tsuji_integration_equals_ode(V, alpha, limit, Eexp, r, rho):
     R, m = _sphere(r, rho)
     o = fields(ht, 10.0**V, 10.0**Eexp, R, m, PY_SI, (alpha, limit))
