@@ -95,6 +95,17 @@ ORDER = list(TARGETS)
 PAPER_PAIR = dict(radius=2.45e-6, density=1350.0, effective_modulus=1.31e9, limiting_pressure=156e6)
 
 
+@pytest.hookimpl(tryfirst=True)
+def pytest_cmdline_main(config):
+    """One process: the test suite's ``-n auto`` (``addopts`` in ``pyproject.toml``) does not apply here.
+
+    Under pytest-xdist, pytest-benchmark disables itself, and the ratios are measured side by side in
+    one process anyway. This runs before xdist's own hook (a conftest's ``tryfirst`` comes first).
+    """
+    if getattr(config.option, "numprocesses", None):
+        config.option.numprocesses = 0
+
+
 def pytest_addoption(parser):
     group = parser.getgroup("microimpact benchmarks")
     group.addoption("--size", choices=sorted(SIZES), default="quick", help="problem sizes (default quick)")
