@@ -23,8 +23,9 @@ settings.load_profile(PROFILE)
 if PROFILE == "ci":
     try:  # a private hook: without it (another hypothesis) the examples are only less fixed
         from hypothesis.internal.conjecture import providers as _providers
-    except ImportError:  # pragma: no cover
-        _providers = None
-    if _providers is not None and hasattr(_providers, "_get_local_constants"):
-        _NO_LOCAL_CONSTANTS = _providers._get_local_constants.__globals__["_local_constants"]
+
+        _NO_LOCAL_CONSTANTS = _providers._local_constants  # empty until the hook below first runs
+    except (ImportError, AttributeError):  # pragma: no cover
+        pass
+    else:
         _providers._get_local_constants = lambda: _NO_LOCAL_CONSTANTS
