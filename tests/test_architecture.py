@@ -26,6 +26,7 @@ LAYERS = {
     "materials": 1,
     "io": 1,
     "_signals": 1,
+    "_version": 1,
     "_face": 2,
     "_history": 2,
     "contact": 2,
@@ -109,8 +110,6 @@ def test_no_import_goes_upward():
     violations = []
     for importer, target, name, line in IMPORTS:
         full = _full(target, name)
-        if full == "microimpact" and name == "__version__":  # package metadata, read lazily
-            continue
         if _layer(full) > _layer(importer):
             violations.append(
                 f"{importer} (layer {_layer(importer)}) imports {full} (layer {_layer(full)}) at line {line}"

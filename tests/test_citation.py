@@ -15,14 +15,16 @@ def test_citation_file():
     cff = yaml.safe_load(CFF.read_text())
     assert cff["cff-version"] == "1.2.0"
     assert cff["type"] == "software"
-    # the version the project declares; the installed one too where the tree is installed (a source
-    # tree on the path without installation knows no version: "0+unknown")
+    # the version the project declares: pyproject.toml takes it from microimpact/_version.py, which
+    # microimpact.__version__ reads (the installed metadata is compared with it in CI, on the wheel)
     import re
 
-    declared = re.search(r'^version = "([^"]+)"', (CFF.parent / "pyproject.toml").read_text(), re.M).group(1)
-    assert str(cff["version"]) == declared
-    if microimpact.__version__ != "0+unknown":
-        assert microimpact.__version__ == declared
+    pyproject = (CFF.parent / "pyproject.toml").read_text()
+    assert re.search(r'^dynamic = \["version"\]$', pyproject, re.M)
+    assert re.search(r'^version = \{attr = "microimpact\._version\.__version__"\}', pyproject, re.M)
+    source = (CFF.parent / "src" / "microimpact" / "_version.py").read_text()
+    declared = re.search(r'^__version__ = "([^"]+)"$', source, re.M).group(1)
+    assert str(cff["version"]) == declared == microimpact.__version__
     (article,) = [r for r in cff["references"] if r["type"] == "article"]
     assert article["title"].startswith("Dynamic impact model of plastic deformation between micro-particles")
     assert (article["journal"], article["volume"], article["issue"], article["start"], article["end"]) == (

@@ -75,12 +75,7 @@ def __getattr__(name):
     elif name in _SUBMODULES:
         value = _importlib.import_module(f".{name}", __name__)
     elif name == "__version__":
-        from importlib.metadata import PackageNotFoundError, version
-
-        try:
-            value = version("microimpact")
-        except PackageNotFoundError:  # pragma: no cover - running from a source tree without install
-            value = "0+unknown"
+        from ._version import __version__ as value
     else:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     globals()[name] = value

@@ -1033,7 +1033,7 @@ def write_table(path, table: dict, title: str = "", columns: dict | None = None,
     >>> back["velocity_m_s"].tolist(), back["restitution"].tolist()
     ([5.0, 20.0], [1.0, 0.8836])
     """
-    from . import __version__
+    from ._version import __version__
 
     columns = {} if columns is None else columns
     keys = list(table)

@@ -820,7 +820,8 @@ def table_c_source(table: UniversalTable, name: str = "microimpact_oblique") -> 
         raise ValueError(f"name must be a C identifier, got {name!r}")
     up = name.upper()
     n_x, n_p = table.values.shape
-    rows = ",\n".join("  {" + ", ".join(f"{v:.17g}" for v in row) + "}" for row in table.values)
+    # Python floats (tolist) format 3x faster than numpy scalars: 11,000 numbers, 13 -> 4.5 ms (issue 25)
+    rows = ",\n".join("  {" + ", ".join(map("{:.17g}".format, row)) + "}" for row in table.values.tolist())
     dp = table.psi[1] - table.psi[0]
     dl = table.log_x[1] - table.log_x[0]
     return f"""/* Universal tangential-impulse table of the compliant (Mindlin no-slip + Coulomb) oblique

@@ -303,7 +303,7 @@ def generate_c_source(
         ``poisson_ratio`` or ``effective_shear_modulus`` with ``"rigid"`` is refused
         too (it would be ignored).
     """
-    from .. import __version__
+    from .._version import __version__
     from ..adhesion import check_adhesion_rule
 
     check_adhesion_rule(adhesion)

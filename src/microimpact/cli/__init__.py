@@ -70,7 +70,7 @@ class _Version(argparse.Action):
     """``--version``: reads the version from the package metadata only when asked."""
 
     def __call__(self, parser, namespace, values, option_string=None):
-        from .. import __version__
+        from .._version import __version__
 
         print(f"microimpact {__version__}")  # stdout, as argparse's own version action
         parser.exit(0)

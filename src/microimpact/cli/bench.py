@@ -122,7 +122,7 @@ def machine_info() -> dict:
     """
     import scipy
 
-    from .. import __version__
+    from .._version import __version__
 
     try:
         usable = len(os.sched_getaffinity(0))

@@ -8,7 +8,7 @@ from pathlib import Path
 
 from .. import adhesion as _adhesion
 from ..adhesion import check_adhesion_rule, work_of_adhesion
-from ..cexport import DEFAULT_VS_OVER_VY, generate_c_source, write_band, write_c_source, write_tables
+from ..cexport import DEFAULT_VS_OVER_VY, generate_c_source, write_band, write_tables
 from ..materials import sphere_mass
 from ..oblique import DEM_LAWS as LAWS
 from ._common import (
@@ -135,7 +135,7 @@ def _names(what: str) -> str:
 
 def run(args) -> int:
     from .._validation import check_nonnegative, check_positive
-    from ..io import owned_directory
+    from ..io import atomic_write, owned_directory
 
     check_pair_options(args)
     check_outputs(directories=[args.out])
@@ -220,18 +220,19 @@ def run(args) -> int:
     else:
         if adhesion != "additive":
             c_kw["adhesion"] = adhesion
-        if c_kw and not args.no_c:
-            generate_c_source(pair, work_of_adhesion=G, friction=mu, **c_kw)  # kappa checked before writing
+        # generated (every input checked) before anything is written, then written as is: generating
+        # it again in write_c_source formatted the compliant law's table twice (issue 25)
+        c_text = None if args.no_c else generate_c_source(pair, work_of_adhesion=G, friction=mu, **c_kw)
         with owned_directory(out, "export") as tmp:
             written = write_tables(
                 tmp, pair, diameters, velocities, work_of_adhesion=G, vs_over_vy_values=vs, adhesion=adhesion
             )
             if decks is not None:
                 written += _write_decks(tmp, pair, *decks)
-            if not args.no_c:
-                written.append(
-                    write_c_source(tmp / "microimpact_wall.c", pair, work_of_adhesion=G, friction=mu, **c_kw)
-                )
+            if c_text is not None:
+                with atomic_write(tmp / "microimpact_wall.c") as fh:
+                    fh.write(c_text)
+                written.append(tmp / "microimpact_wall.c")
     if fit is not None:
         print(f"fit to {args.fit} ({fit.n_points} points):")
         print(fit.summary())

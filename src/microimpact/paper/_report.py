@@ -5,7 +5,7 @@ from __future__ import annotations
 import base64
 import html
 
-from .. import __version__
+from .._version import __version__
 from ..figures import paper as figs
 from ..materials import PAPER_CASES
 from ..quantities import header as heading
