@@ -133,3 +133,32 @@ def test_binomial_series_sums_to_the_power(p, start):
             assert abs(got - ref) <= 1e-15 * abs(ref) + mp.mpf(10) ** -30
     if q.denominator == 1:  # an integer power: the series ends
         assert special.binomial_series(q, 0, 10)[4:] == (0.0,) * 6
+
+
+def test_gauss_legendre_literals_are_numpys_rules():
+    """The kept nodes and weights are numpy's ``leggauss`` (bit for bit with this numpy and LAPACK;
+    within 2 units in the last place allowed where another LAPACK rounds the eigenvalues otherwise),
+    integrate polynomials up to degree 2n - 1 exactly (to rounding), and are the ones the laws use."""
+    from microimpact.core import gauss_legendre as gl
+    from microimpact.core.models import _fitted_laws, _jkr
+
+    for n, (nodes, weights) in gl.RULES.items():
+        x, w = np.polynomial.legendre.leggauss(n)
+        assert len(nodes) == len(weights) == n and all(type(v) is float for v in nodes + weights)
+        np.testing.assert_array_max_ulp(np.array(nodes), x, maxulp=2)
+        np.testing.assert_array_max_ulp(np.array(weights), w, maxulp=2)
+        for k in range(2 * n):  # int_-1^1 t^k dt = 2/(k+1) for even k, 0 for odd k
+            exact = 2.0 / (k + 1) if k % 2 == 0 else 0.0
+            assert math.fsum(wi * xi**k for xi, wi in zip(nodes, weights)) == pytest.approx(exact, abs=1e-14)
+    assert (_jkr.GX, _jkr.GW) == gl.RULES[48]
+    assert (_fitted_laws.GX, _fitted_laws.GW, _fitted_laws.GX6, _fitted_laws.GW6) == gl.RULES[24] + gl.RULES[6]
+
+
+def test_importing_the_core_models_does_not_import_numpy_polynomial():
+    """The rules are literals: importing the laws no longer costs numpy.polynomial (issue 25)."""
+    import subprocess
+    import sys
+
+    code = "import sys, microimpact.core.models, microimpact.models; print('numpy.polynomial' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "False"

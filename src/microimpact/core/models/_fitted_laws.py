@@ -30,10 +30,9 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 from .. import hertz
 from .._jit import jitable
+from ..gauss_legendre import RULES
 from ..special import BETA_25_12
 from ._common import nan_outcome, pack, pack_beyond
 from .thornton_ning_2016 import elastic_stage_time
@@ -41,14 +40,10 @@ from .thornton_ning_2016 import elastic_stage_time
 JACKSON_GREEN = 0
 KOGUT_ETSION = 1
 
-_X, _W = np.polynomial.legendre.leggauss(24)
-#: 24-point Gauss-Legendre nodes and weights on ``[-1, 1]``.
-GX = tuple(float(x) for x in _X)
-GW = tuple(float(w) for w in _W)
-_X6, _W6 = np.polynomial.legendre.leggauss(6)
+#: 24-point Gauss-Legendre nodes and weights on ``[-1, 1]`` (numpy's ``leggauss``, kept as literals).
+GX, GW = RULES[24]
 #: 6-point Gauss-Legendre nodes and weights, for the short steps between the nodes of a panel.
-GX6 = tuple(float(x) for x in _X6)
-GW6 = tuple(float(w) for w in _W6)
+GX6, GW6 = RULES[6]
 #: Widest panel in ``ln alpha`` of the composite rules.
 PANEL = 0.5
 #: Relative Newton step of :func:`max_approach` after which the iterate is exact to rounding: the

@@ -10,9 +10,8 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 from .._jit import jitable
+from ..gauss_legendre import RULES
 from ._common import nan_outcome, pack
 
 __all__ = [
@@ -30,10 +29,8 @@ __all__ = [
     "b_of_alpha",
 ]
 
-_X, _W = np.polynomial.legendre.leggauss(48)
-#: 48-point Gauss-Legendre nodes and weights on ``[-1, 1]``.
-GX = tuple(float(x) for x in _X)
-GW = tuple(float(w) for w in _W)
+#: 48-point Gauss-Legendre nodes and weights on ``[-1, 1]`` (numpy's ``leggauss(48)``, kept as literals).
+GX, GW = RULES[48]
 
 
 @jitable
