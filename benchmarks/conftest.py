@@ -65,7 +65,8 @@ TARGETS = {
     "startup": "impact 50 <= 1.5x, history 50 and export <= 2x python -c 'import numpy'; small sweep and compare "
     "<= 1.5x 'import xarray'; first compiled call (1e6, whole process) <= 1.3x 'import numba'; "
     "first array call of 1e3 speeds <= 50 ms",
-    "c_wall": "the exported C wall function <= 55 ns per call",
+    "c_wall": "the exported C wall function no slower than its form of 2026-11-24 beside it "
+    "(issue 25 keeps its 44 ns; <= 55 ns where that form takes 44 ns)",
     "warm_start": "oblique --alumina, a first compliant wall_interaction, export --tangential mindlin: "
     "each <= 0.3 s in a new process with the cache warm",
     "fit_models": "any model's fit <= 5x the seed's on the same data (ranking computes only e)",
@@ -352,9 +353,15 @@ def _entry(key, rec: Record) -> dict | None:
     elif key == "c_wall" and any("rigid" in k for k in t):
         call_name = next(k for k in t if "rigid" in k)
         call = t[call_name]
-        met = bool(call <= 55e-9)
+        then = next((s for k, s in t.items() if "2026-11-24" in k), None)
+        # issue 25 keeps a throughput figure: the rigid call must not be slower than it was when the issue
+        # was filed (44 ns there); side by side, a slower host slows both forms alike
+        met = bool(call <= then) if then else bool(call <= 55e-9)
         headline = f"{call * 1e9:.3g} ns per call (rigid)"
         rows = [(k, _fmt_t(s)) for k, s in t.items()]
+        if then:
+            headline += f", {call / then:.3g}x its form of 2026-11-24 ({then * 1e9:.3g} ns beside it)"
+            rows.append(("ratio (rigid / its form of 2026-11-24)", f"{call / then:.3g}x"))
         copy = t.get("the same loop copying inputs to outputs")
         if copy:
             headline += f", {call / copy:.3g}x the loop copying its data"
