@@ -66,7 +66,7 @@ TARGETS = {
     "<= 1.5x 'import xarray'; first compiled call (1e6, whole process) <= 1.3x 'import numba'; "
     "first array call of 1e3 speeds <= 50 ms",
     "c_wall": "the exported C wall function no slower than its form of 2026-11-24 beside it "
-    "(issue 25 keeps its 44 ns; <= 55 ns where that form takes 44 ns)",
+    "(the throughput issue 25 keeps: 44 ns per call where the issue was measured)",
     "warm_start": "oblique --alumina, a first compliant wall_interaction, export --tangential mindlin: "
     "each <= 0.3 s in a new process with the cache warm",
     "fit_models": "any model's fit <= 5x the seed's on the same data (ranking computes only e)",

@@ -136,9 +136,9 @@ def test_binomial_series_sums_to_the_power(p, start):
 
 
 def test_gauss_legendre_literals_are_numpys_rules():
-    """The kept nodes and weights are numpy's ``leggauss`` (bit for bit with this numpy and LAPACK;
-    within 2 units in the last place allowed where another LAPACK rounds the eigenvalues otherwise),
-    integrate polynomials up to degree 2n - 1 exactly (to rounding), and are the ones the laws use."""
+    """The kept nodes and weights are numpy's ``leggauss`` within 2 units in the last place (they were
+    generated from it, bit for bit; another LAPACK may round the eigenvalues otherwise), integrate
+    polynomials up to degree 2n - 1 exactly (to rounding), and are the ones the laws use."""
     from microimpact.core import gauss_legendre as gl
     from microimpact.core.models import _fitted_laws, _jkr
 
