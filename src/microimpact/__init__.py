@@ -22,6 +22,7 @@ if _signals.running_as_command():  # the microimpact command: a signal from now 
 import importlib as _importlib  # noqa: E402
 
 from . import materials, models
+from ._version import __version__
 from .core.models import available as _available  # noqa: F401  (the registry loads with the package)
 from .materials import MATERIALS, Material, effective_mass, effective_modulus, effective_radius, get_material
 from .pair import AdhesionRangeWarning, ContactPair, ImpactResult, LargeStrainWarning
@@ -74,8 +75,6 @@ def __getattr__(name):
         value = getattr(_importlib.import_module(f".{_LAZY[name]}", __name__), name)
     elif name in _SUBMODULES:
         value = _importlib.import_module(f".{name}", __name__)
-    elif name == "__version__":
-        from ._version import __version__ as value
     else:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     globals()[name] = value
@@ -83,7 +82,7 @@ def __getattr__(name):
 
 
 def __dir__():
-    return sorted(set(globals()) | set(_LAZY) | _SUBMODULES | {"__version__"})
+    return sorted(set(globals()) | set(_LAZY) | _SUBMODULES)
 
 
 __all__ = [

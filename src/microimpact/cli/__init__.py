@@ -67,7 +67,7 @@ class Parser(argparse.ArgumentParser):
 
 
 class _Version(argparse.Action):
-    """``--version``: reads the version from the package metadata only when asked."""
+    """``--version``: prints the version (:mod:`microimpact._version`) and exits."""
 
     def __call__(self, parser, namespace, values, option_string=None):
         from .._version import __version__
