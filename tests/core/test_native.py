@@ -9,6 +9,7 @@ scipy, which numba's start-up imports); processes started together on an empty c
 
 from __future__ import annotations
 
+import ctypes
 import os
 import subprocess
 import sys
@@ -138,10 +139,12 @@ def test_the_lane_checks_what_evaluate_leaves_to_it(tmp_path):
     assert serial.lane(NOUT) is not None and _loops(tmp_path, visco.outcome, "aaaaa", NOUT, 2)[0].lane(NOUT) is None
 
 
-def test_the_loop_writes_its_status_slot_on_every_call(tmp_path):
+def test_the_loop_writes_its_status_slot_on_every_call(tmp_path, monkeypatch):
     """numba's convention writes the return value into the first status slot even when the call
     succeeds: the slots a call passes must outlive it (a freed pair was overwritten), which the
-    module's one shared pair does."""
+    module's one shared pair does (the ufunc's inner loop passes slots on its own stack, which
+    outlive its call too)."""
+    monkeypatch.setattr(_native, "_ufunc_api", lambda: None)  # the ctypes lane, as without the ufunc
     serial, _, used = _loops(tmp_path, seed.restitution_at, "as", 1, None)
     V = np.linspace(0.5, 90.0, 100)
 
@@ -150,12 +153,109 @@ def test_the_loop_writes_its_status_slot_on_every_call(tmp_path):
         serial(V.size, V, VY, (), out)
         return out
 
-    for call in (general, lambda: serial.lane(1)(V.size, (V, VY), ())):
+    lane = serial.lane(1)
+    assert serial._s.ufunc == ()
+    for call in (general, lambda: lane(V.size, (V, VY), ())):
         _native._SCRATCH_SLOTS[0] = 0x5A5A
         out = call()
         assert _native._SCRATCH_SLOTS[0] is None  # NULL written, into memory the module owns
         assert _same(out[0], [seed.restitution_at(float(v), VY) for v in V])
     assert not used
+
+
+def _ufunc_lane(tmp_path, fn, kinds, nparams):
+    serial, _, used = _loops(tmp_path, fn, kinds, 1, nparams)
+    run = serial.lane(1)
+    assert serial._s.ufunc, "the lane of a one-result loop is its ufunc where numpy's C API is found"
+    return serial, run, used
+
+
+@pytest.mark.parametrize("cases", ["edge", "random"])
+def test_the_ufunc_lane_is_bitwise_the_core(tmp_path, cases):
+    """A one-result loop's lane calls the kept loop as a numpy ufunc: the core's numbers bit for bit,
+    for the seed's restitution (no parameters) and a model's (parameters gathered into the C array
+    the loop takes), for any float64 column (strided, reversed, read-only, unaligned: numpy copies
+    that one to an aligned buffer first), with no call going to numba's loop."""
+    V = _edge_speeds(VY) if cases == "edge" else _random_cases()[0]
+    _, run, used = _ufunc_lane(tmp_path / "seed", seed.restitution_at, "as", None)
+    want = _scalar(seed.restitution_at, (V, np.full(V.size, VY)), None)
+    raw = np.zeros(V.nbytes + 1, dtype=np.uint8)
+    odd = raw[1:].view(np.float64)
+    odd[:] = V
+    frozen = V.copy()
+    frozen.setflags(write=False)
+    wide = np.repeat(V, 2)[::2]
+    for column, expect in ((V, want), (wide, want), (V[::-1], want[:, ::-1]), (frozen, want), (odd, want)):
+        out = run(column.size, (column, VY), ())
+        assert out.shape == (1, V.size) and out.flags.c_contiguous and _same(out, expect)
+    assert _same(run(V.size, (V, np.float64(VY)), ()), want)
+    params = (2e-6, 1.0)
+    (tmp_path / "visco").mkdir()
+    _, run, used_visco = _ufunc_lane(tmp_path / "visco", visco.restitution_only, "assss", len(params))
+    want = _scalar(visco.restitution_only, [V] + [np.full(V.size, x) for x in ARGS], params)
+    assert _same(run(V.size, (V, *ARGS), params), want)
+    assert not used and not used_visco
+
+
+def test_the_ufunc_lane_reports_no_floating_point_status(tmp_path):
+    """numpy reads the floating-point status after a ufunc's loop and warns (or raises) on what it
+    finds; the seed's restitution overflows in a branch it does not take at large speeds. No path
+    of the package reports it (numba's loops and ctypes' call do not): neither does the ufunc."""
+    _, run, used = _ufunc_lane(tmp_path, seed.restitution_at, "as", None)
+    V = np.array([0.0, 5e-324, 1e-300, VY * (1 - 1e-12), VY, VY * (1 + 1e-12), 1e3, 1e150, 1e300, 1.7e308])
+    with np.errstate(all="raise"):
+        out = run(V.size, (V, VY), ())
+    assert _same(out[0], [seed.restitution_at(float(v), VY) for v in V]) and not used
+    with np.errstate(all="raise"):
+        assert np.sqrt(np.array([4.0]))[0] == 2.0  # numpy's own status is left clean
+
+
+def test_a_call_the_ufunc_refuses_goes_to_numba(tmp_path):
+    """The ufunc takes its scalars as numpy's broadcast scalars (step 0): an array in their place is
+    refused (counted, nothing computed), as is an error status from the loop; the lane then takes
+    numba's loop, which computes the same or raises as it always did. Parameters of another count
+    or type go to numba's loop too; an error status sends the call to the general route (the loop
+    through ctypes, whose own error status hands it to numba's loop, which raises)."""
+    serial, run, used = _ufunc_lane(tmp_path, visco.restitution_only, "assss", 2)
+    ufunc, refused = serial._s.ufunc
+    V = np.linspace(0.5, 90.0, 100)
+    before = refused.value
+    ufunc(V, np.full(V.size, ARGS[0]), *ARGS[1:], 2e-6, 1.0)
+    assert refused.value == before + 1
+    for wrong in ((2e-6,), (2e-6, 1)):
+        with pytest.raises(Exception):  # numba's loop refuses them as it always did
+            run(V.size, (V, *ARGS), wrong)
+    assert len(used) == 1
+
+    import llvmlite.binding as ll
+
+    # a loop that reports an error on every call: the ufunc counts it, the lane asks numba's loop
+    args = ", ".join(["ptr", "ptr", "i64", "ptr", "i64", "double", "ptr", "ptr", "i64", "i64"])
+    engine = ll.create_mcjit_compiler(
+        ll.parse_assembly(f"define i32 @fails({args}) {{\n  ret i32 1\n}}\n"),
+        ll.Target.from_triple(ll.get_process_triple()).create_target_machine(jit=True),
+    )
+    engine.finalize_object()
+    failing = ctypes.CFUNCTYPE(ctypes.c_int32)(engine.get_function_address("fails"))
+    made = _native._ufunc(failing, "as", 0, "fails")
+    assert made is not None
+    ufunc, refused = made
+    ufunc(V, VY)
+    assert refused.value == 1
+    serial, _, used = _loops(tmp_path, seed.restitution_at, "as", 1, None)
+    serial._s.ufunc = made
+    out = serial.lane(1)(V.size, (V, VY), ())  # refused: the general call (ctypes) computes it
+    assert refused.value == 2 and not used
+    assert _same(out[0], [seed.restitution_at(float(v), VY) for v in V])
+
+
+def test_without_numpys_c_api_the_lane_calls_through_ctypes(tmp_path, monkeypatch):
+    monkeypatch.setattr(_native, "_ufunc_api", lambda: None)
+    serial, _, used = _loops(tmp_path, seed.restitution_at, "as", 1, None)
+    V = np.linspace(0.5, 90.0, 100)
+    out = serial.lane(1)(V.size, (V, VY), ())
+    assert serial._s.ufunc == () and not used
+    assert _same(out[0], [seed.restitution_at(float(v), VY) for v in V])
 
 
 def test_an_entry_that_is_not_sound_is_not_loaded(tmp_path):

@@ -23,6 +23,9 @@ llvmlite alone (the library numba compiles with), without importing numba.
   arrays are split in contiguous blocks over threads, as many as numba would use.
   A call this loop cannot take (a strided or unaligned array, a parameter that is no float, a
   different number of parameters) or that reports an error goes through numba's loop instead.
+* :meth:`NativeLoop.lane` (a small array's usual call, one result): the same function as a numpy
+  ufunc (:func:`_ufunc`), which numpy calls with less around it than ctypes (0.8 us for a call, where
+  ctypes' conversion of ten arguments and the addresses it needs take 3-4 us here, issue 25).
 
 The object code is ELF (Linux); on other systems nothing is kept and numba's loops run, with
 numba's own cache. The numbers are the same bit for bit: the same function, compiled by the same numba with the same
@@ -395,7 +398,7 @@ def load(path: Path, kinds: str, nout: int, fallback):
     function = _function(*found, kinds, nout) if found is not None else None
     if function is None:
         return None
-    shared = _Shared(None, kinds, nout, None, fallback)
+    shared = _Shared(path, kinds, nout, None, fallback)
     shared.ready(function, found[0].get("nparams"))
     return NativeLoop(shared, False), NativeLoop(shared, True)
 
@@ -462,6 +465,7 @@ class _Shared:
         self.lock = threading.Lock()
         self.fn = self.with_params = self.warn = None
         self.usual = 0
+        self.ufunc = None  # (ufunc, refused count) once made for the lane, () where it cannot be
 
     def ready(self, function, nparams):
         import numpy as np
@@ -547,6 +551,176 @@ def _writable_address(a):
         return a.__array_interface__["data"][0] if a.flags.writeable else None
 
 
+#: numpy's type number of float64 (``NPY_DOUBLE``, the C API's ``NPY_TYPES``).
+_NPY_DOUBLE = 12
+#: What a ufunc built here owns (machine code, the C arrays numpy keeps pointers to): as long as it lives.
+_UFUNCS: list = []
+
+
+def _ufunc_api():
+    """``PyUFunc_FromFuncAndData`` of numpy's C API, callable with the GIL held, or None.
+
+    numpy's C API is a table of function pointers that numpy exports as the capsule
+    ``_multiarray_umath._UFUNC_API`` (what ``import_umath()`` reads in a C extension);
+    ``PyUFunc_FromFuncAndData`` is its entry 1 (``numpy/_core/code_generators/numpy_api.py``:
+    ``'PyUFunc_FromFuncAndData': (1,)``), the documented way to make a ufunc of a C loop
+    (numpy reference, "UFunc API")."""
+    try:
+        try:
+            from numpy._core import _multiarray_umath as umath  # numpy 2
+        except ImportError:  # pragma: no cover - numpy 1
+            from numpy.core import _multiarray_umath as umath
+        capsule = umath._UFUNC_API
+        get = ctypes.pythonapi.PyCapsule_GetPointer
+        get.argtypes, get.restype = [ctypes.py_object, ctypes.c_char_p], ctypes.c_void_p
+        table = get(capsule, None)
+    except Exception:  # another numpy, another Python: the ctypes lane
+        return None
+    if not table:
+        return None
+    c_int, c_void_p, c_char_p = ctypes.c_int, ctypes.c_void_p, ctypes.c_char_p
+    prototype = ctypes.PYFUNCTYPE(
+        ctypes.py_object, c_void_p, c_void_p, c_void_p, c_int, c_int, c_int, c_int, c_char_p, c_char_p, c_int
+    )
+    return prototype(ctypes.cast(table, ctypes.POINTER(c_void_p))[1])
+
+
+def _trampoline_ir(inner: int, kinds: str, nparams: int, fegetenv: int, fesetenv: int) -> str:
+    """LLVM IR of a numpy inner loop (``void loop(char **args, npy_intp const *dimensions, npy_intp
+    const *steps, void *data)``, numpy reference "UFunc API") that calls the kept loop at ``inner``.
+
+    ``args``: the loop's inputs in ``kinds`` order (an array: its pointer and its step in elements;
+    a scalar: the value its pointer holds, numpy's broadcast scalar, step 0), then ``nparams``
+    parameters (scalars too, gathered into the C array the loop takes), then the one output.
+    A scalar input with a nonzero step, or a nonzero status from the loop, adds one to the int64
+    at ``data`` (the caller then takes numba's route, which raises the loop's error). The loop's
+    floating-point status flags are put back as numpy left them (``fegetenv``/``fesetenv``): no
+    path of this package reports them (numba's loops and ctypes' call do not), so neither does
+    this one (numpy would warn of an overflow that ``restitution_at`` meets in a branch it does not
+    take)."""
+    nin = len(kinds) + nparams
+    lines = [
+        "define void @loop(ptr %args, ptr %dims, ptr %steps, ptr %data) {",
+        "entry:",
+        "  %env = alloca [128 x i8], align 16",
+        f"  %getenv = inttoptr i64 {fegetenv} to ptr",
+        "  %g = call i32 %getenv(ptr %env)",
+        "  %slots = alloca [2 x ptr], align 8",
+        "  %slot1 = getelementptr inbounds ptr, ptr %slots, i64 1",
+        f"  %pp = alloca [{max(nparams, 1)} x double], align 8",
+        "  %n = load i64, ptr %dims, align 8",
+        "  %bad0 = icmp ne i64 0, 0",
+    ]
+    call = ["ptr %slots", "ptr %slot1", "i64 %n"]
+    bad = "%bad0"
+
+    def scalar(k):
+        nonlocal bad
+        lines.extend(
+            [
+                f"  %sp{k} = getelementptr inbounds i64, ptr %steps, i64 {k}",
+                f"  %st{k} = load i64, ptr %sp{k}, align 8",
+                f"  %moving{k} = icmp ne i64 %st{k}, 0",
+                f"  %bad{k + 1} = or i1 {bad}, %moving{k}",
+                f"  %ap{k} = getelementptr inbounds ptr, ptr %args, i64 {k}",
+                f"  %p{k} = load ptr, ptr %ap{k}, align 8",
+                f"  %x{k} = load double, ptr %p{k}, align 8",
+            ]
+        )
+        bad = f"%bad{k + 1}"
+
+    for k, c in enumerate(kinds):
+        if c == "a":
+            lines.extend(
+                [
+                    f"  %ap{k} = getelementptr inbounds ptr, ptr %args, i64 {k}",
+                    f"  %p{k} = load ptr, ptr %ap{k}, align 8",
+                    f"  %sp{k} = getelementptr inbounds i64, ptr %steps, i64 {k}",
+                    f"  %st{k} = load i64, ptr %sp{k}, align 8",
+                    f"  %s{k} = ashr i64 %st{k}, 3",
+                ]
+            )
+            call += [f"ptr %p{k}", f"i64 %s{k}"]
+        else:
+            scalar(k)
+            call.append(f"double %x{k}")
+    for j in range(nparams):
+        k = len(kinds) + j
+        scalar(k)
+        lines += [
+            f"  %q{j} = getelementptr inbounds double, ptr %pp, i64 {j}",
+            f"  store double %x{k}, ptr %q{j}, align 8",
+        ]
+    lines += [
+        f"  %op = getelementptr inbounds ptr, ptr %args, i64 {nin}",
+        "  %po = load ptr, ptr %op, align 8",
+        f"  %osp = getelementptr inbounds i64, ptr %steps, i64 {nin}",
+        "  %ost = load i64, ptr %osp, align 8",
+        "  %so1 = ashr i64 %ost, 3",
+        f"  br i1 {bad}, label %refuse, label %run",
+        "run:",
+        f"  %fn = inttoptr i64 {inner} to ptr",
+        f"  %status = call i32 %fn({', '.join(call + ['ptr %pp', 'ptr %po', 'i64 0', 'i64 %so1'])})",
+        f"  %setenv = inttoptr i64 {fesetenv} to ptr",
+        "  %r = call i32 %setenv(ptr %env)",
+        "  %failed = icmp ne i32 %status, 0",
+        "  br i1 %failed, label %refuse, label %done",
+        "refuse:",
+        "  %old = atomicrmw add ptr %data, i64 1 seq_cst",
+        "  br label %done",
+        "done:",
+        "  ret void",
+        "}",
+    ]
+    return "\n".join(lines) + "\n"
+
+
+def _ufunc(function, kinds: str, nparams: int, name: str):
+    """The kept loop ``function`` (one result) as a numpy ufunc of ``len(kinds) + nparams`` float64
+    inputs (see :func:`_trampoline_ir`), and the int64 that counts the calls it refused; None where
+    it cannot be made (then the lane calls through ctypes)."""
+    make = _ufunc_api()
+    fegetenv, fesetenv = _symbol("fegetenv"), _symbol("fesetenv")
+    if make is None or not fegetenv or not fesetenv:
+        return None
+    import llvmlite.binding as ll
+
+    inner = ctypes.cast(function, ctypes.c_void_p).value
+    try:
+        _init_llvm()
+        module = ll.parse_assembly(_trampoline_ir(inner, kinds, nparams, fegetenv, fesetenv))
+        module.verify()
+        tm = ll.Target.from_triple(ll.get_process_triple()).create_target_machine(jit=True)
+        engine = ll.create_mcjit_compiler(module, tm)
+        engine.finalize_object()
+        address = engine.get_function_address("loop")
+    except Exception:
+        return None
+    if not address:
+        return None
+    nin = len(kinds) + nparams
+    refused = ctypes.c_int64(0)
+    funcs = (ctypes.c_void_p * 1)(address)
+    data = (ctypes.c_void_p * 1)(ctypes.addressof(refused))
+    types = (ctypes.c_char * (nin + 1))(*([_NPY_DOUBLE] * (nin + 1)))
+    label, doc = name.encode(), b"A loop of microimpact's core, kept as machine code (microimpact.core._native)."
+    try:
+        ufunc = make(funcs, data, types, 1, nin, 1, -1, label, doc, 0)  # -1: PyUFunc_None, no identity
+    except Exception:
+        return None
+    _UFUNCS.append((engine, funcs, data, types, label, doc, refused))  # numpy keeps these pointers
+    return ufunc, refused
+
+
+def _ufunc_name(shared) -> str:
+    """The ufunc's ``__name__``: the core function's, where the loop was built in this process, else
+    the entry's file stem (``<module>__<function>_<kinds>_<hash>``)."""
+    fn = shared.fn
+    if fn is not None:
+        return f"{fn.__module__}.{fn.__name__}"
+    return shared.path.stem if shared.path is not None else "microimpact_native_loop"
+
+
 class NativeLoop:
     """A loaded loop, called like numba's (``loop(n, *inputs, params, out)``); see the module docstring."""
 
@@ -606,11 +780,20 @@ class NativeLoop:
         ``run`` allocates the C-contiguous ``(nout, n)`` result itself, so only the first array's
         alignment and byte order and the parameters are left to check; everything it looks up is
         bound once. On 1e3 speeds this is 0.5 us of checks and look-ups where the general call
-        (:meth:`_args`) spends 2 us (issue 25)."""
+        (:meth:`_args`) spends 2 us (issue 25). A loop of one result runs as a numpy ufunc
+        (:func:`_ufunc`, :meth:`_ufunc_lane`) where numpy's C API can make one: ctypes' call itself
+        (ten arguments converted, the status slots, two addresses) was 3-4 us of a 1e3-speed call
+        on a host where the ufunc's is 0.8 us."""
         s = self._s
         if s.state != "ready" or not s.usual:
             return None
         import numpy as np
+
+        if nout == 1 and s.nout == 1:
+            if s.ufunc is None:
+                s.ufunc = _ufunc(s.function, s.kinds, s.nparams or 0, _ufunc_name(s)) or ()
+            if s.ufunc:
+                return self._ufunc_lane(*s.ufunc)
 
         function, f8, count, pointer, takes = s.function, s.f8, s.usual, s.params_pointer, bool(s.nparams)
         empty, call, address_of, addressof, view, scratch = (
@@ -632,6 +815,30 @@ class NativeLoop:
                     a = addressof(view(out))  # out is this function's own: writeable, C-contiguous
                     if function(scratch, scratch + 8, n, address, stride >> 3, *inputs[1:], pp, a, n, 1) == 0:
                         return out
+            call(n, *inputs, params, out)  # any other call, or an error in the loop (numba's loop raises it)
+            return out
+
+        return run
+
+    def _ufunc_lane(self, ufunc, refused):
+        """:meth:`lane` through the loop's ufunc (:func:`_ufunc`): numpy allocates the result and
+        takes any float64 column (an unaligned one it copies to an aligned buffer first); the
+        parameters must be floats of the loop's count, as for ctypes; a call the ufunc refuses goes
+        to numba's loop."""
+        import numpy as np
+
+        s = self._s
+        count, nparams, empty, call = s.usual, s.nparams or 0, np.empty, self.__call__
+
+        def run(n, inputs, params):
+            if len(inputs) == count and (
+                len(params) == nparams and all(isinstance(x, float) for x in params) if nparams else not params
+            ):
+                before = refused.value
+                result = ufunc(*inputs, *params)
+                if refused.value == before:
+                    return result[None]
+            out = empty((1, n))
             call(n, *inputs, params, out)  # any other call, or an error in the loop (numba's loop raises it)
             return out
 
