@@ -2,8 +2,8 @@
 ``pair.impact(V, warn=False)`` against the compiled loop alone on the same speeds (numba's serial
 loop called directly into a preallocated array: the floor of a compiled call). The difference is
 what the call adds around the loop's own work: checking the speeds, choosing and calling the loop
-(the machine code kept by ``core._native`` where there is some, through ctypes), building the
-result. The kept loop called directly is reported beside it."""
+(the machine code kept by ``core._native`` where there is some: for one result as a numpy ufunc,
+else through ctypes), building the result. The kept loop called directly is reported beside it."""
 
 import numpy as np
 
