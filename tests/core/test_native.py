@@ -177,7 +177,7 @@ def test_the_ufunc_lane_is_bitwise_the_core(tmp_path, cases):
     the loop takes), for any float64 column (strided, reversed, read-only, unaligned: numpy copies
     that one to an aligned buffer first), with no call going to numba's loop."""
     V = _edge_speeds(VY) if cases == "edge" else _random_cases()[0]
-    _, run, used = _ufunc_lane(tmp_path / "seed", seed.restitution_at, "as", None)
+    seed_loop, run, used = _ufunc_lane(tmp_path / "seed", seed.restitution_at, "as", None)
     want = _scalar(seed.restitution_at, (V, np.full(V.size, VY)), None)
     raw = np.zeros(V.nbytes + 1, dtype=np.uint8)
     odd = raw[1:].view(np.float64)
@@ -191,21 +191,25 @@ def test_the_ufunc_lane_is_bitwise_the_core(tmp_path, cases):
     assert _same(run(V.size, (V, np.float64(VY)), ()), want)
     params = (2e-6, 1.0)
     (tmp_path / "visco").mkdir()
-    _, run, used_visco = _ufunc_lane(tmp_path / "visco", visco.restitution_only, "assss", len(params))
+    visco_loop, run, used_visco = _ufunc_lane(tmp_path / "visco", visco.restitution_only, "assss", len(params))
     want = _scalar(visco.restitution_only, [V] + [np.full(V.size, x) for x in ARGS], params)
     assert _same(run(V.size, (V, *ARGS), params), want)
     assert not used and not used_visco
+    # every call computed by the ufunc itself: none refused (then the general route would have given
+    # the same bits), for either loop
+    assert seed_loop._s.ufunc[1].value == 0 and visco_loop._s.ufunc[1].value == 0
 
 
 def test_the_ufunc_lane_reports_no_floating_point_status(tmp_path):
     """numpy reads the floating-point status after a ufunc's loop and warns (or raises) on what it
     finds; the seed's restitution overflows in a branch it does not take at large speeds. No path
     of the package reports it (numba's loops and ctypes' call do not): neither does the ufunc."""
-    _, run, used = _ufunc_lane(tmp_path, seed.restitution_at, "as", None)
+    serial, run, used = _ufunc_lane(tmp_path, seed.restitution_at, "as", None)
     V = np.array([0.0, 5e-324, 1e-300, VY * (1 - 1e-12), VY, VY * (1 + 1e-12), 1e3, 1e150, 1e300, 1.7e308])
     with np.errstate(all="raise"):
         out = run(V.size, (V, VY), ())
     assert _same(out[0], [seed.restitution_at(float(v), VY) for v in V]) and not used
+    assert serial._s.ufunc[1].value == 0  # computed by the ufunc, not refused to the general route
     with np.errstate(all="raise"):
         assert np.sqrt(np.array([4.0]))[0] == 2.0  # numpy's own status is left clean
 
@@ -244,8 +248,8 @@ def test_a_call_the_ufunc_refuses_goes_to_numba(tmp_path):
     assert refused.value == 1
     serial, _, used = _loops(tmp_path, seed.restitution_at, "as", 1, None)
     serial._s.ufunc = made
-    out = serial.lane(1)(V.size, (V, VY), ())  # refused: the general call (ctypes) computes it
-    assert refused.value == 2 and not used
+    out = serial.lane(1)(V.size, (V, VY), ())  # refused twice: the general call (ctypes) computes it
+    assert refused.value == 3 and not used
     assert _same(out[0], [seed.restitution_at(float(v), VY) for v in V])
 
 

@@ -571,8 +571,10 @@ def _ufunc_api():
         except ImportError:  # pragma: no cover - numpy 1
             from numpy.core import _multiarray_umath as umath
         capsule = umath._UFUNC_API
-        get = ctypes.pythonapi.PyCapsule_GetPointer
-        get.argtypes, get.restype = [ctypes.py_object, ctypes.c_char_p], ctypes.c_void_p
+        # a prototype of its own: ctypes.pythonapi's attributes are the whole process's to share
+        get = ctypes.PYFUNCTYPE(ctypes.c_void_p, ctypes.py_object, ctypes.c_char_p)(
+            ("PyCapsule_GetPointer", ctypes.pythonapi)
+        )
         table = get(capsule, None)
     except Exception:  # another numpy, another Python: the ctypes lane
         return None
@@ -593,12 +595,14 @@ def _trampoline_ir(inner: int, kinds: str, nparams: int, fegetenv: int, fesetenv
     a scalar: the value its pointer holds, numpy's broadcast scalar, step 0), then ``nparams``
     parameters (scalars too, gathered into the C array the loop takes), then the one output.
     A scalar input with a nonzero step, or a nonzero status from the loop, adds one to the int64
-    at ``data`` (the caller then takes numba's route, which raises the loop's error). The loop's
+    at ``data`` (the caller then takes the general route: ctypes, else numba's loop, which raises
+    the loop's error). The loop's
     floating-point status flags are put back as numpy left them (``fegetenv``/``fesetenv``): no
     path of this package reports them (numba's loops and ctypes' call do not), so neither does
     this one (numpy would warn of an overflow that ``restitution_at`` meets in a branch it does not
     take)."""
     nin = len(kinds) + nparams
+    pp = "ptr %pp" if nparams else "ptr null"  # no parameters: NULL, as ctypes passes (never read)
     lines = [
         "define void @loop(ptr %args, ptr %dims, ptr %steps, ptr %data) {",
         "entry:",
@@ -607,12 +611,12 @@ def _trampoline_ir(inner: int, kinds: str, nparams: int, fegetenv: int, fesetenv
         "  %g = call i32 %getenv(ptr %env)",
         "  %slots = alloca [2 x ptr], align 8",
         "  %slot1 = getelementptr inbounds ptr, ptr %slots, i64 1",
-        f"  %pp = alloca [{max(nparams, 1)} x double], align 8",
         "  %n = load i64, ptr %dims, align 8",
-        "  %bad0 = icmp ne i64 0, 0",
     ]
+    if nparams:
+        lines.append(f"  %pp = alloca [{nparams} x double], align 8")
     call = ["ptr %slots", "ptr %slot1", "i64 %n"]
-    bad = "%bad0"
+    bad = "false"
 
     def scalar(k):
         nonlocal bad
@@ -660,7 +664,7 @@ def _trampoline_ir(inner: int, kinds: str, nparams: int, fegetenv: int, fesetenv
         f"  br i1 {bad}, label %refuse, label %run",
         "run:",
         f"  %fn = inttoptr i64 {inner} to ptr",
-        f"  %status = call i32 %fn({', '.join(call + ['ptr %pp', 'ptr %po', 'i64 0', 'i64 %so1'])})",
+        f"  %status = call i32 %fn({', '.join(call + [pp, 'ptr %po', 'i64 0', 'i64 %so1'])})",
         f"  %setenv = inttoptr i64 {fesetenv} to ptr",
         "  %r = call i32 %setenv(ptr %env)",
         "  %failed = icmp ne i32 %status, 0",
@@ -790,8 +794,9 @@ class NativeLoop:
         import numpy as np
 
         if nout == 1 and s.nout == 1:
-            if s.ufunc is None:
-                s.ufunc = _ufunc(s.function, s.kinds, s.nparams or 0, _ufunc_name(s)) or ()
+            with s.lock:  # threads asking at once make one
+                if s.ufunc is None:
+                    s.ufunc = _ufunc(s.function, s.kinds, s.nparams or 0, _ufunc_name(s)) or ()
             if s.ufunc:
                 return self._ufunc_lane(*s.ufunc)
 
@@ -834,10 +839,14 @@ class NativeLoop:
             if len(inputs) == count and (
                 len(params) == nparams and all(isinstance(x, float) for x in params) if nparams else not params
             ):
-                before = refused.value
-                result = ufunc(*inputs, *params)
-                if refused.value == before:
-                    return result[None]
+                # The count only grows: unchanged, no call refused meanwhile, this one included. Another
+                # thread's refusal (numpy lets go of the GIL over 500 elements) changes it too: once
+                # more, then the general route, which computes the same numbers.
+                for _ in range(2):
+                    before = refused.value
+                    result = ufunc(*inputs, *params)
+                    if refused.value == before:
+                        return result[None]
             out = empty((1, n))
             call(n, *inputs, params, out)  # any other call, or an error in the loop (numba's loop raises it)
             return out
