@@ -154,7 +154,6 @@ def test_the_loop_writes_its_status_slot_on_every_call(tmp_path, monkeypatch):
         return out
 
     lane = serial.lane(1)
-    assert serial._s.ufunc == ()
     for call in (general, lambda: lane(V.size, (V, VY), ())):
         _native._SCRATCH_SLOTS[0] = 0x5A5A
         out = call()
@@ -163,15 +162,24 @@ def test_the_loop_writes_its_status_slot_on_every_call(tmp_path, monkeypatch):
     assert not used
 
 
+@pytest.fixture
+def ufunc_at_once(monkeypatch):
+    """Lanes make their loop's ufunc at their first call, not after UFUNC_AFTER calls through ctypes."""
+    monkeypatch.setattr(_native, "UFUNC_AFTER", 0)
+
+
 def _ufunc_lane(tmp_path, fn, kinds, nparams):
     serial, _, used = _loops(tmp_path, fn, kinds, 1, nparams)
     run = serial.lane(1)
-    assert serial._s.ufunc, "the lane of a one-result loop is its ufunc where numpy's C API is found"
+    assert serial._s.ufunc is None  # not made before the lane's calls ask for it
+    V = np.linspace(0.5, 90.0, 8)
+    run(V.size, (V, *((VY,) if kinds == "as" else ARGS)), (2e-6, 1.0)[: nparams or 0])
+    assert serial._s.ufunc, "the lane of a one-result loop makes its ufunc where numpy's C API is found"
     return serial, run, used
 
 
 @pytest.mark.parametrize("cases", ["edge", "random"])
-def test_the_ufunc_lane_is_bitwise_the_core(tmp_path, cases):
+def test_the_ufunc_lane_is_bitwise_the_core(tmp_path, cases, ufunc_at_once):
     """A one-result loop's lane calls the kept loop as a numpy ufunc: the core's numbers bit for bit,
     for the seed's restitution (no parameters) and a model's (parameters gathered into the C array
     the loop takes), for any float64 column (strided, reversed, read-only, unaligned: numpy copies
@@ -200,7 +208,7 @@ def test_the_ufunc_lane_is_bitwise_the_core(tmp_path, cases):
     assert seed_loop._s.ufunc[1].value == 0 and visco_loop._s.ufunc[1].value == 0
 
 
-def test_the_ufunc_lane_reports_no_floating_point_status(tmp_path):
+def test_the_ufunc_lane_reports_no_floating_point_status(tmp_path, ufunc_at_once):
     """numpy reads the floating-point status after a ufunc's loop and warns (or raises) on what it
     finds; the seed's restitution overflows in a branch it does not take at large speeds. No path
     of the package reports it (numba's loops and ctypes' call do not): neither does the ufunc."""
@@ -214,7 +222,7 @@ def test_the_ufunc_lane_reports_no_floating_point_status(tmp_path):
         assert np.sqrt(np.array([4.0]))[0] == 2.0  # numpy's own status is left clean
 
 
-def test_a_call_the_ufunc_refuses_goes_to_numba(tmp_path):
+def test_a_call_the_ufunc_refuses_goes_to_numba(tmp_path, ufunc_at_once):
     """The ufunc takes its scalars as numpy's broadcast scalars (step 0): an array in their place is
     refused (counted, nothing computed), as is an error status from the loop; the lane then takes
     numba's loop, which computes the same or raises as it always did. Parameters of another count
@@ -253,13 +261,35 @@ def test_a_call_the_ufunc_refuses_goes_to_numba(tmp_path):
     assert _same(out[0], [seed.restitution_at(float(v), VY) for v in V])
 
 
-def test_without_numpys_c_api_the_lane_calls_through_ctypes(tmp_path, monkeypatch):
+def test_without_numpys_c_api_the_lane_calls_through_ctypes(tmp_path, monkeypatch, ufunc_at_once):
     monkeypatch.setattr(_native, "_ufunc_api", lambda: None)
     serial, _, used = _loops(tmp_path, seed.restitution_at, "as", 1, None)
     V = np.linspace(0.5, 90.0, 100)
-    out = serial.lane(1)(V.size, (V, VY), ())
-    assert serial._s.ufunc == () and not used
-    assert _same(out[0], [seed.restitution_at(float(v), VY) for v in V])
+    run = serial.lane(1)
+    for _ in range(2):
+        out = run(V.size, (V, VY), ())
+        assert serial._s.ufunc == () and not used
+        assert _same(out[0], [seed.restitution_at(float(v), VY) for v in V])
+
+
+def test_a_lane_makes_its_ufunc_only_after_many_calls(tmp_path, monkeypatch):
+    """Making the ufunc compiles its inner loop (milliseconds): a lane's first UFUNC_AFTER calls go
+    through ctypes, so a command or a short script never pays for it; the next makes it, and every
+    call gives the core's numbers."""
+    assert _native.UFUNC_AFTER >= 100
+    monkeypatch.setattr(_native, "UFUNC_AFTER", 3)
+    made = []
+    real = _native._ufunc
+    monkeypatch.setattr(_native, "_ufunc", lambda *a: made.append(1) or real(*a))
+    serial, _, used = _loops(tmp_path, seed.restitution_at, "as", 1, None)
+    V = np.linspace(0.5, 90.0, 100)
+    want = [seed.restitution_at(float(v), VY) for v in V]
+    run = serial.lane(1)
+    for k in range(6):
+        assert _same(run(V.size, (V, VY), ())[0], want)
+        assert len(made) == (k >= 3) and (serial._s.ufunc is None) == (k < 3)
+    assert serial.lane(1)(V.size, (V, VY), ()) is not None and len(made) == 1  # a new lane: the ufunc made
+    assert not used
 
 
 def test_an_entry_that_is_not_sound_is_not_loaded(tmp_path):

@@ -551,6 +551,9 @@ def _writable_address(a):
         return a.__array_interface__["data"][0] if a.flags.writeable else None
 
 
+#: Calls of a lane through ctypes before it makes the loop's ufunc (:meth:`NativeLoop.lane`): making
+#: it costs 3-7 ms, which the ufunc's 3 us less per call pays back after about 2000 calls.
+UFUNC_AFTER = 1000
 #: numpy's type number of float64 (``NPY_DOUBLE``, the C API's ``NPY_TYPES``).
 _NPY_DOUBLE = 12
 #: What a ufunc built here owns (machine code, the C arrays numpy keeps pointers to): as long as it lives.
@@ -694,7 +697,8 @@ def _ufunc(function, kinds: str, nparams: int, name: str):
         _init_llvm()
         module = ll.parse_assembly(_trampoline_ir(inner, kinds, nparams, fegetenv, fesetenv))
         module.verify()
-        tm = ll.Target.from_triple(ll.get_process_triple()).create_target_machine(jit=True)
+        # no optimisation: the inner loop only moves arguments (codegen 3-7 ms here, 8-13 ms at -O2)
+        tm = ll.Target.from_triple(ll.get_process_triple()).create_target_machine(jit=True, opt=0)
         engine = ll.create_mcjit_compiler(module, tm)
         engine.finalize_object()
         address = engine.get_function_address("loop")
@@ -787,19 +791,46 @@ class NativeLoop:
         (:meth:`_args`) spends 2 us (issue 25). A loop of one result runs as a numpy ufunc
         (:func:`_ufunc`, :meth:`_ufunc_lane`) where numpy's C API can make one: ctypes' call itself
         (ten arguments converted, the status slots, two addresses) was 3-4 us of a 1e3-speed call
-        on a host where the ufunc's is 0.8 us."""
+        on a host where the ufunc's is 0.8 us. Making the ufunc compiles its inner loop (3-7 ms),
+        which pays back after about 2000 calls: the lane's first :data:`UFUNC_AFTER` calls go
+        through ctypes, so a command or a short script never pays for it."""
         s = self._s
         if s.state != "ready" or not s.usual:
             return None
+        if nout == 1 and s.nout == 1:
+            made = s.ufunc
+            if made:
+                return self._ufunc_lane(*made)
+            if made is None:
+                return self._then_ufunc(self._ctypes_lane(nout))
+        return self._ctypes_lane(nout)
+
+    def _then_ufunc(self, first):
+        """A lane that calls ``first`` (ctypes) :data:`UFUNC_AFTER` times, then makes the loop's ufunc
+        and calls that (``first`` again where it cannot be made)."""
+        s = self._s
+        box = [None, UFUNC_AFTER]  # the ufunc's lane once made; the calls left before making it
+
+        def run(n, inputs, params):
+            then = box[0]
+            if then is not None:
+                return then(n, inputs, params)
+            box[1] -= 1
+            if box[1] < 0:
+                with s.lock:  # threads asking at once make one
+                    if s.ufunc is None:
+                        s.ufunc = _ufunc(s.function, s.kinds, s.nparams or 0, _ufunc_name(s)) or ()
+                box[0] = self._ufunc_lane(*s.ufunc) if s.ufunc else first
+                return box[0](n, inputs, params)
+            return first(n, inputs, params)
+
+        return run
+
+    def _ctypes_lane(self, nout: int):
+        """:meth:`lane` through ctypes."""
         import numpy as np
 
-        if nout == 1 and s.nout == 1:
-            with s.lock:  # threads asking at once make one
-                if s.ufunc is None:
-                    s.ufunc = _ufunc(s.function, s.kinds, s.nparams or 0, _ufunc_name(s)) or ()
-            if s.ufunc:
-                return self._ufunc_lane(*s.ufunc)
-
+        s = self._s
         function, f8, count, pointer, takes = s.function, s.f8, s.usual, s.params_pointer, bool(s.nparams)
         empty, call, address_of, addressof, view, scratch = (
             np.empty,
