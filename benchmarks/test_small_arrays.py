@@ -13,16 +13,14 @@ N = 1000
 
 
 def _loops(pair):
-    from microimpact.core import arrays
+    from microimpact.core import _native, arrays
     from microimpact.core.models import thornton_ning_2016 as seed
-
-    from microimpact.core import _native
 
     V = np.linspace(1.0, 120.0, N)
     pair.impact(V, warn=False)
     # a script's steady state: past the lane's first calls through ctypes (core._native.UFUNC_AFTER,
     # before it makes the loop's ufunc, which pays back only over thousands of calls)
-    for _ in range(getattr(_native, "UFUNC_AFTER", 0) + 300):
+    for _ in range(_native.UFUNC_AFTER + 300):
         pair.restitution(V)
     E, R, m, p = (float(x) for x in pair._args)
     # numba's own loops, not the library's (which may be the kept machine code, called through ctypes:

@@ -476,16 +476,26 @@ class _Shared:
         #: how many inputs the usual call (one array, then floats) has, else 0 (see NativeLoop.lane)
         self.usual = len(self.kinds) if self.kinds[:1] == "a" and "a" not in self.kinds[1:] else 0
 
+    def takes(self, params) -> bool:
+        """Whether the loop takes ``params``: floats of its count; none for a loop that takes none."""
+        n = self.nparams
+        return len(params) == n and all(isinstance(x, float) for x in params) if n else not params
+
     def params_pointer(self, params):
         """What the loop takes for ``params``: a C array of them, None for a loop that takes none (or
         whose parameters are none: never read then), or :data:`_REFUSED` (another count, or a
         parameter that is no float: numba's loop)."""
-        n = self.nparams
-        if not params:
-            return None if not n else _REFUSED
-        if n and len(params) == n and all(isinstance(x, float) for x in params):
-            return self.params_type(*params)
-        return _REFUSED
+        if not self.takes(params):
+            return _REFUSED
+        return self.params_type(*params) if params else None
+
+    def made_ufunc(self):
+        """``(ufunc, refused count)`` of the loop (:func:`_ufunc`), made at the first ask, once for all
+        threads; ``()`` where it cannot be made."""
+        with self.lock:
+            if self.ufunc is None:
+                self.ufunc = _ufunc(self.function, self.kinds, self.nparams or 0, _ufunc_name(self)) or ()
+        return self.ufunc
 
     def prepare(self, params) -> None:
         """First call of a pending loop: load the entry another process wrote meanwhile, or compile
@@ -620,54 +630,39 @@ def _trampoline_ir(inner: int, kinds: str, nparams: int, fegetenv: int, fesetenv
         lines.append(f"  %pp = alloca [{nparams} x double], align 8")
     call = ["ptr %slots", "ptr %slot1", "i64 %n"]
     bad = "false"
-
-    def scalar(k):
-        nonlocal bad
-        lines.extend(
-            [
-                f"  %sp{k} = getelementptr inbounds i64, ptr %steps, i64 {k}",
-                f"  %st{k} = load i64, ptr %sp{k}, align 8",
-                f"  %moving{k} = icmp ne i64 %st{k}, 0",
-                f"  %bad{k + 1} = or i1 {bad}, %moving{k}",
-                f"  %ap{k} = getelementptr inbounds ptr, ptr %args, i64 {k}",
-                f"  %p{k} = load ptr, ptr %ap{k}, align 8",
-                f"  %x{k} = load double, ptr %p{k}, align 8",
-            ]
-        )
-        bad = f"%bad{k + 1}"
-
-    for k, c in enumerate(kinds):
-        if c == "a":
-            lines.extend(
-                [
-                    f"  %ap{k} = getelementptr inbounds ptr, ptr %args, i64 {k}",
-                    f"  %p{k} = load ptr, ptr %ap{k}, align 8",
-                    f"  %sp{k} = getelementptr inbounds i64, ptr %steps, i64 {k}",
-                    f"  %st{k} = load i64, ptr %sp{k}, align 8",
-                    f"  %s{k} = ashr i64 %st{k}, 3",
-                ]
-            )
-            call += [f"ptr %p{k}", f"i64 %s{k}"]
-        else:
-            scalar(k)
-            call.append(f"double %x{k}")
-    for j in range(nparams):
-        k = len(kinds) + j
-        scalar(k)
+    # every operand (inputs, parameters, then the output): its pointer and step, then what its kind needs
+    for k, c in enumerate(kinds + "p" * nparams + "o"):
         lines += [
-            f"  %q{j} = getelementptr inbounds double, ptr %pp, i64 {j}",
-            f"  store double %x{k}, ptr %q{j}, align 8",
+            f"  %ap{k} = getelementptr inbounds ptr, ptr %args, i64 {k}",
+            f"  %p{k} = load ptr, ptr %ap{k}, align 8",
+            f"  %sp{k} = getelementptr inbounds i64, ptr %steps, i64 {k}",
+            f"  %st{k} = load i64, ptr %sp{k}, align 8",
         ]
+        if c in "ao":  # a column: its step in elements
+            lines.append(f"  %s{k} = ashr i64 %st{k}, 3")
+            if c == "a":
+                call += [f"ptr %p{k}", f"i64 %s{k}"]
+            continue
+        # a scalar or a parameter: numpy's broadcast scalar (step 0), else refused
+        lines += [
+            f"  %moving{k} = icmp ne i64 %st{k}, 0",
+            f"  %bad{k} = or i1 {bad}, %moving{k}",
+            f"  %x{k} = load double, ptr %p{k}, align 8",
+        ]
+        bad = f"%bad{k}"
+        if c == "s":
+            call.append(f"double %x{k}")
+        else:
+            j = k - len(kinds)
+            lines += [
+                f"  %q{j} = getelementptr inbounds double, ptr %pp, i64 {j}",
+                f"  store double %x{k}, ptr %q{j}, align 8",
+            ]
     lines += [
-        f"  %op = getelementptr inbounds ptr, ptr %args, i64 {nin}",
-        "  %po = load ptr, ptr %op, align 8",
-        f"  %osp = getelementptr inbounds i64, ptr %steps, i64 {nin}",
-        "  %ost = load i64, ptr %osp, align 8",
-        "  %so1 = ashr i64 %ost, 3",
         f"  br i1 {bad}, label %refuse, label %run",
         "run:",
         f"  %fn = inttoptr i64 {inner} to ptr",
-        f"  %status = call i32 %fn({', '.join(call + [pp, 'ptr %po', 'i64 0', 'i64 %so1'])})",
+        f"  %status = call i32 %fn({', '.join(call + [pp, f'ptr %p{nin}', 'i64 0', f'i64 %s{nin}'])})",
         f"  %setenv = inttoptr i64 {fesetenv} to ptr",
         "  %r = call i32 %setenv(ptr %env)",
         "  %failed = icmp ne i32 %status, 0",
@@ -817,10 +812,8 @@ class NativeLoop:
                 return then(n, inputs, params)
             box[1] -= 1
             if box[1] < 0:
-                with s.lock:  # threads asking at once make one
-                    if s.ufunc is None:
-                        s.ufunc = _ufunc(s.function, s.kinds, s.nparams or 0, _ufunc_name(s)) or ()
-                box[0] = self._ufunc_lane(*s.ufunc) if s.ufunc else first
+                made = s.made_ufunc()
+                box[0] = self._ufunc_lane(*made) if made else first
                 return box[0](n, inputs, params)
             return first(n, inputs, params)
 
@@ -859,17 +852,15 @@ class NativeLoop:
     def _ufunc_lane(self, ufunc, refused):
         """:meth:`lane` through the loop's ufunc (:func:`_ufunc`): numpy allocates the result and
         takes any float64 column (an unaligned one it copies to an aligned buffer first); the
-        parameters must be floats of the loop's count, as for ctypes; a call the ufunc refuses goes
-        to numba's loop."""
+        parameters must be what the loop takes (:meth:`_Shared.takes`), as for ctypes; any other call,
+        or one the ufunc refuses, goes to the general route (ctypes, else numba's loop)."""
         import numpy as np
 
         s = self._s
-        count, nparams, empty, call = s.usual, s.nparams or 0, np.empty, self.__call__
+        count, takes, empty, call = s.usual, s.takes, np.empty, self.__call__
 
         def run(n, inputs, params):
-            if len(inputs) == count and (
-                len(params) == nparams and all(isinstance(x, float) for x in params) if nparams else not params
-            ):
+            if len(inputs) == count and takes(params):
                 # The count only grows: unchanged, no call refused meanwhile, this one included. Another
                 # thread's refusal (numpy lets go of the GIL over 500 elements) changes it too: once
                 # more, then the general route, which computes the same numbers.
