@@ -4,7 +4,11 @@ loop called directly into a preallocated array: the floor of a compiled call). T
 what the call adds around the loop's own work: checking the speeds, choosing and calling the loop
 (the machine code kept by ``core._native`` where there is some: for one result as a numpy ufunc
 once a script has made ``UFUNC_AFTER`` such calls, else through ctypes), building the result. The
-calls are timed in that steady state. The kept loop called directly is reported beside it."""
+calls are timed in that steady state, each one beside its loop round by round (interleaved: the
+difference is of two times taken under the same load), best round of each. The kept loop called
+directly (through ``NativeLoop``'s general route) is reported beside it."""
+
+import time
 
 import numpy as np
 
@@ -39,26 +43,31 @@ def _loops(pair):
     )
 
 
-def test_restitution_loop_alone(timed, pair):
-    _, e_loop, _, _ = _loops(pair)
-    timed(KEY, "restitution loop alone", e_loop, rounds=20, iterations=50)
+def _interleaved(record, variants, rounds, iterations):
+    """Time the variants round by round, one after the other in each round (side by side, so that a
+    change of the machine's load falls on all of them), and record each one's best round per call."""
+    best = dict.fromkeys(variants, float("inf"))
+    for _ in range(rounds):
+        for name, fn in variants.items():
+            t0 = time.perf_counter()
+            for _ in range(iterations):
+                fn()
+            best[name] = min(best[name], (time.perf_counter() - t0) / iterations)
+    for name, seconds in best.items():
+        record.time(KEY, name, seconds)
 
 
-def test_restitution_library_loop_alone(timed, pair):
-    _, _, _, e_kept = _loops(pair)
-    timed(KEY, "restitution loop the library runs", e_kept, rounds=20, iterations=50)
+def test_restitution_call(record, pair):
+    V, e_loop, _, e_kept = _loops(pair)
+    variants = {
+        "restitution loop alone": e_loop,
+        "pair.restitution(V)": lambda: pair.restitution(V),
+        "restitution loop the library runs": e_kept,
+    }
+    _interleaved(record, variants, rounds=60, iterations=200)
 
 
-def test_restitution_call(timed, pair):
-    V, _, _, _ = _loops(pair)
-    timed(KEY, "pair.restitution(V)", lambda: pair.restitution(V), rounds=20, iterations=50)
-
-
-def test_outcome_loop_alone(timed, pair):
-    _, _, o_loop, _ = _loops(pair)
-    timed(KEY, "outcome loop alone", o_loop, rounds=20, iterations=20)
-
-
-def test_impact_call(timed, pair):
-    V, _, _, _ = _loops(pair)
-    timed(KEY, "pair.impact(V, warn=False)", lambda: pair.impact(V, warn=False), rounds=20, iterations=20)
+def test_impact_call(record, pair):
+    V, _, o_loop, _ = _loops(pair)
+    variants = {"outcome loop alone": o_loop, "pair.impact(V, warn=False)": lambda: pair.impact(V, warn=False)}
+    _interleaved(record, variants, rounds=30, iterations=50)

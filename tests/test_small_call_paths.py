@@ -122,3 +122,97 @@ def test_a_lane_goes_only_where_the_general_route_would(monkeypatch):
     monkeypatch.setenv("MICROIMPACT_BACKEND", "python")
     assert arrays.evaluate(seed.restitution_at, V, Vy)[0].tobytes() == want.tobytes()
     assert taken == [V.size, V.size]
+
+
+def _speeds_ufunc():
+    """Make the seed's restitution lane reach its ufunc (``core._native.UFUNC_AFTER`` lane calls), or skip
+    where this process runs numba's loops (no kept machine code: no ufunc to find)."""
+    from microimpact.core import _native
+
+    V = np.linspace(0.5, 120.0, 64)
+    arrays.evaluate(seed.restitution_at, V, 0.37, backend="numba")  # compiled (or loaded)
+    for _ in range(_native.UFUNC_AFTER + 3):
+        arrays.evaluate(seed.restitution_at, V, 0.37)
+    native = arrays._NATIVE.get(seed.restitution_at)
+    if native is None or native.made_ufunc() is None:
+        pytest.skip("numba's loops run here: no kept loop, no ufunc")
+    return native
+
+
+@given(
+    hnp.arrays(np.float64, st.integers(2, 2047), elements=st.floats(0.0, 1e300, allow_subnormal=True)),
+    st.floats(1e-3, 100.0),
+)
+def test_on_speeds_is_bitwise_evaluate(V, Vy):
+    """``on_speeds`` (the loop's ufunc with the speeds' check folded in) gives bitwise what the checked
+    general call gives, on speeds the check accepts."""
+    _speeds_ufunc()
+    got = arrays.on_speeds(seed.restitution_at, V, Vy)
+    assert got is not None and got.shape == V.shape
+    want = arrays.evaluate(seed.restitution_at, check_velocity("velocity", V)[None, :], np.float64(Vy))[0, 0]
+    assert got.tobytes() == want.tobytes()
+    assert got.tobytes() == np.array([seed.restitution_at(float(v), Vy) for v in V]).tobytes()
+
+
+@pytest.mark.parametrize("bad", [-0.0, -1.0, -5e-324, np.nan, -np.nan, np.inf, -np.inf])
+def test_on_speeds_leaves_every_speed_the_check_would_look_at_to_it(bad):
+    """A speed outside ``[+0, inf)`` (-0.0 too, which the check then accepts) is not answered: the
+    caller's check names it, and ``pair.restitution`` raises as before the shortcut."""
+    from microimpact import ContactPair
+
+    _speeds_ufunc()
+    V = np.linspace(0.5, 120.0, 50)
+    V[17] = bad
+    assert arrays.on_speeds(seed.restitution_at, V, 0.37) is None
+    pair = ContactPair.sphere_on_flat(radius=2.45e-6, density=1350.0, effective_modulus=1.31e9, limiting_pressure=156e6)
+    for _ in range(3):
+        pair.restitution(np.linspace(0.5, 120.0, 50))  # the pair's lane, past its ufunc
+    if bad == 0.0:
+        assert pair.restitution(V)[17] == seed.restitution_at(0.0, pair.yield_velocity)
+    else:
+        with pytest.raises(ValueError, match="velocity must be"):
+            pair.restitution(V)
+
+
+def test_on_speeds_answers_only_the_usual_small_call(monkeypatch):
+    """Anything but a 1-D float64 array of 2 to 2047 speeds and the loop's own scalars, with no backend
+    forced, goes back to the caller (None): evaluate's route decides it (threads, Python, an error)."""
+    _speeds_ufunc()
+    V = np.linspace(0.5, 120.0, 50)
+    fn = seed.restitution_at
+    assert arrays.on_speeds(fn, V, 0.37) is not None
+    for other in (
+        V[:1],
+        np.linspace(0.5, 120.0, 2048),
+        V[None, :],
+        V.astype(np.float32),
+        V.astype(V.dtype.newbyteorder()),
+        list(V),
+    ):
+        assert arrays.on_speeds(fn, other, 0.37) is None
+    assert arrays.on_speeds(fn, V, 0.37, 1.0) is None  # not the loop's count of inputs
+    assert arrays.on_speeds(fn, V, 0.37, params=(1.0,)) is None
+    assert arrays.on_speeds(fn, V, "0.37") is None  # no number: TypeError inside, evaluate's route decides
+    assert arrays.on_speeds(seed.outcome, V, 1.0, 1.0, 1.0, 1.0) is None  # no lane of one result
+    monkeypatch.setenv("MICROIMPACT_BACKEND", "python")
+    assert arrays.on_speeds(fn, V, 0.37) is None
+
+
+def test_on_speeds_gives_back_a_call_its_loop_refuses(monkeypatch):
+    """A call the loop's ufunc refuses (its count grows) is not answered, whatever the ufunc returned."""
+    import ctypes
+
+    _speeds_ufunc()
+    refused = ctypes.c_int64(0)
+
+    def refusing(*args):
+        refused.value += 1
+        return np.zeros(args[0].shape)
+
+    class Loop:
+        def made_ufunc(self):
+            return refusing, refused
+
+    monkeypatch.setitem(arrays._NATIVE, seed.restitution_at, Loop())
+    assert arrays.on_speeds(seed.restitution_at, np.linspace(0.5, 120.0, 50), 0.37) is None
+    assert refused.value == 1

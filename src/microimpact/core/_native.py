@@ -775,6 +775,12 @@ class NativeLoop:
         args += [pp, address, s0 >> 3, s1 >> 3]
         return args, offsets
 
+    def made_ufunc(self):
+        """``(ufunc, refused count)`` of the loop once its lane has made it (:meth:`lane`, after
+        :data:`UFUNC_AFTER` calls), else None: a look-up, never a compilation (see
+        :func:`~microimpact.core.arrays.on_speeds`)."""
+        return self._s.ufunc or None
+
     def lane(self, nout: int):
         """``run(n, inputs, params) -> out`` for :func:`~microimpact.core.arrays.evaluate`'s lane (its
         usual call: ``inputs[0]`` a 1-D float64 array of ``n`` elements, the other inputs floats), or
