@@ -133,7 +133,7 @@ def _speeds_ufunc():
     arrays.evaluate(seed.restitution_at, V, 0.37, backend="numba")  # compiled (or loaded)
     for _ in range(_native.UFUNC_AFTER + 3):
         arrays.evaluate(seed.restitution_at, V, 0.37)
-    native = arrays._NATIVE.get(seed.restitution_at)
+    native = arrays._NATIVE.get(seed.restitution_at, (None, None))[1]
     if native is None or native.made_ufunc() is None:
         pytest.skip("numba's loops run here: no kept loop, no ufunc")
     return native
@@ -213,6 +213,6 @@ def test_on_speeds_gives_back_a_call_its_loop_refuses(monkeypatch):
         def made_ufunc(self):
             return refusing, refused
 
-    monkeypatch.setitem(arrays._NATIVE, seed.restitution_at, Loop())
+    monkeypatch.setitem(arrays._NATIVE, seed.restitution_at, ((2, 1, False), Loop()))
     assert arrays.on_speeds(seed.restitution_at, np.linspace(0.5, 120.0, 50), 0.37) is None
     assert refused.value == 1

@@ -90,8 +90,9 @@ _READY: set = set()  # compiled loops called once already in this process (loade
 #: Such a call can then only go there (the engine is "numba" once a loop is ready, threads start at
 #: 2048 elements), so the next ones skip the way to it (1 us of a call on 1e3 speeds, issue 25).
 _LANES: dict = {}
-#: ``fn`` -> its serial kept loop (:class:`~microimpact.core._native.NativeLoop`) of one result,
-#: once its lane runs it: where :func:`on_speeds` finds the loop's ufunc.
+#: ``fn`` -> ``(the lane's signature as in _LANES, its serial kept loop)``
+#: (:class:`~microimpact.core._native.NativeLoop`, one result) once its lane runs it, written as
+#: one tuple (threads): where :func:`on_speeds` finds the loop's ufunc.
 _NATIVE: dict = {}
 _LOCK_NAMES: dict = {}  # compiled loop -> (folder, name) of its file lock
 _LOCK = threading.Lock()  # dask evaluates blocks in threads: one thread builds a loop, the others wait
@@ -593,9 +594,10 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
             if quick and backend is None and n < 2048 and not forced:
                 make = getattr(serial, "lane", None)  # a kept loop's own lane (core._native)
                 run = make(nout) if make is not None else None
+                signature = (len(arrays), nout, with_params)
+                _LANES[fn] = (signature, run or functools.partial(_lane_call, serial, nout))
                 if run is not None and nout == 1:
-                    _NATIVE[fn] = serial  # its ufunc, once made, answers on_speeds
-                _LANES[fn] = ((len(arrays), nout, with_params), run or functools.partial(_lane_call, serial, nout))
+                    _NATIVE[fn] = (signature, serial)  # its ufunc, once made, answers on_speeds
         elif cost is None and n >= 256 and bool(serial.signatures):  # compiled already: time it
             t0 = time.perf_counter()
             _call(serial, n, flats, p, out)
@@ -646,9 +648,10 @@ def on_speeds(fn, speeds, *scalars, params=None):
     ``params`` floats as the loop was made for, no backend forced, and no call the loop refuses.
     Checking the speeds, finding the lane and shaping its result cost 4-6 us around a 5 us loop on
     1e3 speeds; here they are one look-up and one pass (issue 25)."""
-    native = _NATIVE.get(fn)
-    if native is None:
+    found = _NATIVE.get(fn)
+    if found is None:
         return None
+    signature, native = found
     made = native.made_ufunc()
     if (
         made is None
@@ -656,7 +659,7 @@ def on_speeds(fn, speeds, *scalars, params=None):
         or speeds.ndim != 1
         or speeds.dtype is not _F64
         or not 1 < speeds.shape[0] < 2048
-        or _LANES[fn][0] != (1 + len(scalars), 1, params is not None)
+        or signature != (1 + len(scalars), 1, params is not None)
         or _forced()
         or not nonnegative_finite(speeds)
     ):
