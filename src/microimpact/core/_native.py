@@ -75,23 +75,7 @@ def folder() -> Path:
     return _cache.cache_dir() / "kernels" / "native"
 
 
-def _dist_version(package: str) -> str:
-    """``package``'s installed version, read from its ``.dist-info`` folder name without importing it
-    (``importlib.metadata`` costs 0.1 s); "" when it cannot be told (then nothing is kept)."""
-    import importlib.util
-
-    try:
-        spec = importlib.util.find_spec(package)
-    except (ImportError, ValueError):
-        return ""
-    if spec is None or not spec.submodule_search_locations:
-        return ""
-    site = Path(next(iter(spec.submodule_search_locations))).parent
-    try:
-        names = [n for n in os.listdir(site) if n.startswith(package + "-") and n.endswith(".dist-info")]
-    except OSError:
-        return ""
-    return names[0][len(package) + 1 : -len(".dist-info")] if len(names) == 1 else ""
+_dist_version = _cache.dist_version  # read from the .dist-info folder, without importing the package
 
 
 def _source(fn, kinds: str, nout: int, nparams) -> str:
