@@ -462,14 +462,12 @@ def whole_law_restitution(velocity, yield_velocity, sticking_velocity):
 
 @functools.lru_cache(maxsize=4)
 def _whole_law_table(t_min, t_max, n_t, y_max, n_u):
-    import hashlib
-
     from .core import cache
 
     t = np.linspace(t_min, t_max, n_t)
     t[int(round(-t_min * (n_t - 1) / (t_max - t_min)))] = 0.0  # the seed's yield, exactly
     u = np.linspace(0.0, y_max**0.6, n_u)
-    h = hashlib.sha256(cache.core_hash().encode())
+    h = cache.sha256(cache.core_hash().encode())
     with open(__file__, "rb") as fh:
         h.update(fh.read())
     h.update(repr((t_min, t_max, n_t, y_max, n_u)).encode())

@@ -47,7 +47,6 @@ import errno
 import io as _stdio
 import math
 import os
-import shutil
 import signal
 import stat
 import sys
@@ -59,7 +58,7 @@ import numpy as np
 from . import _signals
 from ._validation import is_number_text
 
-if TYPE_CHECKING:  # pathlib, json, csv and tempfile load where used: every command checks memory here
+if TYPE_CHECKING:  # pathlib, json, csv, shutil and tempfile load where used: every command checks memory here
     from pathlib import Path
 
 __all__ = [
@@ -499,6 +498,7 @@ def owned_directory(path, command: str, *, inputs=()):
     pathlib.Path
         The staging folder to write the files into.
     """
+    import shutil
     import tempfile
     from pathlib import Path
 

@@ -256,9 +256,7 @@ def _table(kappa, dpsi, psi_max, n_x, x_min, steps, law):
 
 def _table_key(*args) -> str:
     """Name of a table on disk: its arguments, the core's sources and this module's (what computes it)."""
-    import hashlib
-
-    h = hashlib.sha256(cache.core_hash().encode())
+    h = cache.sha256(cache.core_hash().encode())
     with open(__file__, "rb") as fh:
         h.update(fh.read())
     h.update(repr(tuple(float(a) for a in args)).encode())

@@ -165,3 +165,43 @@ def test_processes_started_together_build_once(cache_in):
     builders = [int(o[0]) > 0 for o in outs]
     assert sum(builders) == 1, outs  # one built the table, the others waited and read it
     assert len({o[1] for o in outs}) == 1  # the same numbers everywhere
+
+
+def test_core_hash_is_sha256_of_the_sources_in_path_order():
+    """core_hash walks the folder without pathlib and hashes without OpenSSL: the files, their order
+    and the digest are still those of ``sorted(Path.rglob("*.py"))`` through hashlib."""
+    import hashlib
+
+    core = Path(cache.__file__).resolve().parent
+    h = hashlib.sha256()
+    for path in sorted(core.rglob("*.py")):
+        h.update(path.relative_to(core).as_posix().encode())
+        h.update(path.read_bytes())
+    assert cache.core_hash() == h.hexdigest()
+    data = np.random.default_rng(2).bytes(100_000)
+    assert cache.sha256(data).digest() == hashlib.sha256(data).digest()
+
+
+_WARM_WALL = """
+import functools, sys
+import numpy as np
+from microimpact import oblique
+from microimpact.wall import wall_interaction
+
+oblique.universal_table = functools.partial(oblique.universal_table, n_x=3, steps=20)  # a small table
+wall_interaction(np.array([[3.0, -10.0, 0.0]]), np.array([0.0, 1.0, 0.0]), 5e-6, 1350.0, effective_modulus=1.31e9,
+                 limiting_pressure=156e6, friction=0.3, tangential="mindlin", poisson_ratio=0.3)
+print(",".join(m for m in ("pathlib", "_hashlib", "numpy.ma") if m in sys.modules))
+"""
+
+
+def test_a_warm_table_is_read_without_pathlib_openssl_or_numpy_ma(cache_in):
+    """A script's first compliant wall interaction on a warm cache (row 11 of the benchmarks) loads
+    none of pathlib, OpenSSL's hashlib and numpy.ma: 25-40 ms together of a new process."""
+    from microimpact.core.tangential import stiffness_ratio_same_poisson
+
+    _fresh(stiffness_ratio_same_poisson(0.3))  # the script's table, stored in the cache folder
+    src = str(Path(ob.__file__).resolve().parents[1])
+    env = dict(os.environ, PYTHONPATH=src + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    out = subprocess.run([sys.executable, "-c", _WARM_WALL], capture_output=True, text=True, env=env, check=True)
+    assert out.stdout.strip() == ""

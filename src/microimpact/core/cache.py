@@ -8,6 +8,8 @@ computing (and to trying to write the result for the next process), never to an 
   else ``~/.cache/microimpact``): the compiled loops live in ``kernels/``, tables in ``tables/``.
 * :func:`core_hash` hashes the core's sources: a cached result's name carries it, so editing a
   formula can never leave a stale entry (the compiled loops add numba's and Python's versions).
+* :func:`sha256` makes every hash here (names and checksums): ``hashlib.sha256``'s digests, without
+  loading OpenSSL where Python has its own implementation.
 * :func:`locked` is an advisory file lock (``fcntl.flock``) around a first computation, so that
   processes started together on an empty cache compute an entry once while the others wait and
   then read it; without a lock (no ``fcntl``, a read-only folder, a wait longer than ``timeout``)
@@ -28,12 +30,14 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from pathlib import Path
 
-# hashlib and pathlib load where they are used: a command that never touches the cache (one impact
-# on the command line) does not pay for them (OpenSSL's hashlib alone is 2-6 ms of a 130 ms start).
+# pathlib loads where it is used, OpenSSL's hashlib not at all (sha256): reading a stored table needs
+# neither, and a script's first read of a warm table must take 0.3 s at most in a new process (row 11
+# of the benchmarks), of which pathlib would be 7-15 ms and OpenSSL's hashlib 5-8 ms.
 
 __all__ = [
     "cache_dir",
     "core_hash",
+    "sha256",
     "locked",
     "load_array",
     "store_array",
@@ -50,24 +54,48 @@ def cache_dir() -> Path:
     """Where the compiled loops and tables are kept (module docstring)."""
     from pathlib import Path
 
+    return Path(_folder())
+
+
+def _folder() -> str:
+    """:func:`cache_dir` as a string, for the paths that read without pathlib (above)."""
     env = os.environ.get("MICROIMPACT_CACHE_DIR")
     if env:
-        return Path(env)
+        return env
     base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return Path(base) / "microimpact"
+    return os.path.join(base, "microimpact")
+
+
+def sha256(data: bytes = b""):
+    """A ``hashlib.sha256`` object of ``data``: Python's own implementation where it has one (the
+    same digests; a few ms less than loading OpenSSL, and 1 ms slower on the core's 0.4 MB), else hashlib's."""
+    try:
+        from _sha2 import sha256 as new  # CPython 3.12 and later
+    except ImportError:
+        try:
+            from _sha256 import sha256 as new  # CPython 3.10, 3.11
+        except ImportError:  # pragma: no cover - a Python built without its own hashes
+            from hashlib import sha256 as new
+    return new(data)
 
 
 @functools.lru_cache(maxsize=1)
 def core_hash() -> str:
-    """SHA-256 (hex) of every source file of the core, with its relative path, in a fixed order."""
-    import hashlib
-    from pathlib import Path
+    """SHA-256 (hex) of every source file of the core, with its relative path, in a fixed order.
 
-    core = Path(__file__).resolve().parent
-    h = hashlib.sha256()
-    for path in sorted(core.rglob("*.py")):
-        h.update(path.relative_to(core).as_posix().encode())
-        h.update(path.read_bytes())
+    Walked with ``os.walk``, not pathlib (see the imports), in ``sorted(Path.rglob("*.py"))``'s
+    order and with its files: by path components, not descending into linked folders."""
+    core = os.path.dirname(os.path.realpath(__file__))
+    found = []
+    for folder, dirs, files in os.walk(core):
+        rel = os.path.relpath(folder, core)
+        parts = [] if rel == os.curdir else rel.split(os.sep)
+        found += [(parts + [n], os.path.join(folder, n)) for n in dirs + files if os.path.normcase(n).endswith(".py")]
+    h = sha256()
+    for parts, path in sorted(found, key=lambda item: [os.path.normcase(p) for p in item[0]]):
+        h.update("/".join(parts).encode())
+        with open(path, "rb") as fh:
+            h.update(fh.read())
     return h.hexdigest()
 
 
@@ -154,25 +182,24 @@ def locked(folder: Path, name: str, timeout: float = 600.0):
             os.close(fd)
 
 
-def _path(kind: str, key: str) -> Path:
-    return cache_dir() / "tables" / f"{kind}_{key}.npy"
+def _path(kind: str, key: str) -> str:
+    return os.path.join(_folder(), "tables", f"{kind}_{key}.npy")
 
 
 def load_array(kind: str, key: str):
     """The float64 array stored under ``kind``/``key``, or None (absent, unreadable or corrupt)."""
-    import hashlib
-
     import numpy as np
 
     try:
-        data = _path(kind, key).read_bytes()
+        with open(_path(kind, key), "rb") as fh:
+            data = fh.read()
     except OSError:
         return None
     head = len(_FORMAT) + 32
     if len(data) <= head or data[: len(_FORMAT)] != _FORMAT:
         return None
     body = data[head:]
-    if hashlib.sha256(body).digest() != data[len(_FORMAT) : head]:
+    if sha256(body).digest() != data[len(_FORMAT) : head]:
         return None
     try:
         arr = np.load(io.BytesIO(body), allow_pickle=False)
@@ -185,7 +212,7 @@ def load_array(kind: str, key: str):
 
 def store_array(kind: str, key: str, arr) -> bool:
     """Store ``arr`` under ``kind``/``key`` atomically; False (and nothing raised) where it cannot."""
-    import hashlib
+    from pathlib import Path
 
     import numpy as np
 
@@ -193,7 +220,7 @@ def store_array(kind: str, key: str, arr) -> bool:
     np.save(buf, np.ascontiguousarray(arr, dtype=np.float64), allow_pickle=False)
     body = buf.getvalue()
     try:
-        write_atomic(_path(kind, key), _FORMAT + hashlib.sha256(body).digest() + body)
+        write_atomic(Path(_path(kind, key)), _FORMAT + sha256(body).digest() + body)
     except OSError:
         return False
     return True
@@ -202,8 +229,6 @@ def store_array(kind: str, key: str, arr) -> bool:
 def _is_stored_array(path) -> bool:
     """True when ``path`` is a regular file :func:`store_array` wrote: its format line, then the
     SHA-256 of the rest, which matches (a file of another origin cannot pass by chance)."""
-    import hashlib
-
     if path.is_symlink() or not path.is_file():
         return False
     try:
@@ -211,11 +236,7 @@ def _is_stored_array(path) -> bool:
     except OSError:
         return False
     head = len(_FORMAT) + 32
-    return (
-        len(data) > head
-        and data.startswith(_FORMAT)
-        and hashlib.sha256(data[head:]).digest() == data[len(_FORMAT) : head]
-    )
+    return len(data) > head and data.startswith(_FORMAT) and sha256(data[head:]).digest() == data[len(_FORMAT) : head]
 
 
 def owned_tables(folder: Path | None = None) -> list:
