@@ -105,7 +105,7 @@ def test_a_lane_goes_only_where_the_general_route_would(monkeypatch):
         taken.append(args[0])
         return lane(*args)
 
-    monkeypatch.setitem(arrays._LANES, key, ((2, 1, False), spy))
+    monkeypatch.setitem(arrays._LANES, key, ((2, 1, False), spy, None))
     assert arrays.evaluate(seed.restitution_at, V, Vy)[0].tobytes() == want.tobytes()
     assert arrays.evaluate(seed.restitution_at, V, np.float64(Vy))[0].tobytes() == want.tobytes()
     assert taken == [V.size, V.size]  # a float64 scalar is typed as a float
@@ -133,10 +133,10 @@ def _speeds_ufunc():
     arrays.evaluate(seed.restitution_at, V, 0.37, backend="numba")  # compiled (or loaded)
     for _ in range(_native.UFUNC_AFTER + 3):
         arrays.evaluate(seed.restitution_at, V, 0.37)
-    native = arrays._NATIVE.get(seed.restitution_at, (None, None))[1]
-    if native is None or native.made_ufunc() is None:
+    kept = arrays._LANES.get(seed.restitution_at, (None, None, None))[2]
+    if kept is None or kept.ufunc_if_made() is None:
         pytest.skip("numba's loops run here: no kept loop, no ufunc")
-    return native
+    return kept
 
 
 @given(
@@ -210,9 +210,10 @@ def test_on_speeds_gives_back_a_call_its_loop_refuses(monkeypatch):
         return np.zeros(args[0].shape)
 
     class Loop:
-        def made_ufunc(self):
+        def ufunc_if_made(self):
             return refusing, refused
 
-    monkeypatch.setitem(arrays._NATIVE, seed.restitution_at, ((2, 1, False), Loop()))
+    lane = arrays._LANES[seed.restitution_at]
+    monkeypatch.setitem(arrays._LANES, seed.restitution_at, (lane[0], lane[1], Loop()))
     assert arrays.on_speeds(seed.restitution_at, np.linspace(0.5, 120.0, 50), 0.37) is None
     assert refused.value == 1

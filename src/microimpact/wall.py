@@ -469,12 +469,13 @@ def _compliant_impulse_ratio(ut_mag, V, Vy, mu, E, mats, wall_mat, poisson_ratio
         x = np.where(V > 0.0, Vy / np.where(V > 0, V, 1.0), 1.0)
     # the distinct kappas in ascending order, as np.unique finds them; not np.unique itself, which
     # imports numpy.ma (15-20 ms of a script's first compliant call, row 11 of the benchmarks)
-    keys = np.sort(np.round(kappa, 12))
+    rounded = np.round(kappa, 12)
+    keys = np.sort(rounded)
     first = np.zeros(keys.size, dtype=bool)
     first[:1] = True
     first[1:] = keys[1:] != keys[:-1]
     for kap in keys[first]:
-        sel = np.round(kappa, 12) == kap
+        sel = rounded == kap
         table_law = "lammps_mindlin" if law == "liggghts_history" else law  # the same spring, arm R
         F[sel] = universal_table(float(kap), law=table_law)(psi[sel], np.minimum(x[sel], 1.0))
     return np.where(approaching & (mu > 0.0), F, 0.0)

@@ -75,9 +75,6 @@ def folder() -> Path:
     return _cache.cache_dir() / "kernels" / "native"
 
 
-_dist_version = _cache.dist_version  # read from the .dist-info folder, without importing the package
-
-
 def _source(fn, kinds: str, nout: int, nparams) -> str:
     """The cfunc's source: an array argument is a pointer and a stride (elements), a scalar a float."""
     args = ", ".join(f"a{k}, s{k}" if c == "a" else f"a{k}" for k, c in enumerate(kinds))
@@ -109,7 +106,7 @@ def entry_path(fn, kinds: str, nout: int, with_params: bool, loop_text: str, out
     (numba's and this module's), a file outside the core holding ``fn`` (``outside``, its hash),
     numba's settings from the environment (``NUMBA_*``) and the CPU (name and features).
     """
-    numba_v, llvmlite_v = _dist_version("numba"), _dist_version("llvmlite")
+    numba_v, llvmlite_v = _cache.dist_version("numba"), _cache.dist_version("llvmlite")
     host = _host() if numba_v and llvmlite_v else None
     if host is None:
         return None
@@ -759,9 +756,10 @@ class NativeLoop:
         args += [pp, address, s0 >> 3, s1 >> 3]
         return args, offsets
 
-    def made_ufunc(self):
+    def ufunc_if_made(self):
         """``(ufunc, refused count)`` of the loop once its lane has made it (:meth:`lane`, after
-        :data:`UFUNC_AFTER` calls), else None: a look-up, never a compilation (see
+        :data:`UFUNC_AFTER` calls), else None: a look-up, never a compilation (unlike
+        :meth:`_Shared.made_ufunc`; see
         :func:`~microimpact.core.arrays.on_speeds`)."""
         return self._s.ufunc or None
 

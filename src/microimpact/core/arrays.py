@@ -85,15 +85,13 @@ _PY_SPENT: dict = {}  # estimated time [s] this process has spent on each functi
 _KERNELS: dict = {}
 _JITABLE_SET: set = set()  # JITABLE's functions as evaluate has met them (JITABLE is a list, in order)
 _READY: set = set()  # compiled loops called once already in this process (loaded or compiled)
-#: ``fn`` -> ``((number of inputs, nout, with params), run(n, inputs, params) -> out)``: the serial
-#: loop :func:`evaluate`'s usual call on fewer than 2048 elements has reached once, ready and timed.
+#: ``fn`` -> ``((number of inputs, nout, with params), run(n, inputs, params) -> out, kept)``: the
+#: serial loop :func:`evaluate`'s usual call on fewer than 2048 elements has reached once, ready and
+#: timed; ``kept`` is that loop where it is kept machine code of one result
+#: (:class:`~microimpact.core._native.NativeLoop`, whose ufunc answers :func:`on_speeds`), else None.
 #: Such a call can then only go there (the engine is "numba" once a loop is ready, threads start at
 #: 2048 elements), so the next ones skip the way to it (1 us of a call on 1e3 speeds, issue 25).
 _LANES: dict = {}
-#: ``fn`` -> ``(the lane's signature as in _LANES, its serial kept loop)``
-#: (:class:`~microimpact.core._native.NativeLoop`, one result) once its lane runs it, written as
-#: one tuple (threads): where :func:`on_speeds` finds the loop's ufunc.
-_NATIVE: dict = {}
 _LOCK_NAMES: dict = {}  # compiled loop -> (folder, name) of its file lock
 _LOCK = threading.Lock()  # dask evaluates blocks in threads: one thread builds a loop, the others wait
 
@@ -594,10 +592,12 @@ def evaluate(fn, *arrays, nout: int = 1, params=None, backend: str | None = None
             if quick and backend is None and n < 2048 and not forced:
                 make = getattr(serial, "lane", None)  # a kept loop's own lane (core._native)
                 run = make(nout) if make is not None else None
-                signature = (len(arrays), nout, with_params)
-                _LANES[fn] = (signature, run or functools.partial(_lane_call, serial, nout))
-                if run is not None and nout == 1:
-                    _NATIVE[fn] = (signature, serial)  # its ufunc, once made, answers on_speeds
+                kept = serial if run is not None and nout == 1 else None
+                _LANES[fn] = (
+                    (len(arrays), nout, with_params),
+                    run or functools.partial(_lane_call, serial, nout),
+                    kept,
+                )
         elif cost is None and n >= 256 and bool(serial.signatures):  # compiled already: time it
             t0 = time.perf_counter()
             _call(serial, n, flats, p, out)
@@ -642,17 +642,17 @@ def on_speeds(fn, speeds, *scalars, params=None):
     :func:`evaluate`, which gives the same numbers or raises).
 
     It answers a script's usual small call, once :func:`evaluate`'s lane runs ``fn``'s kept loop as
-    a numpy ufunc (:meth:`~microimpact.core._native.NativeLoop.made_ufunc`): ``speeds`` a 1-D
+    a numpy ufunc (:meth:`~microimpact.core._native.NativeLoop.ufunc_if_made`): ``speeds`` a 1-D
     float64 array of 2 to 2047 elements, all in ``[+0, inf)`` (:func:`nonnegative_finite`, the
     check the caller would make: a speed outside is the caller's error to name), ``scalars`` and
     ``params`` floats as the loop was made for, no backend forced, and no call the loop refuses.
     Checking the speeds, finding the lane and shaping its result cost 4-6 us around a 5 us loop on
     1e3 speeds; here they are one look-up and one pass (issue 25)."""
-    found = _NATIVE.get(fn)
-    if found is None:
+    lane = _LANES.get(fn)
+    if lane is None or lane[2] is None:
         return None
-    signature, native = found
-    made = native.made_ufunc()
+    signature, _, kept = lane
+    made = kept.ufunc_if_made()
     if (
         made is None
         or type(speeds) is not np.ndarray
