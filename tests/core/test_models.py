@@ -445,7 +445,7 @@ def test_tsuji_code_formulas(e):
     got = fields(ht, 10.0, E_SI, R_SI, M_SI, PY_SI, (ht.alpha_tsuji(e, True), 0.0))["restitution"]
     assert abs(got - e) < 2e-3
     plain = fields(ht, 10.0, E_SI, R_SI, M_SI, PY_SI, (ht.alpha_tsuji(e), 0.0))["restitution"]
-    assert ht.alpha_tsuji(e) == ht.alpha_tsuji(e, True) / math.sqrt(2.0) and plain > got
+    assert ht.alpha_tsuji(e, True) == math.sqrt(2.0) * ht.alpha_tsuji(e) and plain > got
     # with the force clipped at zero (limit_damping / limitForce) the rebound is faster, and it equals
     # the clipped linear spring-dashpot's for the same e_n (found here, to the integration's accuracy)
     clipped = fields(ht, 10.0, E_SI, R_SI, M_SI, PY_SI, (ht.alpha_coeff_restitution(e), 1.0))["restitution"]

@@ -258,3 +258,93 @@ print(arrays.evaluate(seed.restitution_at, V, 0.37).tobytes() == first.tobytes()
 """
     out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True).stdout.split()
     assert out == ["False", "True", "True", "True"]
+
+
+# ------------------------------------------------------------------- integer powers are products
+def test_no_integer_power_in_a_jitable_function():
+    """``x**5`` is libm's ``pow(x, 5.0)`` in Python but ``(x^2)^2 x`` compiled (numba expands integer
+    powers by squaring): the two differ in the last bit for about half the ``x``, and an integration
+    carries that on (1e-8 in a universal table of core.tangential). Every integer power in the core's
+    scalar functions is written as products; this scan keeps it so."""
+    import ast
+    import importlib
+    import inspect
+    import pkgutil
+    import textwrap
+
+    import microimpact.core
+    from microimpact.core import _jit
+
+    for info in pkgutil.walk_packages(microimpact.core.__path__, "microimpact.core."):
+        importlib.import_module(info.name)  # every module of the core: every jitable function registered
+    found = []
+    for fn in list(_jit.JITABLE):
+        tree = ast.parse(textwrap.dedent(inspect.getsource(fn)))
+        for node in ast.walk(tree):
+            if (
+                isinstance(node, ast.BinOp)
+                and isinstance(node.op, ast.Pow)
+                and isinstance(node.right, ast.Constant)
+                and type(node.right.value) is int
+            ):
+                found.append(f"{fn.__module__}.{fn.__qualname__}: {ast.unparse(node)}")
+    assert len(_jit.JITABLE) > 100
+    assert not found, found
+
+
+def _random_pair_arrays(n, rng):
+    E = 10 ** rng.uniform(8, 11.7, n)
+    R = 10 ** rng.uniform(-8, -3, n)
+    m = 4 / 3 * np.pi * R**3 * 10 ** rng.uniform(2.7, 4.3, n)
+    return E, R, m
+
+
+def _powers_cases():
+    """Functions whose integer powers became products, with random arguments in their domains."""
+    from microimpact.core import tangential as tg
+    from microimpact.core.models import _jkr, hertz_tsuji, luding_hysteretic
+    from microimpact.core.models import dmt_elastic_adhesive as dmt
+    from microimpact.core.models import thornton_ning_1998_elastic_adhesive as tn98
+
+    rng = np.random.default_rng(11)
+    n = 400
+    E, R, m = _random_pair_arrays(n, rng)
+    u = rng.uniform(0.0, 1.0, n)
+    G = 10 ** rng.uniform(-3, 0.5, n)
+    s = 10 ** rng.uniform(-7, -4, n)
+    K = 10 ** rng.uniform(-16, -8, n)
+    k = 10 ** rng.uniform(2, 6, n)
+    Fc = np.where(u < 0.2, 0.0, 10 ** rng.uniform(-9, -5, n))
+    return {
+        "core.tangential.integrate_tangential": (
+            tg.integrate_tangential,
+            (rng.uniform(-4, 4, 48), rng.uniform(0.6, 1.2, 48), 10 ** rng.uniform(-2, 0.5, 48), np.full(48, 40.0)),
+            2,
+        ),
+        "seed.yield_velocity_sphere_on_flat": (
+            seed.yield_velocity_sphere_on_flat,
+            (10 ** rng.uniform(6, 10, n), E, m / R**3),
+            1,
+        ),
+        "thornton_ning_1998.sticking_work": (tn98.sticking_work, (E, R, G), 1),
+        "dmt.max_approach_root": (dmt.max_approach_root, (K, k, Fc), 1),
+        "hertz_tsuji.alpha_tsuji": (hertz_tsuji.alpha_tsuji, (u,), 1),
+        "_jkr.b_of_alpha": (_jkr.b_of_alpha, (rng.uniform(-1e-9, 1e-6, n), E, R, s), 1),
+        "luding.loading_stiffness_for": (
+            luding_hysteretic.loading_stiffness_for,
+            (u, 10 ** rng.uniform(-9, -5, n), m),
+            1,
+        ),
+        "luding.characteristic_velocity": (luding_hysteretic.characteristic_velocity, (k, E, R, m), 1),
+    }
+
+
+@pytest.mark.parametrize("name", sorted(_powers_cases()))
+def test_functions_with_powers_bitwise_equal_on_every_path(name):
+    fn, args, nout = _powers_cases()[name]
+    paths = _all_paths(fn, *args, nout=nout)
+    ref = paths.pop("scalar")
+    assert np.isfinite(ref).mean() > 0.9, name
+    for path, got in paths.items():
+        same = (got == ref) | (np.isnan(got) & np.isnan(ref))
+        assert same.all(), f"{name}, {path}: differs at {np.argwhere(~same)[:3].ravel()}"

@@ -93,10 +93,10 @@ def test_paths_bitwise_equal():
         arrays.PARALLEL_MIN = old
     assert np.array_equal(py, scalar)
     assert np.array_equal(parallel, serial)
-    # Compiled against Python: the transcendental functions (sin, asin, pow) of LLVM and of the C
-    # library differ in the last bit now and then, and the integration carries that on (the
-    # integrator of core.tangential shows the same, up to 5e-16).
-    np.testing.assert_allclose(serial, scalar, rtol=0, atol=1e-13)
+    # Compiled against Python: the same bits, since the integer powers of core.tangential's stage
+    # points are products (Python's ``w**5`` is libm's pow, numba's is (w^2)^2 w; they differed
+    # for half the w, and the integration carried that to 1e-16 here and 1e-8 in a table).
+    assert np.array_equal(serial, scalar)
 
 
 # ---------------------------------------------------------------- Stronge's compliant impact
@@ -197,7 +197,7 @@ def test_stronge_paths_bitwise_equal():
         arrays.PARALLEL_MIN = old
     assert np.array_equal(py, scalar)
     assert np.array_equal(parallel, serial)
-    np.testing.assert_allclose(serial, scalar, rtol=0, atol=1e-13)
+    assert np.array_equal(serial, scalar)
 
 
 # ---------------------------------------------------------------- Mindlin-Deresiewicz with turning points
@@ -358,11 +358,11 @@ def test_md_paths_bitwise_equal():
     py = arrays.evaluate(tl.integrate_law, *args, nout=3, backend="python")
     serial = arrays.evaluate(tl.integrate_law, *args, nout=3, backend="numba")
     assert np.array_equal(py, scalar)
-    # Compiled against Python: the last-bit differences of sin/pow (test_paths_bitwise_equal) are
-    # carried further here: a step that ends within rounding of the limit under a growing normal
+    # Compiled against Python: bit for bit (test_paths_bitwise_equal). A last-bit difference would
+    # be carried far here: a step that ends within rounding of the limit under a growing normal
     # force takes K_t = 0 in one path and not in the other.
-    np.testing.assert_allclose(serial, scalar, rtol=0, atol=1e-7)
+    assert np.array_equal(serial, scalar)
     cyc = np.array([[0.5, 1.0, 2.0], [-0.5, -0.4, -0.5], [0.5, 0.7, 0.5], [100.0, 100.0, 100.0]])
     cyc_py = arrays.evaluate(tl.mindlin_deresiewicz_cycle, *cyc, nout=4, backend="python")
     cyc_nb = arrays.evaluate(tl.mindlin_deresiewicz_cycle, *cyc, nout=4, backend="numba")
-    np.testing.assert_allclose(cyc_nb, cyc_py, rtol=0, atol=1e-13)
+    assert np.array_equal(cyc_nb, cyc_py)

@@ -206,13 +206,14 @@ def stage_point(stage, v, hc):
     if stage == 1:
         phi1 = hc[1]
         w = v
-        phi = phi1 * w**5
+        w4 = (w * w) * (w * w)  # products, not w**4, w**5: Python's ** is libm's pow, numba's products
+        phi = phi1 * (w4 * w)
         s = math.sin(phi)
         if s <= 0.0:
             return (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
         c = math.cos(phi)
         a = s**0.4
-        dtau = 4.0 * phi1 * w**4 * s**-0.2
+        dtau = 4.0 * phi1 * w4 * s**-0.2
         p = 1.25 * s**1.2
         kn = 1.875 * a
         return (dtau, a, c / (2.0 * s**0.8), p, kn * c, kn)
@@ -226,7 +227,8 @@ def stage_point(stage, v, hc):
         p = hc[3] * (alpha - hc[5])
         return ((0.5 * math.pi - theta1) / omega, a, adot / (2.0 * alpha), p, hc[3] * adot, hc[3])
     w = 1.0 - v
-    phi = 0.5 * math.pi * w**5
+    w4 = (w * w) * (w * w)
+    phi = 0.5 * math.pi * (w4 * w)
     s = math.sin(phi)
     if s <= 0.0:
         return (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
@@ -237,7 +239,7 @@ def stage_point(stage, v, hc):
     q = s**0.8
     a = math.sqrt(rp * depth * q)
     adot = -v_r * c
-    dtau = 2.0 * math.pi * depth / v_r * w**4 * s**-0.2
+    dtau = 2.0 * math.pi * depth / v_r * w4 * s**-0.2
     p = 1.25 * math.sqrt(rp) * (depth * q) ** 1.5
     kn = 1.875 * a
     return (dtau, a, adot / (2.0 * depth * q), p, kn * adot, kn)

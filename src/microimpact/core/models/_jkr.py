@@ -154,7 +154,7 @@ def impact(V, E, R, m, s, b0, bF):
             break
     if bm < b0:
         bm = b0
-    a_max = bm**4 / R - 2.0 * s * bm
+    a_max = (bm * bm) * (bm * bm) / R - 2.0 * s * bm
     p_max = force_b(bm, E, R, s)
     t_load = time_to_top(b0, bm, E, R, m, s) if bm > b0 else 0.0
     if K <= W:
@@ -194,13 +194,13 @@ def b_of_alpha(alpha, E, R, s):
     """``b = a^(1/2)`` on the branch ``b >= b_f`` at approach ``alpha >= alpha_f`` (Newton from above:
     ``b^4/R - 2 s b - alpha`` is convex and increasing there, so the iterates decrease to the root)."""
     bf = (0.5 * s * R) ** (1.0 / 3.0)
-    if alpha <= bf**4 / R - 2.0 * s * bf:
+    if alpha <= (bf * bf) * (bf * bf) / R - 2.0 * s * bf:
         return bf
     b = max((R * abs(alpha)) ** 0.25, 2.0 * bf)
-    while b**4 / R - 2.0 * s * b < alpha:
+    while (b * b) * (b * b) / R - 2.0 * s * b < alpha:
         b *= 2.0
     for _ in range(200):
-        f = b**4 / R - 2.0 * s * b - alpha
+        f = (b * b) * (b * b) / R - 2.0 * s * b - alpha
         d = 4.0 * b * b * b / R - 2.0 * s
         step = f / d
         b -= step

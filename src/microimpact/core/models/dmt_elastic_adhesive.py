@@ -85,14 +85,22 @@ def _q(x, y, k, Fc):
 
 
 @jitable
+def _fifth(b):
+    """``b^5`` as numba computes ``b**5``, ``(b^2)^2 b``: Python's ``**`` is libm's ``pow``, not always that."""
+    b2 = b * b
+    return (b2 * b2) * b
+
+
+@jitable
 def max_approach_root(K, k, Fc):
     """``b_m = alpha_m^(1/2)`` [m^(1/2)] where ``2/5 k b^5 - F_c b^2 = K >= 0`` (Newton from above)."""
     b = max((2.5 * K / k) ** 0.2, (2.5 * Fc / k) ** (1.0 / 3.0))
-    while 0.4 * k * b**5 - Fc * b * b <= K:
+    while 0.4 * k * _fifth(b) - Fc * b * b <= K:
         b *= 1.5
     for _ in range(200):
-        f = 0.4 * k * b**5 - Fc * b * b - K
-        step = f / (2.0 * k * b**4 - 2.0 * Fc * b)
+        b2 = b * b
+        f = 0.4 * k * ((b2 * b2) * b) - Fc * b * b - K
+        step = f / (2.0 * k * (b2 * b2) - 2.0 * Fc * b)
         b -= step
         if abs(step) <= 1e-16 * b:
             break
@@ -124,7 +132,7 @@ def loading_time(bm, K, k, Fc, m):
             sh = math.sinh(u)
             ch = math.cosh(u)
             b = c * sh
-            low += GW[i] * 2.0 * c * c * sh * ch / math.sqrt(2.0 * (K * ch * ch - 0.4 * k * b**5) / m)
+            low += GW[i] * 2.0 * c * c * sh * ch / math.sqrt(2.0 * (K * ch * ch - 0.4 * k * _fifth(b)) / m)
         t += 0.5 * U * low
     return t
 

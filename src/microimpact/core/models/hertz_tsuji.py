@@ -102,7 +102,9 @@ def alpha_tsuji(e, sqrt2=False):
     request 5113 (July 2026) multiplies it by ``2^(1/2)`` "for effective mass convention (as in
     Tsuji 1992)" (``sqrt2=True``), which gives ``e_n`` back within 2e-3.
     """
-    p = 1.2728 - 4.2783 * e + 11.087 * e**2 - 22.348 * e**3 + 27.467 * e**4 - 18.022 * e**5 + 4.8218 * e**6
+    e2 = e * e  # the powers as products, in the order of numba's ** and LAMMPS' powint: Python's ** is pow
+    e4 = e2 * e2
+    p = 1.2728 - 4.2783 * e + 11.087 * e2 - 22.348 * (e * e2) + 27.467 * e4 - 18.022 * (e4 * e) + 4.8218 * (e2 * e4)
     if sqrt2:
         return math.sqrt(2.0) * p
     return p

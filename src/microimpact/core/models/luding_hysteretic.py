@@ -159,7 +159,8 @@ def loading_stiffness_for(e, t_c, m):
     The inverse of the contact time of the constant-``k2`` spring (module docstring):
     ``t_c = pi/(2 omega_1) + pi/(2 omega_2)`` with ``omega_2 = omega_1/e`` (``e = (k1/k2)^(1/2)``).
     """
-    return m * (math.pi * (1.0 + e) / (2.0 * t_c)) ** 2
+    w = math.pi * (1.0 + e) / (2.0 * t_c)
+    return m * (w * w)
 
 
 @jitable
@@ -184,4 +185,6 @@ def characteristic_velocity(k1, E, R, m):
     ``v_c = ((15 k1/(16 R^(1/2) E*))^5 16 R^(1/2) E*/(15 m*))^(1/2)``.
     """
     sq = math.sqrt(R)
-    return math.sqrt((15.0 * k1 / (16.0 * sq * E)) ** 5 * 16.0 * sq * E / (15.0 * m))
+    q = 15.0 * k1 / (16.0 * sq * E)
+    q2 = q * q
+    return math.sqrt((q2 * q2) * q * 16.0 * sq * E / (15.0 * m))

@@ -110,7 +110,8 @@ def snapoff_approach(E, R, G):
 @jitable
 def sticking_work(E, R, G):
     """``W = 7.0922 (G^5 R*^4/E*^2)^(1/3)`` [J]: the work of the tensile branch, lost at each impact."""
-    return WORK_CONSTANT * (G**5 * R**4 / (E * E)) ** (1.0 / 3.0)
+    g2 = G * G
+    return WORK_CONSTANT * ((g2 * g2) * G * ((R * R) * (R * R)) / (E * E)) ** (1.0 / 3.0)
 
 
 @jitable

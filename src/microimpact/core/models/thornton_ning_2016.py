@@ -55,7 +55,9 @@ def yield_point(E, R, m, p_y):
 @jitable
 def yield_velocity_sphere_on_flat(p_y, E, rho):
     """``V_y = (pi^4/40)^(1/2) (p_y^5/(E*^4 rho))^(1/2)`` [m/s] (eq. 28, a sphere on a flat)."""
-    return math.sqrt(math.pi**4 / 40.0) * math.sqrt(p_y**5 / (E**4 * rho))
+    p2 = p_y * p_y
+    e2 = E * E
+    return math.sqrt((math.pi * math.pi) * (math.pi * math.pi) / 40.0) * math.sqrt((p2 * p2) * p_y / ((e2 * e2) * rho))
 
 
 @jitable
