@@ -57,6 +57,7 @@ import numpy as np
 
 from . import _signals
 from ._validation import is_number_text
+from .core import cache as _cache
 
 if TYPE_CHECKING:  # pathlib, json, csv, shutil and tempfile load where used: every command checks memory here
     from pathlib import Path
@@ -280,7 +281,7 @@ def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newli
     """Open a temporary file beside ``path``; rename it to ``path`` when the block succeeds.
 
     The temporary file is ``.<name>.<random>.tmp`` in the target's directory
-    (created with :func:`tempfile.mkstemp`, so the name is unique). On success it
+    (created exclusively by :func:`microimpact.core.cache.mkstemp`, so the name is unique). On success it
     is flushed, ``fsync``-ed, given the target's permissions (an existing
     target's, else ``0666`` less the umask) and renamed over the target with
     :func:`os.replace` (atomic on POSIX; SIGINT/SIGTERM are held for that call).
@@ -304,7 +305,6 @@ def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newli
     ------
     file object
     """
-    import tempfile
     from pathlib import Path
 
     if mode not in ("w", "wb"):
@@ -316,7 +316,7 @@ def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newli
         perm = stat.S_IMODE(os.stat(target).st_mode)
     except OSError:
         perm = _umask_mode()
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+    fd, tmp = _cache.mkstemp(target.parent, f".{target.name}.", ".tmp")
     _signals.track(tmp)
     try:
         with os.fdopen(fd, mode, **kw) as fh:
@@ -352,9 +352,7 @@ _STAGING = ".microimpact-staging."
 
 
 def _sha256(path) -> str:
-    import hashlib
-
-    h = hashlib.sha256()
+    h = _cache.sha256()  # Python's own SHA-256 where it has one: not OpenSSL's 5 ms load (issue 25)
     with open(path, "rb") as fh:
         for block in iter(lambda: fh.read(1 << 20), b""):
             h.update(block)
@@ -498,18 +496,16 @@ def owned_directory(path, command: str, *, inputs=()):
     pathlib.Path
         The staging folder to write the files into.
     """
-    import shutil
-    import tempfile
     from pathlib import Path
 
     target = Path(os.path.abspath(path))  # "." and "dir/.." name their real parent
     check_output_path(target, directory=True)
     if target.is_dir():
         old = _foreign(target, command, inputs, os.fspath(path))
-        stage = Path(tempfile.mkdtemp(prefix=_STAGING, suffix=".tmp", dir=target))
+        stage = Path(_cache.mkdtemp(target, _STAGING, ".tmp"))
     else:
         old = None
-        stage = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent))
+        stage = Path(_cache.mkdtemp(target.parent, f".{target.name}.", ".tmp"))
     _signals.track(stage, "dir")
     try:
         yield stage
@@ -543,7 +539,12 @@ def owned_directory(path, command: str, *, inputs=()):
             _fsync_dir(target)
     finally:
         if stage is not None:
-            shutil.rmtree(stage, ignore_errors=True)
+            try:
+                os.rmdir(stage)  # emptied: its files moved into the folder above
+            except OSError:
+                import shutil  # a failed run left files in it (shutil costs 4 ms to import: issue 25)
+
+                shutil.rmtree(stage, ignore_errors=True)
             _signals.untrack(stage)
 
 
@@ -796,12 +797,11 @@ def write_netcdf(ds, path, *, engine=None, progress=False):
     -------
     pathlib.Path
     """
-    import tempfile
     from pathlib import Path
 
     check_output_path(path)
     target = _resolve(Path(path))
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+    fd, tmp = _cache.mkstemp(target.parent, f".{target.name}.", ".tmp")
     os.close(fd)
     _signals.track(tmp)
     try:

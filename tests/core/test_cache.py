@@ -205,3 +205,61 @@ def test_a_warm_table_is_read_without_pathlib_openssl_or_numpy_ma(cache_in):
     env = dict(os.environ, PYTHONPATH=src + os.pathsep + os.environ.get("PYTHONPATH", ""))
     out = subprocess.run([sys.executable, "-c", _WARM_WALL], capture_output=True, text=True, env=env, check=True)
     assert out.stdout.strip() == ""
+
+
+# ------------------------------------------------------------------ temporary names without tempfile
+@pytest.mark.parametrize("kind", ["file", "folder"])
+def test_temporary_names_are_new_private_and_never_reused(tmp_path, monkeypatch, kind):
+    """``cache.mkstemp`` / ``cache.mkdtemp`` keep :mod:`tempfile`'s contract: created exclusively
+    (a taken name, even a dangling link, is skipped, never opened or followed), owner only, in the
+    folder asked, ``prefix<random>suffix``; when every try is taken, FileExistsError naming the folder."""
+    make = cache.mkstemp if kind == "file" else cache.mkdtemp
+    monkeypatch.setattr(os, "umask", os.umask)  # unchanged: the modes below are before the umask
+    draws = iter([b"\x00" * 6, b"\x00" * 6, b"\x01" * 6])
+    monkeypatch.setattr(os, "urandom", lambda n: next(draws))
+    taken = tmp_path / ".out.000000000000.tmp"
+    taken.symlink_to(tmp_path / "elsewhere")  # a dangling link on the first name drawn
+    got = make(tmp_path, ".out.", ".tmp")
+    path = got[1] if kind == "file" else got
+    if kind == "file":
+        os.write(got[0], b"x")
+        os.close(got[0])
+    assert path == str(tmp_path / ".out.010101010101.tmp")
+    assert not (tmp_path / "elsewhere").exists() and taken.is_symlink()
+    mode = os.stat(path).st_mode & 0o777
+    assert mode == (0o600 if kind == "file" else 0o700) & ~_umask()
+    monkeypatch.setattr(os, "urandom", lambda n: b"\x01" * n)  # every name drawn is taken now
+    with pytest.raises(FileExistsError) as err:
+        make(tmp_path, ".out.", ".tmp")
+    assert err.value.filename == str(tmp_path)
+
+
+def _umask():
+    old = os.umask(0)
+    os.umask(old)
+    return old
+
+
+def test_no_command_path_imports_tempfile_or_openssl():
+    """A warm command's writes (atomic files, an owned folder and its manifest) load neither
+    :mod:`tempfile` (7 ms with shutil, random, bz2, lzma) nor OpenSSL's hashes (5 ms): issue 25."""
+    code = """
+import sys
+import numpy as np
+from microimpact import io
+out = sys.argv[1]
+with io.owned_directory(out, "test") as stage:
+    with io.atomic_write(stage / "a.csv") as fh:
+        fh.write("1\\n")
+with io.owned_directory(out, "test") as stage:  # again: the manifest read, the old files replaced
+    with io.atomic_write(stage / "a.csv") as fh:
+        fh.write("2\\n")
+print(sorted(m for m in ("tempfile", "shutil", "_hashlib", "random") if m in sys.modules))
+"""
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "out")
+        res = subprocess.run([sys.executable, "-c", code, out], check=True, capture_output=True, text=True)
+        assert res.stdout.split() == ["[]"]
+        assert open(os.path.join(out, "a.csv")).read() == "2\n"

@@ -20,6 +20,7 @@ computing (and to trying to write the result for the next process), never to an 
 
 from __future__ import annotations
 
+import errno
 import functools
 import io
 import os
@@ -120,12 +121,53 @@ def dist_version(package: str) -> str:
     return names[0][len(package) + 1 : -len(".dist-info")] if len(names) == 1 else ""
 
 
+#: Flags of :func:`mkstemp`'s open: those of :func:`tempfile.mkstemp` (binary).
+_TEMP_FLAGS = (
+    os.O_RDWR
+    | os.O_CREAT
+    | os.O_EXCL
+    | getattr(os, "O_NOFOLLOW", 0)
+    | getattr(os, "O_CLOEXEC", 0)
+    | getattr(os, "O_BINARY", 0)
+)
+
+
+def _create_unique(folder, prefix: str, suffix: str, make):
+    """``make(path)`` for ``path = folder/prefix<12 random hex digits>suffix``, a new name tried while
+    ``make`` finds the name taken (as :mod:`tempfile`, up to its ``TMP_MAX`` tries)."""
+    folder = os.path.abspath(os.fspath(folder))
+    for _ in range(10000):
+        name = os.path.join(folder, f"{prefix}{os.urandom(6).hex()}{suffix}")
+        try:
+            return make(name)
+        except FileExistsError:
+            continue
+    raise FileExistsError(errno.EEXIST, "no unused temporary name", folder)
+
+
+def mkstemp(folder, prefix: str = "", suffix: str = "") -> tuple[int, str]:
+    """``(fd, path)`` of a new file ``folder/prefix<12 random hex digits>suffix``, created exclusively,
+    readable and writable by its owner only: :func:`tempfile.mkstemp`'s contract, without importing
+    :mod:`tempfile`, which brings ``shutil``, ``random``, ``bz2`` and ``lzma`` with it: 7 ms of a
+    command's 0.3 s warm start (issue 25)."""
+    return _create_unique(folder, prefix, suffix, lambda name: (os.open(name, _TEMP_FLAGS, 0o600), name))
+
+
+def _new_folder(name: str) -> str:
+    os.mkdir(name, 0o700)
+    return name
+
+
+def mkdtemp(folder, prefix: str = "", suffix: str = "") -> str:
+    """Path of a new folder ``folder/prefix<12 random hex digits>suffix``, created exclusively, for its
+    owner only: :func:`tempfile.mkdtemp`'s contract without the import (:func:`mkstemp`)."""
+    return _create_unique(folder, prefix, suffix, _new_folder)
+
+
 def write_atomic(path: Path, data: bytes) -> None:
     """Write ``data`` to ``path`` through a temporary file in the same folder, then rename it."""
-    import tempfile
-
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name + ".", suffix=".tmp")
+    fd, tmp = mkstemp(path.parent, path.name + ".", ".tmp")
     try:
         with os.fdopen(fd, "wb") as fh:
             fh.write(data)
