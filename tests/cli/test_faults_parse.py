@@ -19,8 +19,8 @@ import pytest
 
 import microimpact as mi
 from microimpact.impact import impact_outcome
+from microimpact.io import read_table
 from microimpact.oblique import universal_table
-from microimpact.paper import read_table
 
 from .test_faults import _env, assert_one_line, run
 
