@@ -305,6 +305,7 @@ def test_whole_law_wall_normal_restitution_is_the_model():
         )
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", mi.LargeStrainWarning)
+            warnings.simplefilter("ignore", mi.AdhesionRangeWarning)  # Tabor < 5 here: flagged, not the subject
             ref = pair.impact(V, model=WHOLE_LAW, work_of_adhesion=G).restitution
         err = np.abs(out.restitution - ref)
         assert not out.outside_table.any()
