@@ -136,6 +136,7 @@ def test_lock_excludes_and_gives_up(tmp_path):
     finally:
         holder.kill()
         holder.wait()
+        holder.stdout.close()
     with cache.locked(tmp_path, "x", timeout=5) as held:
         assert held is True
 
@@ -262,4 +263,4 @@ print(sorted(m for m in ("tempfile", "shutil", "_hashlib", "random") if m in sys
         out = os.path.join(tmp, "out")
         res = subprocess.run([sys.executable, "-c", code, out], check=True, capture_output=True, text=True)
         assert res.stdout.split() == ["[]"]
-        assert open(os.path.join(out, "a.csv")).read() == "2\n"
+        assert Path(out, "a.csv").read_text() == "2\n"
