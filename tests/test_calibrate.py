@@ -13,11 +13,6 @@ from microimpact.calibrate import DEM_MODELS, calibrate, calibrate_all
 from microimpact.core.models import hertz_viscoelastic as hv
 from microimpact.core.models import linear_spring_dashpot as lin
 
-#: The luding_hysteretic law's e(V) warning, the subject of test_calibrate's own tests: incidental here.
-NOT_MONOTONIC = (
-    "ignore:the calibrated luding_hysteretic law's e\\(V\\) is not monotonic:microimpact.calibrate.CalibrationWarning"
-)
-
 
 @pytest.fixture(scope="module", params=["silicon", "mica"])
 def pair(request):
@@ -43,7 +38,6 @@ CASES = [
 
 @pytest.mark.parametrize("V", [10.0, 30.0, 50.0, 100.0])
 @pytest.mark.parametrize("model, opts", CASES)
-@pytest.mark.filterwarnings(NOT_MONOTONIC)
 def test_reproduces_the_seed_at_the_calibration_speed(pair, model, opts, V):
     """Issue 13: the calibrated laws reproduce the seed's e at their calibration speed to 1e-10."""
     cal = calibrate(pair, model, V, **opts)
@@ -86,7 +80,6 @@ def test_range_linear_is_the_mean():
 @pytest.mark.parametrize(
     "model, opts, free", [("hertz_viscoelastic", {}, 0), ("luding_hysteretic", {"plasticity": True}, 2)]
 )
-@pytest.mark.filterwarnings(NOT_MONOTONIC)
 def test_range_fit_is_a_least_squares_minimum(model, opts, free):
     pair = mi.ContactPair.paper_case("silicon")
     V = np.linspace(10.0, 100.0, 6)
@@ -166,7 +159,6 @@ def test_lammps_lines_viscoelastic():
     assert "damping viscoelastic limit_damping" in line
 
 
-@pytest.mark.filterwarnings(NOT_MONOTONIC)
 def test_liggghts_lines():
     pair = mi.ContactPair.paper_case("silicon")
     cal = calibrate(pair, "linear_spring_dashpot", 50.0)

@@ -13,11 +13,6 @@ from microimpact.compare import COMPARED_FIELDS, default_models, seed_large_stra
 from microimpact.core import quantities
 from microimpact.core.models import thornton_ning_2016 as seed
 
-#: The luding_hysteretic law's e(V) warning, the subject of test_calibrate's own tests: incidental here.
-NOT_MONOTONIC = (
-    "ignore:the calibrated luding_hysteretic law's e\\(V\\) is not monotonic:microimpact.calibrate.CalibrationWarning"
-)
-
 pytest.importorskip("xarray")
 
 SILICON = mi.ContactPair.paper_case("silicon")
@@ -29,7 +24,6 @@ def ds():
     return mi.compare_models(SILICON, V)
 
 
-@pytest.mark.filterwarnings(NOT_MONOTONIC)
 def test_layout_units_and_coordinates(ds):
     assert dict(ds.sizes) == {"model": len(default_models()), "velocity": V.size}
     assert list(ds["model"].values) == default_models()

@@ -13,11 +13,6 @@ from microimpact.cli import main
 pytest.importorskip("xarray")
 SILICON = mi.ContactPair.paper_case("silicon")
 
-#: The luding_hysteretic law's e(V) warning, the subject of test_calibrate's own tests: incidental here.
-NOT_MONOTONIC = (
-    "ignore:the calibrated luding_hysteretic law's e\\(V\\) is not monotonic:microimpact.calibrate.CalibrationWarning"
-)
-
 
 def test_table_names_the_calibration(capsys):
     assert main(["compare", "10,50", "--model", "thornton_ning_2016,hertz_tsuji"]) == 0
@@ -54,7 +49,6 @@ def test_json_matches_the_api(capsys):
             np.testing.assert_array_equal(doc["results"][name][k], ds[k].values[i])
 
 
-@pytest.mark.filterwarnings(NOT_MONOTONIC)
 def test_files_and_plot(tmp_path, capsys):
     xr = pytest.importorskip("xarray")
     pytest.importorskip("matplotlib")

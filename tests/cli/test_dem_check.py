@@ -14,11 +14,6 @@ from microimpact.cli import main
 
 SILICON = mi.ContactPair.paper_case("silicon")
 
-#: The luding_hysteretic law's e(V) warning, the subject of test_calibrate's own tests: incidental here.
-NOT_MONOTONIC = (
-    "ignore:the calibrated luding_hysteretic law's e\\(V\\) is not monotonic:microimpact.calibrate.CalibrationWarning"
-)
-
 
 def _rows(out):
     return [line.split() for line in out.splitlines() if re.match(r"^\s+[0-9.]+\s+0\.\d+", line)]
@@ -65,7 +60,6 @@ def test_dem_check_with_given_parameters_and_coarse_step(capsys):
         (["hertz_tsuji", "--code", "lammps", "--reference-velocity", "2"], "--reference-velocity"),
     ],
 )
-@pytest.mark.filterwarnings(NOT_MONOTONIC)
 def test_dem_check_refuses_bad_input(argv, match, capsys):
     if dem.find_code("lammps") is None:
         pytest.skip("lammps is not installed")

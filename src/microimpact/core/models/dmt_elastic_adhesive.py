@@ -98,9 +98,8 @@ def max_approach_root(K, k, Fc):
     while 0.4 * k * _fifth(b) - Fc * b * b <= K:
         b *= 1.5
     for _ in range(200):
-        b2 = b * b
-        f = 0.4 * k * ((b2 * b2) * b) - Fc * b * b - K
-        step = f / (2.0 * k * (b2 * b2) - 2.0 * Fc * b)
+        f = 0.4 * k * _fifth(b) - Fc * b * b - K
+        step = f / (2.0 * k * ((b * b) * (b * b)) - 2.0 * Fc * b)
         b -= step
         if abs(step) <= 1e-16 * b:
             break
