@@ -42,7 +42,7 @@ def register(sub) -> None:
         default=None,
         metavar="N",
         help="processes drawing the figures, this one included (default: 2 when it may run on more than one "
-        "core and a core is idle, else 1); the files are the same bytes whatever N",
+        "core and a whole core is idle, else 1); the files are the same bytes whatever N",
     )
     p.add_argument("--quiet", "-q", action="store_true", help="no progress bar and no summary")
     p.set_defaults(func=run)
@@ -61,9 +61,6 @@ def parse_data(items) -> dict:
 
 def run(args) -> int:
     from ..paper import DEFAULT_OUT_DIR, reproduce
-    from ..paper._driver import defer_font_subsetting
-
-    defer_font_subsetting()  # this process's own: fontTools.subset loads only if a font is subset
 
     out = args.out or DEFAULT_OUT_DIR
     check_outputs(directories=[out])

@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import collections
 import contextlib
-import functools
 import io
 import os
 import sys
@@ -213,117 +211,14 @@ def _render(fig, formats) -> dict:
     return images
 
 
-def defer_font_subsetting() -> bool:
-    """Import ``fontTools.subset`` on its first use rather than with matplotlib's PDF backend.
-
-    matplotlib's PDF and PS backends import it as they load (0.1-0.2 s, a twentieth of ``paper``)
-    but call it only to embed a subset of a TrueType font as Type 42 (``pdf.fonttype: 42``,
-    ``ps.fonttype: 42``) or in a PS file; the figures' PDFs embed Type 3 fonts. Here it becomes a
-    module that Python's :class:`importlib.util.LazyLoader` loads at its first attribute read: the
-    same module, loaded when used. Only for a process of this package's own (the ``paper``
-    command, its workers); a no-op where the module is already imported or cannot be found.
-    Returns whether it was deferred.
-    """
-    import importlib.util
-
-    name = "fontTools.subset"
-    if name in sys.modules:
-        return False
-    try:
-        spec = importlib.util.find_spec(name)
-    except (ImportError, ValueError):
-        return False
-    if spec is None or spec.loader is None:
-        return False
-    spec.loader = importlib.util.LazyLoader(spec.loader)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
-    spec.loader.exec_module(module)
-    sys.modules["fontTools"].subset = module  # as an import would (find_spec imported it)
-    return True
-
-
-_MATHTEXT = {"depth": 0, "parses": {}}
-
-
-@contextlib.contextmanager
-def one_mathtext_cache():
-    """While inside: every mathtext parser of this process shares one cache of parsed strings.
-
-    matplotlib caches a parse per parser object, and each renderer makes its own parser: a label was
-    parsed by the layout's renderer, again by the PDF's and again by the PNG's (at 300 dpi), and
-    again for every figure that repeats it (an axis label, the strain band's note). A parse is a
-    function of the parser's state (its output type), of the call's arguments (string, dpi, font,
-    antialiasing, hinting; matplotlib's own cache keys on these) and of the rcParams it reads (the
-    ``mathtext.*`` and ``font.*`` family settings), so one cache keyed on all of them returns what
-    each parser would have computed: the same bytes in every file, half the parses. Nested uses share the outer cache, which goes when the outermost ends. Where
-    matplotlib's parser is not the one this was written for (no ``_parse_cached`` wrapping a
-    function), nothing changes.
-    """
-    from matplotlib.mathtext import MathTextParser
-
-    cached = MathTextParser.__dict__.get("_parse_cached")
-    parse = getattr(cached, "__wrapped__", None)
-    if _MATHTEXT["depth"] == 0 and not callable(parse):
-        yield
-        return
-    if _MATHTEXT["depth"] == 0:
-        import matplotlib as mpl
-
-        parses = _MATHTEXT["parses"]
-        rc_names = [k for k in mpl.rcParams if k.startswith("mathtext.") or k.startswith("font.")]
-
-        @functools.wraps(parse)
-        def shared(self, *args):
-            rc = tuple(tuple(v) if isinstance(v, list) else v for v in map(mpl.rcParams.__getitem__, rc_names))
-            key = (type(self), tuple(sorted(vars(self).items())), args, rc)
-            try:
-                return parses[key]
-            except KeyError:
-                result = parses[key] = parse(self, *args)
-                return result
-            except TypeError:  # a part of the key that does not hash: as matplotlib would
-                return cached(self, *args)
-
-        MathTextParser._parse_cached = shared
-        _MATHTEXT["restore"] = cached
-    _MATHTEXT["depth"] += 1
-    try:
-        yield
-    finally:
-        _MATHTEXT["depth"] -= 1
-        if _MATHTEXT["depth"] == 0:
-            MathTextParser._parse_cached = _MATHTEXT.pop("restore")
-            _MATHTEXT["parses"].clear()
-
-
-def forget_open_fonts() -> None:
-    """In a forked process: drop every font opened before the fork, and what holds one. A font file
-    opened before it is one open file shared with the other process (one read position for both):
-    glyphs read through it while the other reads too could be wrong. matplotlib drops its own open
-    fonts at a fork (``font_manager``); parsed mathtext holds fonts, so its caches go too (matplotlib's
-    and :func:`one_mathtext_cache`'s)."""
-    from matplotlib import font_manager
-    from matplotlib.mathtext import MathTextParser
-
-    font_manager._get_font.cache_clear()
-    cached = MathTextParser.__dict__.get("_parse_cached")
-    for cache in (cached, getattr(cached, "__wrapped__", None), _MATHTEXT.get("restore")):
-        if hasattr(cache, "cache_clear"):
-            cache.cache_clear()
-    _MATHTEXT["parses"].clear()
-
-
 def draw_figure(stem, table, formats, rc=None) -> dict:
     """``{format: bytes}`` of figure ``stem`` drawn from its ``table`` (:func:`_render`), in the package's
     style over ``rc`` (the caller's rcParams, for a figure drawn in another process) or the current
-    rcParams. The same bytes in any process, whatever it drew before (parsed mathtext is shared
-    with the other figures drawn inside one :func:`one_mathtext_cache`)."""
+    rcParams. The same bytes in any process, whatever it drew before."""
     from ..figures import style as _style
 
     plt = _style.pyplot()
     with contextlib.ExitStack() as stack:
-        stack.enter_context(one_mathtext_cache())
         if rc is not None:
             stack.enter_context(plt.rc_context(rc))
         stack.enter_context(_style.style())
@@ -336,15 +231,12 @@ def draw_figure(stem, table, formats, rc=None) -> dict:
 
 def _processes(workers) -> int:
     """How many processes draw the figures: ``workers``, or by default 2 when this process may run
-    on more than one core (its CPU affinity) and a core is idle, else 1.
+    on more than one core (its CPU affinity) and a whole core is idle, else 1.
 
-    What counts as idle depends on what a second process costs. Where it is forked from this one
-    (Linux, :func:`._worker.can_fork`) it shares this process's imports and costs only its share of
-    the figures (and its fonts and labels, loaded and parsed again: about 0.2 CPU-s): a core partly
-    idle is enough (1-minute load average below the cores). Where it is a new interpreter, its
-    imports cost about 1 CPU-s more, which a machine with no idle core pays in time: the load
-    average must leave a whole core idle (at most the cores less one), and ``sys.executable`` must
-    be a Python (not a bundled application)."""
+    A second process is a new interpreter (:mod:`._worker`): its imports cost about a CPU-second,
+    which a machine with no idle core pays in time, so the 1-minute load average must leave a
+    whole core idle (at most the cores less one); and ``sys.executable`` must be a Python (not a
+    bundled application)."""
     if workers is None:
         try:
             cores = len(os.sched_getaffinity(0))
@@ -354,11 +246,7 @@ def _processes(workers) -> int:
             load = os.getloadavg()[0]
         except (AttributeError, OSError):  # Windows
             load = 0.0
-        if cores <= 1:
-            return 1
-        if _worker.can_fork():
-            return 2 if load < cores else 1
-        if getattr(sys, "frozen", False):  # a bundled application: its executable is not a Python to start
+        if cores <= 1 or getattr(sys, "frozen", False):  # a bundled application: no Python to start
             return 1
         return 2 if load <= cores - 1 else 1
     if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
@@ -391,20 +279,17 @@ def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progre
         receives one line per figure (``"[3/9] fig04 ... done (0.41 s)"``); ``False``: quiet.
     workers : int, optional
         Processes drawing the figures (this one included). Default: 2 when this process may run
-        on more than one core and a core is idle (1-minute load average below the cores where
-        the second process is forked from this one, at most the cores less one where it is a
-        new interpreter), else 1. The files are the same bytes whatever the number.
+        on more than one core and a whole core is idle (1-minute load average at most the cores
+        less one), else 1. The files are the same bytes whatever the number.
 
     Notes
     -----
-    With more than one worker, the other processes start at once and draw figures from their
-    tables while this one draws others; they write no file (this process writes every file, in
-    the order of the figures), they draw with this process's rcParams and in the package's
-    style, and a figure they cannot draw is drawn here. On Linux, when this process runs no
-    other thread, they are forked from it once it has imported matplotlib: they share its
-    imports (and fonts added at run time). Elsewhere they are new Python interpreters running
-    ``microimpact.paper._worker``, which do not see fonts added at run time
-    (``matplotlib.font_manager.fontManager.addfont``): use ``workers=1`` for such figures.
+    With more than one worker, the other processes (new Python interpreters, started at once)
+    draw figures from their tables while this one draws others; they write no file (this
+    process writes every file, in the order of the figures), they draw with this process's
+    rcParams and in the package's style, and a figure they cannot draw is drawn here. They do
+    not see fonts added at run time (``matplotlib.font_manager.fontManager.addfont``): use
+    ``workers=1`` for such figures. An interrupt ends them with this call.
 
     The output folder owns only what it wrote (:func:`microimpact.io.owned_directory`):
     its files are staged and committed only when all are complete; an existing
@@ -431,18 +316,17 @@ def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progre
     out = Path(out_dir)
     check_output_path(out, directory=True)
     # The other processes start now: their imports overlap this one's work.
-    helpers = [_worker.Helper() for _ in range(n_proc - 1)]
+    pool = _worker.start(n_proc - 1) if n_proc > 1 else None
     try:
-        for h in helpers:
-            h.start()
-        return _reproduce(PaperReport(out_dir=out), t0, data, formats, inputs, helpers, progress, emit)
+        ready = [pool.submit(_worker.prepare) for _ in range(n_proc - 1)] if pool else []
+        return _reproduce(PaperReport(out_dir=out), t0, data, formats, inputs, pool, ready, progress, emit)
     finally:
-        for h in helpers:
-            h.close()
+        if pool is not None:
+            pool.shutdown(wait=True, cancel_futures=True)
 
 
-def _reproduce(report, t0, data, formats, inputs, helpers, progress, emit) -> PaperReport:
-    """:func:`reproduce` once its inputs are checked and its helpers started."""
+def _reproduce(report, t0, data, formats, inputs, pool, ready, progress, emit) -> PaperReport:
+    """:func:`reproduce` once its inputs are checked and its workers started (``pool``, or None)."""
     from ..io import atomic_write, owned_directory, progress_bar
 
     out = report.out_dir
@@ -452,7 +336,7 @@ def _reproduce(report, t0, data, formats, inputs, helpers, progress, emit) -> Pa
     # Staged, then committed with a manifest of what was written (microimpact.io.owned_directory).
     with bar, owned_directory(out, "paper", inputs=inputs) as tmp:
         # Every table first (each is its figure's CSV): the figures are then drawn from them, here
-        # from the first on and by the helpers from the last on, until the two meet.
+        # from the first on and by the workers from the last on, until the two meet.
         tables, seconds = [], []
         for stem, title, _caption in FIGURES:
             t1 = time.perf_counter()
@@ -464,28 +348,24 @@ def _reproduce(report, t0, data, formats, inputs, helpers, progress, emit) -> Pa
             report.tables[stem] = out / f"{stem}.csv"
             tables.append((stem, table))
             seconds.append(time.perf_counter() - t1)
-        # The comparison too, while a helper is still starting: at the end it would run alone.
+        # The comparison too, while a worker is still starting: at the end it would run alone.
         t1 = time.perf_counter()
         report.comparison = compare_with_paper()
         report.statements = check_statements()
         compared = time.perf_counter() - t1
-        queue = collections.deque(range(n))
+        jobs = {"lo": 0, "hi": n - 1}  # next figure drawn here / by a worker (._worker.Feeder)
         lock = threading.Lock()
+        taken = {}
         answers = {}
-
-        def done(i, answer):
-            answers[i] = answer
-
-        rc = _rc_snapshot() if helpers else None
-        for h in helpers:
-            h.feed(queue, lock, tables, rc, formats, done)
+        rc = _rc_snapshot() if pool else None
+        feeders = [_worker.Feeder(pool, r, jobs, lock, taken, tables, formats, rc) for r in ready]
         written = 0
 
         def write_ready():
             nonlocal written
             while written < n and written in answers:
                 stem, title, _caption = FIGURES[written]
-                _status, images, said, spent = answers.pop(written)
+                images, said, spent = answers.pop(written)
                 for message, category, filename, lineno in said:
                     warnings.warn_explicit(message, category, filename, lineno)
                 pngs[stem] = images["png"]
@@ -502,25 +382,31 @@ def _reproduce(report, t0, data, formats, inputs, helpers, progress, emit) -> Pa
         def draw_here(i):
             t1 = time.perf_counter()
             images = draw_figure(*tables[i], formats)
-            answers[i] = ("ok", images, [], time.perf_counter() - t1)
+            answers[i] = (images, [], time.perf_counter() - t1)
 
-        with one_mathtext_cache():  # a label is parsed once for all figures (per dpi)
+        try:
             while True:
                 with lock:
-                    if not queue:
+                    if jobs["lo"] > jobs["hi"]:
                         break
-                    i = queue.popleft()
+                    i = jobs["lo"]
+                    jobs["lo"] += 1
                 bar.set_description(f"paper {tables[i][0]}")
                 draw_here(i)
                 write_ready()
-            for h in helpers:
-                h.finish()
-            for h in helpers:
-                h.close()  # done with it: its CPU is the report's
-                for i in h.failed:
-                    draw_here(i)
+        finally:
+            for f in feeders:  # no new job for a worker, whatever ends the loop
+                f.stop = True
+        for i in sorted(taken):  # what the workers took: their answer, or drawn here
+            # (exception() rather than result(): what a worker raised, whatever its kind, is its failure;
+            # an interrupt of this process while it waits still propagates)
+            if taken[i].exception() is None:
+                answers[i] = taken[i].result()
+            else:  # the worker failed this figure: it is drawn here, where its error shows
+                draw_here(i)
+            write_ready()
         write_ready()
-        if written != n:  # pragma: no cover - every figure is drawn here or by a helper
+        if written != n:  # pragma: no cover - every figure is drawn here or by a worker
             raise RuntimeError(f"paper: {n - written} figures were not drawn")
         t1 = time.perf_counter() - compared
         head = f"[report] comparing {len(PAPER_QUOTES)} quoted numbers and {len(PAPER_STATEMENTS)} statements ..."

@@ -1,63 +1,54 @@
-"""Figures of :func:`~microimpact.paper.reproduce` drawn in a second process, beside the first.
+"""Figures of :func:`~microimpact.paper.reproduce` drawn in other processes, beside the calling one.
 
-The worker is forked from the caller where that is safe (:func:`can_fork`: Linux, no other thread),
-once the caller has imported matplotlib, so that it shares the caller's imports; elsewhere it is a
-new interpreter (:func:`main`, started by :class:`Helper` as ``python -c`` code, never by hand).
-Either reads pickled jobs from a pipe and writes pickled answers to another (:func:`_serve`); it
-writes no file. The first message is the caller's rcParams and image formats; each job is a
-figure's stem and table, answered with the figure's image bytes (:func:`._driver.draw_figure`, the same
-function the caller draws its own figures with: a figure's bytes do not depend on the process
-that draws it nor on the figures drawn before it) and the warnings raised while drawing, which
-the caller raises again. SIGINT is ignored (a Ctrl-C reaches the whole process group; the caller
-handles it and ends this process); SIGTERM ends it at once; an end of input ends it. A forked worker
-leaves by ``os._exit`` whatever happens: it never runs the caller's code after the fork.
+The other processes are a :class:`concurrent.futures.ProcessPoolExecutor` (:func:`start`). Each
+figure is a job, :func:`draw`: its stem and table in, its image bytes out (the same function the
+caller draws its own figures with, :func:`._driver.draw_figure`: a figure's bytes depend neither on
+the process that draws it nor on the figures drawn before it), with the warnings raised while
+drawing, which the caller raises again. A worker writes no file.
+
+The caller draws the figures from the first on; a :class:`Feeder` hands them to a worker from the
+last on, one at a time and only once the worker has started (:func:`prepare`), so that a worker
+still starting never holds a figure the caller could draw itself, and the two meet in the middle.
+A job the worker fails (its error, or its process ending) is the caller's to draw.
+
+The processes are started with the ``spawn`` method, on every platform. ``fork`` starts fastest
+(the child shares the parent's imports) but copies a process in whatever state it is: the locks
+held by its other threads (a numerical library's thread pool, an application's threads) stay held
+in the child, and the font files it has open are shared with it, one read position for both.
+``forkserver`` forks from a clean server, but each child still imports the plotting stack, as a
+spawned one does, and it exists on POSIX only. ``spawn`` costs a fresh interpreter and its imports
+(about a second of CPU, paid while the caller computes the tables), and gives the same, clean
+worker wherever it runs; the caller's rcParams travel with each job.
+
+Interrupts belong to the caller: a worker ignores SIGINT (a Ctrl-C at a terminal reaches the whole
+process group), from as soon as the pool starts it (the pool's initializer is ``signal.signal``
+itself, so that nothing of this package is imported before it); it installs no handler. The caller
+ends the pool when it unwinds (``shutdown(cancel_futures=True)``: no new job starts, the one
+running ends, the workers leave).
 """
 
 from __future__ import annotations
 
-import contextlib
-import os
-import pickle
+import multiprocessing
 import signal
-import subprocess
-import sys
 import threading
 import time
 import warnings
-from pathlib import Path
-
-_READY = "ready"
+from concurrent.futures import ProcessPoolExecutor
 
 
-def main() -> int:
-    """The worker's loop (the child side), in a new interpreter."""
-    _worker_signals()
-    # The answers go to the pipe that was the standard output; anything a library prints goes to stderr.
-    out = os.fdopen(os.dup(1), "wb")
-    os.dup2(2, 1)
-    inp = sys.stdin.buffer
-    from ._driver import defer_font_subsetting
-
-    defer_font_subsetting()
-    _prepare()
-    return _ready_then_serve(inp, out)
+def start(workers: int) -> ProcessPoolExecutor:
+    """A pool of ``workers`` spawned processes, started now: their imports overlap the caller's work."""
+    pool = ProcessPoolExecutor(
+        max_workers=workers,
+        mp_context=multiprocessing.get_context("spawn"),
+        initializer=signal.signal,
+        initargs=(signal.SIGINT, signal.SIG_IGN),
+    )
+    return pool
 
 
-def _worker_signals() -> None:
-    """SIGINT ignored (a Ctrl-C reaches the whole process group: the caller ends this process);
-    SIGTERM ends it at once."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
-
-
-def _ready_then_serve(inp, out) -> int:
-    """Say the worker is ready, then answer jobs (:func:`_serve`)."""
-    pickle.dump(_READY, out)
-    out.flush()
-    return _serve(inp, out)
-
-
-def _prepare() -> None:
+def prepare() -> None:
     """What the first figure needs: pyplot and the default formats' printers."""
     import matplotlib.backends.backend_agg  # noqa: F401
     import matplotlib.backends.backend_pdf  # noqa: F401
@@ -67,246 +58,53 @@ def _prepare() -> None:
     style.pyplot()
 
 
-def _serve(inp, out) -> int:
-    """Answer jobs read from ``inp`` on ``out`` until the end of ``inp``."""
-    from ._driver import draw_figure, one_mathtext_cache
+def draw(stem, table, formats, rc):
+    """``(images, warnings, seconds)`` of figure ``stem`` drawn from ``table`` with the caller's ``rc``."""
+    from ._driver import draw_figure
 
-    try:
-        rc, formats = pickle.load(inp)
-    except EOFError:
-        return 0
-    with one_mathtext_cache():  # mathtext parsed once for all the figures this process draws
-        while True:
-            try:
-                stem, table = pickle.load(inp)
-            except EOFError:
-                return 0
-            t0 = time.perf_counter()
-            try:
-                with warnings.catch_warnings(record=True) as caught:
-                    warnings.simplefilter("always")
-                    images = draw_figure(stem, table, formats, rc)
-                said = [(w.message, w.category, w.filename, w.lineno) for w in caught]
-                answer = ("ok", images, said, time.perf_counter() - t0)
-            except Exception as exc:  # the caller draws this figure itself, and meets the error there
-                answer = ("error", repr(exc), [], 0.0)
-            try:
-                pickle.dump(answer, out)
-            except Exception:  # an answer that does not pickle (a warning's odd message): the caller redraws
-                pickle.dump(("error", "answer not picklable", [], 0.0), out)
-            out.flush()
+    t0 = time.perf_counter()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        images = draw_figure(stem, table, formats, rc)
+    said = [(w.message, w.category, w.filename, w.lineno) for w in caught]
+    return images, said, time.perf_counter() - t0
 
 
-# ----------------------------------------------------------------------------- a forked worker
-# The ends of the pipes this process keeps for its forked workers: a worker forked later closes them
-# (else a worker would not see the end of its input when this process ends).
-_KEPT_FDS: set = set()
+class Feeder:
+    """The thread that hands one worker its figures, from the back of the caller's list.
 
-
-def can_fork() -> bool:
-    """True where a worker is forked from this process rather than started as a new interpreter: Linux
-    (macOS's system libraries do not survive a fork), and no thread but this one (a lock another
-    thread held at the fork would stay held in the worker), numba's threading layer included: its
-    threads are not Python's, and of its layers only ``workqueue`` and TBB are fork-safe on Linux,
-    GNU OpenMP is not (numba 0.68, ``numba/np/ufunc/parallel.py``, the "forksafe" choice). So no
-    fork once that layer has started (a compiled loop over 50,000 values or more)."""
-    parallel = sys.modules.get("numba.np.ufunc.parallel")
-    started = bool(getattr(parallel, "_is_initialized", False))
-    return sys.platform.startswith("linux") and hasattr(os, "fork") and threading.active_count() == 1 and not started
-
-
-class _Forked:
-    """A forked worker, with the part of :class:`subprocess.Popen`'s interface :class:`Helper` uses."""
-
-    def __init__(self, pid, stdin, stdout):
-        self.pid, self.stdin, self.stdout = pid, stdin, stdout
-        self.returncode = None
-
-    def poll(self):
-        if self.returncode is None:
-            try:
-                pid, status = os.waitpid(self.pid, os.WNOHANG)
-            except ChildProcessError:  # pragma: no cover - reaped elsewhere
-                self.returncode = -1
-            else:
-                if pid:
-                    self.returncode = os.waitstatus_to_exitcode(status)
-        return self.returncode
-
-    def kill(self):
-        with contextlib.suppress(ProcessLookupError):
-            os.kill(self.pid, signal.SIGKILL)
-
-    def wait(self, timeout=None):
-        end = None if timeout is None else time.monotonic() + timeout
-        while self.poll() is None:
-            if end is not None and time.monotonic() > end:
-                raise subprocess.TimeoutExpired(f"worker {self.pid}", timeout)
-            time.sleep(0.005)
-        return self.returncode
-
-
-def _fork():
-    """A worker forked from this process once it has imported what the figures need: it shares this
-    process's imports (a new interpreter imports them again, about 1 CPU-s). The child answers jobs
-    until the end of its input and leaves with ``os._exit``: it never returns into this process's
-    code (its ``finally`` blocks, its staging folder), whatever happens."""
-    from ._driver import forget_open_fonts
-
-    _prepare()
-    jobs_r, jobs_w = os.pipe()
-    answers_r, answers_w = os.pipe()
-    for stream in (sys.stdout, sys.stderr):  # nothing buffered here is written twice
-        with contextlib.suppress(Exception):
-            stream.flush()
-    try:
-        pid = os.fork()
-    except OSError:
-        for fd in (jobs_r, jobs_w, answers_r, answers_w):
-            os.close(fd)
-        raise
-    if pid == 0:  # the worker
-        code = 1
-        try:
-            _worker_signals()
-            for fd in (jobs_w, answers_r, *_KEPT_FDS):
-                os.close(fd)
-            os.dup2(2, 1)  # the caller's standard output is its own
-            forget_open_fonts()  # their files' read position is the caller's too
-            code = _ready_then_serve(os.fdopen(jobs_r, "rb"), os.fdopen(answers_w, "wb"))
-        except BaseException:  # noqa: BLE001 - whatever it is, this process leaves here
-            pass
-        finally:
-            os._exit(code)
-    os.close(jobs_r)
-    os.close(answers_w)
-    _KEPT_FDS.update((jobs_w, answers_r))
-    return _Forked(pid, os.fdopen(jobs_w, "wb"), os.fdopen(answers_r, "rb"))
-
-
-def _boot() -> str:
-    """The worker's ``python -c`` code: it imports the caller's microimpact, wherever the caller found it.
-
-    The path's first entry (the working directory, for ``-c``) becomes the folder holding the
-    caller's package, or goes when that folder is a site directory the child searches anyway
-    (an installed package), so that nothing in the working directory shadows a module.
-    """
-    import site
-    import sysconfig
-
-    root = os.path.realpath(Path(__file__).resolve().parents[2])  # .../microimpact/paper/_worker.py
-    sites = set()
-    with contextlib.suppress(Exception):
-        sites.update(site.getsitepackages())
-    with contextlib.suppress(Exception):
-        sites.add(site.getusersitepackages())
-    sites.update(sysconfig.get_paths().get(k, "") for k in ("purelib", "platlib"))
-    first = "del sys.path[0]" if root in {os.path.realpath(p) for p in sites if p} else f"sys.path[0] = {root!r}"
-    return f"import sys; {first}; from microimpact.paper._worker import main; sys.exit(main())"
-
-
-class Helper:
-    """One worker process and the thread that feeds it figures from the back of a shared queue.
-
-    :meth:`start` launches the process at once (its imports overlap the caller's work);
-    :meth:`feed` starts the thread, which takes a job only once the worker is ready, so that a
-    worker still starting never holds a figure the caller could have drawn; :meth:`finish` waits
-    for the job it holds; :meth:`close` ends both (always called, in a ``finally``). Any failure
-    of the worker (it cannot start, dies, answers an error) leaves its job in ``failed``: the
-    caller draws it.
+    ``jobs`` is shared with the caller: ``jobs["lo"]`` is the next figure the caller draws,
+    ``jobs["hi"]`` the next one for a worker; both move under ``lock`` until they cross. A figure
+    taken by a worker is recorded in ``taken`` (index -> future) in the same step, so that once the
+    caller finds nothing left to draw, ``taken`` names every figure it must collect.
     """
 
-    def __init__(self):
-        self.proc = None
-        self.thread = None
-        self.failed = []
-        self.holding = None
-        self._stop = False
-
-    def start(self) -> None:
-        if can_fork():
-            try:
-                self.proc = _fork()
-                return
-            except OSError:  # no fork here (a process limit): a new interpreter, as elsewhere
-                self.proc = None
-        try:
-            self.proc = subprocess.Popen(
-                [sys.executable, "-c", _boot()],
-                stdin=subprocess.PIPE,
-                stdout=subprocess.PIPE,
-                stderr=subprocess.DEVNULL,
-            )
-        except OSError:
-            self.proc = None
-
-    def feed(self, queue, lock, tables, rc, formats, done) -> None:
-        """Start feeding: jobs are indices taken from the back of ``queue`` (a deque shared with the
-        caller, under ``lock``) into ``tables``; ``done(i, answer)`` takes each answer."""
-        if self.proc is None:
-            return
-        self.thread = threading.Thread(
-            target=self._run,
-            args=(queue, lock, tables, rc, formats, done),
-            name="microimpact-paper-worker",
-            daemon=True,
-        )
+    def __init__(self, pool, ready, jobs, lock, taken, tables, formats, rc):
+        self.pool, self.ready, self.jobs, self.lock, self.taken = pool, ready, jobs, lock, taken
+        self.tables, self.formats, self.rc = tables, formats, rc
+        self.stop = False
+        self.thread = threading.Thread(target=self._run, name="microimpact-paper-feeder", daemon=True)
         self.thread.start()
 
-    def _run(self, queue, lock, tables, rc, formats, done) -> None:
+    def _run(self) -> None:
         try:
-            if pickle.load(self.proc.stdout) != _READY:
-                return
-            pickle.dump((rc, formats), self.proc.stdin)
-            self.proc.stdin.flush()
-            while not self._stop:
-                with lock:  # taken and held in one step: the caller sees either the job queued or held
-                    if not queue:
-                        return
-                    self.holding = i = queue.pop()
-                pickle.dump(tables[i], self.proc.stdin)
-                self.proc.stdin.flush()
-                answer = pickle.load(self.proc.stdout)
-                if answer[0] != "ok":
-                    return  # no more jobs for a worker that failed one
-                done(i, answer)
-                self.holding = None
-        except Exception:  # the worker died or closed its pipe
+            self._feed()
+        except BaseException:  # noqa: BLE001 - a future cancelled by the pool's shutdown: nothing more to feed
             pass
-        finally:
-            if self.holding is not None:  # the caller draws what the worker held
-                self.failed.append(self.holding)
-                self.holding = None
 
-    def finish(self) -> None:
-        """Wait until the worker holds no figure: its answer is in, or its failure noted in ``failed``.
-        (A worker still starting holds none: it is not waited for.) Short waits, so that a signal's
-        handler runs between them."""
-        while self.thread is not None and self.thread.is_alive() and self.holding is not None:
-            self.thread.join(0.05)
-
-    def close(self) -> None:
-        """End the worker (at once, if it is still drawing) and then the thread, which its end unblocks."""
-        self._stop = True
-        proc = self.proc
-        if proc is None:
+    def _feed(self) -> None:
+        if self.ready.exception() is not None:  # the worker did not start: the caller draws everything
             return
-        if proc.poll() is None:
-            proc.kill()
-        try:
-            proc.wait(timeout=5)
-        except subprocess.TimeoutExpired:  # pragma: no cover - a killed process that does not end
-            pass
-        if self.thread is not None:
-            self.thread.join(1.0)
-        for pipe in (proc.stdin, proc.stdout):
-            with contextlib.suppress(Exception):
-                _KEPT_FDS.discard(pipe.fileno())
-            try:
-                pipe.close()
-            except Exception:
-                pass
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+        while True:
+            with self.lock:  # taken and recorded in one step: the caller sees it either to draw or taken
+                if self.stop or self.jobs["hi"] < self.jobs["lo"]:
+                    return
+                i = self.jobs["hi"]
+                try:
+                    future = self.pool.submit(draw, *self.tables[i], self.formats, self.rc)
+                except RuntimeError:  # the pool is shut down or broken: the figure stays the caller's
+                    return
+                self.jobs["hi"] -= 1
+                self.taken[i] = future
+            if future.exception() is not None:  # no more jobs for a worker that failed one (the caller redraws it)
+                return
