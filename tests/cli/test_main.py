@@ -74,3 +74,67 @@ def test_sweep_argument_errors_name_the_parameter(kwargs, match):
 
     with pytest.raises(ValueError, match=match):
         sweep(np.array([10.0, 20.0, 30.0]), **kwargs)
+
+
+# ----------------------------------------------------------------------------- values with a minus sign
+NEGATIVE_TOKENS = ["-1e-3", "-.5", "-5", "-5:5:11", "-1,2", "-2.5E+3"]
+
+
+@pytest.mark.parametrize("token", NEGATIVE_TOKENS)
+def test_parse_negative_values_of_options(token):
+    """A number, range or list with a minus sign after an option is the option's value: alone, among
+    the values of a many-valued option, after ``=``, and after an abbreviated option."""
+    parser = cli.build_parser()
+    for argv, values in [
+        (["--velocity", token], [token]),
+        (["--velocity", "1", token, "3:4:2"], ["1", token, "3:4:2"]),
+        ([f"--velocity={token}"], [token]),
+        (["--vel", token], [token]),
+    ]:
+        args = parser.parse_args(["sweep", *argv, "--out", "s.nc"])
+        assert args.velocity == values and args.out == "s.nc", argv
+    if ":" not in token and "," not in token:  # a typed option gets the number
+        args = parser.parse_args(["impact", "50", "--radius", token, "--rad", token, "--json"])
+        assert args.radius == float(token) and args.json and args.velocities == ["50"]
+
+
+@pytest.mark.parametrize("token", NEGATIVE_TOKENS)
+def test_parse_negative_values_as_positionals(token):
+    parser = cli.build_parser()
+    assert parser.parse_args(["impact", token]).velocities == [token]
+    assert parser.parse_args(["impact", "30", token, "70", "--json"]).velocities == ["30", token, "70"]
+    assert parser.parse_args(["impact", "--json", "--", token]).velocities == [token]
+    assert parser.parse_args(["history", token]).velocity == token
+
+
+@pytest.mark.parametrize(
+    "argv, message",
+    [
+        (["impact", "-5:5:11"], "velocity must be non-negative and not NaN, got -5.0"),
+        (["impact", "30", "-.5"], "velocity must be non-negative and not NaN, got -0.5"),
+        (["sweep", "--velocity", "-5:5:11", "--out", "s.nc"], "velocity must be non-negative and not NaN, got -5.0"),
+        (["sweep", "--velocity", "1", "-1e-3", "--out", "s.nc"], "got -0.001"),
+        (["impact", "50", "--radius", "-1e-3"], "--radius must be positive and finite, got -0.001"),
+    ],
+)
+def test_negative_values_reach_the_parameters_own_check(argv, message, capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and message in err[0], err
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    "argv, message",
+    [
+        (["paper", "--workers", "-1.5"], "argument --workers: invalid int value: '-1.5'"),
+        (["history", "50", "-5"], "unrecognized arguments: -5"),
+        (["-5:5:11"], "argument COMMAND: invalid choice: '-5:5:11'"),
+        (["impact", "50", "--radius", "-x"], "argument --radius: expected one argument"),
+    ],
+)
+def test_parse_errors_quote_a_negative_value_as_given(argv, message, capsys):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert message in err and "\0" not in err and "\\x00" not in err, err

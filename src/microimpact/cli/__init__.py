@@ -27,7 +27,6 @@ import argparse
 import contextlib
 import importlib
 import os
-import re
 import signal
 import sys
 import warnings
@@ -35,6 +34,7 @@ import warnings
 from .. import _signals
 from .._optional import MissingExtraError
 from .._signals import Interrupted  # noqa: F401  (re-exported: the exception a signal raises)
+from ._argv import NumberValuesParser
 
 #: Subcommand modules, in the order ``--help`` lists them.
 COMMANDS = [
@@ -54,13 +54,9 @@ COMMANDS = [
 ]
 
 
-class Parser(argparse.ArgumentParser):
+class Parser(NumberValuesParser):
     """An ArgumentParser whose usage errors are one line on stderr (exit 2), and which reads
-    ``-1e9`` as a negative number rather than as an option."""
-
-    def __init__(self, *args, **kwargs):
-        super().__init__(*args, **kwargs)
-        self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+    ``-1e9`` or ``-5:5:11`` as a value rather than as an option (:mod:`microimpact.cli._argv`)."""
 
     def error(self, message):
         self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")

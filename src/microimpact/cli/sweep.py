@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import argparse
 import pathlib
-import re
 import sys
 
 import numpy as np
@@ -47,8 +46,6 @@ def register(sub) -> None:
         "input; one value overrides the base pair. Moduli with Poisson ratios left out take the "
         "base pair's materials, or for the paper cases nu = 0.3 and E2 = 150 GPa (the seed's Fig. 4).",
     )
-    # read -1:120:5 or -1,2 as (bad) values, not as options, so the error names the parameter
-    p._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?([:,].*)?$")
     g = p.add_argument_group("swept inputs")
     for dest, (unit, text) in SWEEP_OPTIONS.items():
         g.add_argument(
