@@ -1,5 +1,5 @@
 """10. The exported C wall function, per call, in a C loop (compiled here with the system's cc -O2),
-beside the same call as generated on 2026-11-24 (``data/c_wall_2026-11-24.c``): issue 25 keeps the
+beside the same call as generated on 2026-11-24 (``data/c_wall_2026-11-24.c``): the goal keeps the
 throughput it had then (44 ns per call on that machine), which side by side holds on any machine."""
 
 import shutil
@@ -93,7 +93,7 @@ def test_c_wall_function(tmp_path, record, size, pair, tangential, adhesion):
     if tangential != "rigid":
         record.time(KEY, f"microimpact_wall_interaction ({tangential}, friction 0.3, spin)", _run(exe, reps)[0])
         return
-    # the rigid call beside the form of 2026-11-24 (issue 25's 44 ns), the two run in turn, best of each
+    # the rigid call beside the form of 2026-11-24 (the goal's 44 ns), the two run in turn, best of each
     then = _build(cc, tmp_path / "then", BASELINE.read_text())
     per_call = per_copy = per_then = float("inf")
     for _ in range(3):
@@ -106,9 +106,9 @@ def test_c_wall_function(tmp_path, record, size, pair, tangential, adhesion):
     record.note(KEY, f"{cc} -std=c99 -O2; 4096 particles x {reps} repetitions, best of 7 rounds (rigid: of 3 x 7)")
 
 
-#: The C wall function as generated on 2026-11-24 (see the file's header): issue 25's throughput figure.
+#: The C wall function as generated on 2026-11-24 (see the file's header): the goal's throughput figure.
 BASELINE = Path(__file__).parent / "data" / "c_wall_2026-11-24.c"
-BASELINE_NAME = "the same call as generated on 2026-11-24 (issue 25: 44 ns then)"
+BASELINE_NAME = "the same call as generated on 2026-11-24 (44 ns where the goal was set)"
 
 
 def _build(cc, folder: Path, source: str) -> Path:

@@ -7,7 +7,7 @@ variants per model, side by side: as the library runs it (``e`` alone, through t
 ``restitution_only`` hook where it has one, once per distinct group where it declares
 ``restitution_group``; compiled loops where its declared cost class says its Python loop would cost
 the fit more than the array layer's budget), and ``e`` taken from the full outcome at every point (18 fields, contact-time
-quadratures included: how fitting ran before issue 25). Target (issue 25): any model's fit at most
+quadratures included: the cost a fit would have without those hooks). Target: any model's fit at most
 5x the seed's.
 """
 
@@ -41,7 +41,7 @@ MODELS = {
 #: The models of a smoke run (``--size tiny``).
 TINY = ("liggghts_thornton_ning", "thornton_ning_1998_adhesive_plastic")
 SEED = "thornton_ning_2016"
-BEFORE = " (e through the full outcome, as before issue 25)"
+BEFORE = " (e through the full outcome)"
 
 
 @pytest.fixture(scope="module")

@@ -18,7 +18,7 @@ V = np.linspace(1.0, 120.0, {n})
 t = time.perf_counter(); pair.impact(V, warn=False); print(time.perf_counter() - t)
 """
 
-#: ``(subject, its argv after python, baseline)``: what the issue's goals compare (issue 25).
+#: ``(subject, its argv after python, baseline)``: what the start-up goals compare.
 _PY = [sys.executable]
 BASELINES = {
     "import numpy": _PY + ["-c", "import numpy"],

@@ -182,7 +182,7 @@ def run(args) -> int:
     if names is not None:  # two or more models make a dimension; one is a scalar coordinate
         values["model"] = names if len(names) > 1 else names[0]
     if args.chunks is None and npoints <= AUTO_BLOCK_POINTS:
-        # one block either way: computed now, and written without dask's import (issue 25)
+        # one block either way: computed now, and written without dask's import (a small sweep costs less than importing it)
         with without_dask_probe():
             return _sweep_and_write(args, out, kind, values, pair, params, None, npoints)
     return _sweep_and_write(args, out, kind, values, pair, params, chunks, npoints)

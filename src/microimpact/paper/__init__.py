@@ -62,7 +62,7 @@ def _write_table(path, table, title="", columns=None):
 
 
 def __getattr__(name):
-    """``write_table`` and ``read_table`` moved to :mod:`microimpact.io` (issue 20): one release of warnings."""
+    """``write_table`` and ``read_table`` moved to :mod:`microimpact.io`: one release of warnings."""
     if name in ("write_table", "read_table"):
         warnings.warn(
             f"microimpact.paper.{name} is deprecated; use microimpact.io.{name}"
