@@ -27,6 +27,14 @@ STEMS = [f[0] for f in FIGURES]
 FORMATS = ["png", "pdf"]
 
 
+def _env():
+    env = dict(os.environ)
+    env["PYTHONPATH"] = str(ROOT / "src") + os.pathsep + env.get("PYTHONPATH", "")
+    for key in [k for k in env if k.startswith("COV_CORE_") or k == "COVERAGE_PROCESS_START"]:
+        env.pop(key)
+    return env
+
+
 def _tables(stems):
     return [(stem, _driver._TABLES[stem]({})) for stem in stems]
 
@@ -255,3 +263,59 @@ def test_default_workers_need_an_idle_core(monkeypatch, cores, load, frozen, exp
         monkeypatch.setattr(sys, "frozen", True, raising=False)
     assert _driver._processes(None) == expected
     assert _driver._processes(3) == 3 and _driver._processes(50) == len(STEMS)
+
+
+_CHECK = "print(_worker.can_start(), _driver._processes(2))"
+_GUARDED = f'''"""A script that defines and imports, and works only under its guard."""
+import sys
+
+from microimpact.paper import _driver, _worker
+
+LIMIT = 3
+
+
+def main():
+    {_CHECK}
+
+
+if __name__ == "__main__":
+    main()
+'''
+
+
+@pytest.mark.parametrize(
+    "how, expected",
+    [
+        ("guarded script", "True"),
+        ("unguarded script", "False"),
+        ("script calling at import", "False"),
+        ("-c", "True"),
+        ("-m package", "True"),
+    ],
+)
+def test_a_worker_starts_only_where_it_runs_none_of_the_callers_code(tmp_path, how, expected):
+    """A spawned worker runs the caller's main script again as it starts: it is started only where that
+    script's top level defines and imports (behind an ``if __name__ == "__main__":`` guard), or where
+    there is no script to run again (``python -c``, ``python -m microimpact``); elsewhere the figures
+    are drawn in one process (``_processes`` is 1 whatever ``workers`` asks)."""
+    script = tmp_path / "script.py"
+    imports = "from microimpact.paper import _driver, _worker\n"
+    if how == "guarded script":
+        script.write_text(_GUARDED)
+    elif how == "unguarded script":
+        script.write_text(imports + _CHECK + "\n")
+    elif how == "script calling at import":
+        script.write_text("import sys\nLIMIT = len(sys.argv)\n" + imports + "if __name__ == '__main__':\n    " + _CHECK)
+    argv = [str(script)]
+    if how == "-c":
+        argv = ["-c", imports + _CHECK]
+    elif how == "-m package":
+        (tmp_path / "pkg").mkdir()
+        (tmp_path / "pkg" / "__init__.py").write_text("")
+        (tmp_path / "pkg" / "__main__.py").write_text(imports + _CHECK + "\n")
+        argv = ["-m", "pkg"]
+    proc = subprocess.run(
+        [sys.executable, *argv], capture_output=True, text=True, env=_env(), cwd=tmp_path, timeout=300
+    )
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    assert proc.stdout.split() == [expected, "2" if expected == "True" else "1"]

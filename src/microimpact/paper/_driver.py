@@ -236,7 +236,12 @@ def _processes(workers) -> int:
     A second process is a new interpreter (:mod:`._worker`): its imports cost about a CPU-second,
     which a machine with no idle core pays in time, so the 1-minute load average must leave a
     whole core idle (at most the cores less one); and ``sys.executable`` must be a Python (not a
-    bundled application)."""
+    bundled application). Wherever a worker would run the calling script's own code again as it
+    starts (:func:`._worker.can_start`), 1."""
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1):
+        raise ValueError(f"workers must be a whole number >= 1, got {workers!r}")
+    if not _worker.can_start():
+        return 1
     if workers is None:
         try:
             cores = len(os.sched_getaffinity(0))
@@ -249,8 +254,6 @@ def _processes(workers) -> int:
         if cores <= 1 or getattr(sys, "frozen", False):  # a bundled application: no Python to start
             return 1
         return 2 if load <= cores - 1 else 1
-    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
-        raise ValueError(f"workers must be a whole number >= 1, got {workers!r}")
     return min(int(workers), len(FIGURES))
 
 
@@ -289,7 +292,10 @@ def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progre
     process writes every file, in the order of the figures), they draw with this process's
     rcParams and in the package's style, and a figure they cannot draw is drawn here. They do
     not see fonts added at run time (``matplotlib.font_manager.fontManager.addfont``): use
-    ``workers=1`` for such figures. An interrupt ends them with this call.
+    ``workers=1`` for such figures. An interrupt ends them with this call. A new interpreter
+    first runs the calling script's top level again (:mod:`multiprocessing`'s ``spawn``), so
+    from a script whose top level does more than define and import (no
+    ``if __name__ == "__main__":`` guard) the figures are drawn in this process alone.
 
     The output folder owns only what it wrote (:func:`microimpact.io.owned_directory`):
     its files are staged and committed only when all are complete; an existing

@@ -20,6 +20,12 @@ spawned one does, and it exists on POSIX only. ``spawn`` costs a fresh interpret
 (about a second of CPU, paid while the caller computes the tables), and gives the same, clean
 worker wherever it runs; the caller's rcParams travel with each job.
 
+A spawned interpreter first runs the caller's main module again, as ``__mp_main__`` (that is how
+the ``spawn`` method finds what the caller defined there). For ``python -m microimpact``, for
+``python -c`` or an interactive session that is nothing; for a script it is the script's top level,
+which is harmless only behind an ``if __name__ == "__main__":`` guard. :func:`can_start` tells which:
+where the worker would run the caller's own code again, the figures are drawn in one process.
+
 Interrupts belong to the caller: a worker ignores SIGINT (a Ctrl-C at a terminal reaches the whole
 process group), from as soon as the pool starts it (the pool's initializer is ``signal.signal``
 itself, so that nothing of this package is imported before it); it installs no handler. The caller
@@ -29,12 +35,55 @@ running ends, the workers leave).
 
 from __future__ import annotations
 
+import ast
 import multiprocessing
 import signal
+import sys
 import threading
 import time
 import warnings
 from concurrent.futures import ProcessPoolExecutor
+
+
+def can_start() -> bool:
+    """Whether a spawned worker can start without running the calling program's code again.
+
+    The rule is :mod:`multiprocessing`'s (``spawn``): a main module without a file (``python -c``, an
+    interactive session) or a package's ``__main__`` (``python -m microimpact``) is not run again;
+    any other main module is, as ``__mp_main__``, and is harmless only when its top level defines
+    and imports but computes nothing: definitions, imports, assignments without a call, and
+    ``if __name__ == "__main__":`` blocks (a console script's wrapper is one).
+    """
+    main = sys.modules.get("__main__")
+    name = getattr(getattr(main, "__spec__", None), "name", None)
+    if name is None and getattr(main, "__file__", None) is None:
+        return True
+    if name is not None and (name == "__main__" or name.endswith(".__main__")):
+        return True
+    try:
+        with open(main.__file__, "rb") as fh:
+            tree = ast.parse(fh.read())
+    except (OSError, SyntaxError, ValueError, TypeError):
+        return False
+    return all(_defines_only(node) for node in tree.body)
+
+
+def _defines_only(node) -> bool:
+    """Whether a top-level statement of a main module only defines or imports something."""
+    if isinstance(node, (ast.Import, ast.ImportFrom, ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+        return True
+    if isinstance(node, ast.Expr) and isinstance(node.value, ast.Constant):  # a docstring
+        return True
+    if isinstance(node, (ast.Assign, ast.AnnAssign)):
+        return node.value is None or not any(isinstance(n, ast.Call) for n in ast.walk(node.value))
+    if isinstance(node, ast.If):  # if __name__ == "__main__": (either way round)
+        test = node.test
+        if isinstance(test, ast.Compare) and len(test.ops) == 1 and isinstance(test.ops[0], ast.Eq):
+            sides = [test.left, test.comparators[0]]
+            names = [n for n in sides if isinstance(n, ast.Name) and n.id == "__name__"]
+            texts = [n for n in sides if isinstance(n, ast.Constant) and n.value == "__main__"]
+            return len(names) == 1 and len(texts) == 1 and all(_defines_only(n) for n in node.orelse)
+    return False
 
 
 def start(workers: int) -> ProcessPoolExecutor:
