@@ -48,17 +48,35 @@ def test_a_worker_draws_the_same_bytes_as_this_process_with_its_rcparams():
         rc = _driver._rc_snapshot()
         here_rc = {stem: _driver.draw_figure(stem, table, FORMATS) for stem, table in tables}
     before = {p.pid for p in multiprocessing.active_children()}
-    pool = _worker.start(1)
+    pool = _worker.Pool(1)
     try:
-        answers = [pool.submit(_worker.draw, stem, table, FORMATS, rc).result(timeout=300) for stem, table in tables]
+        futures = [pool.executor.submit(_worker.draw, stem, table, FORMATS, rc) for stem, table in tables]
+        answers = [f.result(timeout=300) for f in futures]
         pids = {p.pid for p in multiprocessing.active_children()} - before
     finally:
-        pool.shutdown(wait=True, cancel_futures=True)
+        pool.stop()
     for (stem, _table), (images, said, seconds) in zip(tables, answers):
         assert said == [] and seconds > 0
         assert images == here_rc[stem], stem  # png and pdf, byte for byte
         assert images["png"] != here[stem]["png"]  # the rcParams did reach the worker
     assert pids and pids.isdisjoint(p.pid for p in multiprocessing.active_children())  # shut down: it has ended
+
+
+def test_stop_ends_a_busy_worker_at_once():
+    """A worker in the middle of a long job is ended by ``stop`` at once, not when its job is done."""
+    pool = _worker.Pool(1)
+    try:
+        assert pool.ready[0].exception(timeout=300) is None
+        busy = pool.executor.submit(time.sleep, 120)
+        t0 = time.monotonic()
+        while not busy.running() and time.monotonic() - t0 < 60:
+            time.sleep(0.01)
+        time.sleep(0.2)
+    finally:
+        t0 = time.monotonic()
+        pool.stop()
+        elapsed = time.monotonic() - t0
+    assert elapsed < 30 and busy.done() and busy.exception() is not None  # ended, not finished
 
 
 def _files(out):

@@ -322,16 +322,15 @@ def reproduce(out_dir=DEFAULT_OUT_DIR, data=None, formats=("png", "pdf"), progre
     out = Path(out_dir)
     check_output_path(out, directory=True)
     # The other processes start now: their imports overlap this one's work.
-    pool = _worker.start(n_proc - 1) if n_proc > 1 else None
+    pool = _worker.Pool(n_proc - 1) if n_proc > 1 else None
     try:
-        ready = [pool.submit(_worker.prepare) for _ in range(n_proc - 1)] if pool else []
-        return _reproduce(PaperReport(out_dir=out), t0, data, formats, inputs, pool, ready, progress, emit)
+        return _reproduce(PaperReport(out_dir=out), t0, data, formats, inputs, pool, progress, emit)
     finally:
         if pool is not None:
-            pool.shutdown(wait=True, cancel_futures=True)
+            pool.stop()
 
 
-def _reproduce(report, t0, data, formats, inputs, pool, ready, progress, emit) -> PaperReport:
+def _reproduce(report, t0, data, formats, inputs, pool, progress, emit) -> PaperReport:
     """:func:`reproduce` once its inputs are checked and its workers started (``pool``, or None)."""
     from ..io import atomic_write, owned_directory, progress_bar
 
@@ -364,7 +363,11 @@ def _reproduce(report, t0, data, formats, inputs, pool, ready, progress, emit) -
         taken = {}
         answers = {}
         rc = _rc_snapshot() if pool else None
-        feeders = [_worker.Feeder(pool, r, jobs, lock, taken, tables, formats, rc) for r in ready]
+        feeders = (
+            [_worker.Feeder(pool.executor, r, jobs, lock, taken, tables, formats, rc) for r in pool.ready]
+            if pool
+            else []
+        )
         written = 0
 
         def write_ready():

@@ -1,6 +1,6 @@
 """Figures of :func:`~microimpact.paper.reproduce` drawn in other processes, beside the calling one.
 
-The other processes are a :class:`concurrent.futures.ProcessPoolExecutor` (:func:`start`). Each
+The other processes are a :class:`concurrent.futures.ProcessPoolExecutor` (:class:`Pool`). Each
 figure is a job, :func:`draw`: its stem and table in, its image bytes out (the same function the
 caller draws its own figures with, :func:`._driver.draw_figure`: a figure's bytes depend neither on
 the process that draws it nor on the figures drawn before it), with the warnings raised while
@@ -11,7 +11,7 @@ last on, one at a time and only once the worker has started (:func:`prepare`), s
 still starting never holds a figure the caller could draw itself, and the two meet in the middle.
 A job the worker fails (its error, or its process ending) is the caller's to draw.
 
-The processes are started with the ``spawn`` method, on every platform. ``fork`` starts fastest
+The processes (:class:`Pool`) are started with the ``spawn`` method, on every platform. ``fork`` starts fastest
 (the child shares the parent's imports) but copies a process in whatever state it is: the locks
 held by its other threads (a numerical library's thread pool, an application's threads) stay held
 in the child, and the font files it has open are shared with it, one read position for both.
@@ -29,8 +29,7 @@ where the worker would run the caller's own code again, the figures are drawn in
 Interrupts belong to the caller: a worker ignores SIGINT (a Ctrl-C at a terminal reaches the whole
 process group), from as soon as the pool starts it (the pool's initializer is ``signal.signal``
 itself, so that nothing of this package is imported before it); it installs no handler. The caller
-ends the pool when it unwinds (``shutdown(cancel_futures=True)``: no new job starts, the one
-running ends, the workers leave).
+ends the workers when it is done or unwinds (:meth:`Pool.stop`).
 """
 
 from __future__ import annotations
@@ -86,15 +85,34 @@ def _defines_only(node) -> bool:
     return False
 
 
-def start(workers: int) -> ProcessPoolExecutor:
-    """A pool of ``workers`` spawned processes, started now: their imports overlap the caller's work."""
-    pool = ProcessPoolExecutor(
-        max_workers=workers,
-        mp_context=multiprocessing.get_context("spawn"),
-        initializer=signal.signal,
-        initargs=(signal.SIGINT, signal.SIG_IGN),
-    )
-    return pool
+class Pool:
+    """``workers`` spawned processes, started now (their imports overlap the caller's work), each
+    told at once to :func:`prepare`: :attr:`ready` holds those futures, :attr:`executor` the pool.
+
+    :meth:`stop` ends them at once, whatever they are doing: they hold nothing the caller needs by
+    then (every answer it wanted is in, or it is unwinding from an interrupt), and waiting for a
+    worker to finish a figure, or its imports on a busy machine, would hold an interrupted command
+    for seconds. :class:`~concurrent.futures.ProcessPoolExecutor` has no public way to end a
+    running worker before Python 3.14, so the processes are the children it started, as
+    :func:`multiprocessing.active_children` lists them.
+    """
+
+    def __init__(self, workers: int):
+        self._before = set(multiprocessing.active_children())
+        self.executor = ProcessPoolExecutor(
+            max_workers=workers,
+            mp_context=multiprocessing.get_context("spawn"),
+            initializer=signal.signal,
+            initargs=(signal.SIGINT, signal.SIG_IGN),
+        )
+        self.ready = [self.executor.submit(prepare) for _ in range(workers)]
+
+    def stop(self) -> None:
+        """End the workers now, then the pool (its threads and queues)."""
+        for proc in multiprocessing.active_children():
+            if proc not in self._before:
+                proc.terminate()
+        self.executor.shutdown(wait=True, cancel_futures=True)
 
 
 def prepare() -> None:
