@@ -1,7 +1,7 @@
 """6. ``microimpact paper`` end to end, in a subprocess writing to a temporary directory, run in turn
 with ``python -c "import matplotlib.pyplot"`` (what it cannot avoid): A B A B, best of each, so that
 the ratio holds on a loaded machine. ``paper`` as a user runs it (its figures drawn in two processes
-when it may use more than one core and a core is idle) and in one process (``--workers 1``), reported
+when it may use more than one core and a whole core is idle) and in one process (``--workers 1``), reported
 beside it, with the 1-minute load average over the runs (the default's choice depends on it)."""
 
 import os
