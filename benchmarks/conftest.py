@@ -51,7 +51,7 @@ SIZES = {
     "tiny": dict(outcome=2000, ode=2, restitution=20000, wall=1000, memory=10**4, sweep=2000, paper=False),
 }
 
-#: Targets the project tracks (the README lists the same).
+#: Targets the project tracks, as `microimpact bench` reports them (the README states the speed goals).
 TARGETS = {
     "outcome_vs_ode": "closed form >= 1e4x faster than the ODE, max rel. difference < 1e-8",
     "restitution_vs_copy": "<= 2x the time of copying the array (numba; <= 5x without)",
