@@ -47,11 +47,9 @@ def _describe(value) -> str:
 
 
 _F64 = np.dtype(np.float64)
-_U64 = np.dtype(np.uint64)
 #: The smallest normal double. A positive input below it (subnormal) has lost precision, and every
 #: quotient by it (``1/x``; the models divide by the radius, the mass, the speed) overflows to inf.
 TINY_NORMAL = float(np.finfo(np.float64).tiny)
-_NORMAL_BITS = 1 << 52  # bit pattern of TINY_NORMAL: positive doubles below it are subnormal
 
 
 def _as_float_array(name: str, value) -> np.ndarray:
@@ -135,7 +133,9 @@ def check_positive(name: str, value, *, allow_inf: bool = False, scalar: bool = 
     """
     arr = _as_float_array(name, value)
     ext = _extremes(arr)
-    if ext is not None and not (ext[0] >= (0.0 if allow_inf else TINY_NORMAL) and (allow_inf or ext[1] < np.inf)):
+    if ext is not None and not (
+        (ext[0] > 0.0 if allow_inf else ext[0] >= TINY_NORMAL) and (allow_inf or ext[1] < np.inf)
+    ):
         bad = ~(arr > 0) | (np.isinf(arr) if not allow_inf else np.isnan(arr))
         if bad.any():
             raise ValueError(
@@ -178,8 +178,8 @@ def check_velocity(name: str, value, *, scalar: bool = False):
     contradicts ``V_r = e V``), so it is an error rather than a result.
     """
     if type(value) is np.ndarray and value.dtype is _F64 and value.ndim == 1 and not scalar:
-        # the usual call, as below without three calls (a tenth of what a call on 1e3 speeds adds)
-        if not value.shape[0] or (nonnegative_finite(value) and not _subnormal(value)):
+        # the usual call, as below without three calls (a tenth of what a call on 1e3 speeds adds, issue 25)
+        if not value.shape[0] or nonnegative_finite(value):
             return value
     arr = _as_float_array(name, value)
     if arr.size and not nonnegative_finite(arr):
@@ -188,27 +188,7 @@ def check_velocity(name: str, value, *, scalar: bool = False):
             x = _first_bad(arr, bad)
             why = "non-negative and not NaN" if not x > 0 else "finite (an infinite impact speed has no outcome)"
             raise ValueError(f"{name} must be {why}, got {x!r}")
-    if arr.size and _subnormal(arr):
-        x = _first_bad(arr, (arr > 0) & (arr < TINY_NORMAL))
-        raise ValueError(
-            f"{name} must be 0 or a normal float (at least {TINY_NORMAL!r}), got the subnormal {x!r}: the models "
-            "divide by powers of the speed, which overflow"
-        )
     return _scalar(name, arr, value) if scalar else arr
-
-
-def _subnormal(arr: np.ndarray) -> bool:
-    """True when a positive subnormal number is among the float64 ``arr`` (NaN, negatives, inf ignored).
-
-    Their bit patterns lie in ``[1, 2^52)``: when the smallest pattern is at least ``2^52`` (no zero,
-    no subnormal; one integer minimum) there is none, else the patterns are tested one by one.
-    """
-    if arr.dtype is not _F64 and arr.dtype != _F64:
-        arr = arr.astype(_F64)
-    bits = np.ascontiguousarray(arr).reshape(-1).view(_U64)
-    if bits.item(bits.argmin()) >= _NORMAL_BITS:
-        return False
-    return bool(np.any((bits > 0) & (bits < _NORMAL_BITS)))
 
 
 #: Below this ``p_y`` [Pa] the yield velocity is checked for underflow (no real material comes near it).

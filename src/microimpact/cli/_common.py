@@ -455,6 +455,8 @@ def parse_tangential(text, known):
         return ["mindlin", "rigid"]
     if text == "all":
         return list(known)
+    if not str(text).strip():
+        raise ValueError(f"tangential must name at least one model, got {text!r}")
     names = parse_names(text, "--tangential")
     for n in names:
         if n not in known:
