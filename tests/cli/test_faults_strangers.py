@@ -26,7 +26,7 @@ import pytest
 
 import microimpact as mi
 from microimpact import dem
-from microimpact._validation import check_dem_words, check_pair, check_velocity
+from microimpact._validation import check_pair, check_velocity
 from microimpact.calibrate import calibrate
 from microimpact.cexport import generate_c_source
 
@@ -101,6 +101,8 @@ def test_a_wall_that_is_not_text_is_named(cal, wall):
     "wall", ["zplane 0.0 NULL", "zplane -1e-3 NULL", "zcylinder 1e-3", "region box_2", "zplane v_z NULL"]
 )
 def test_words_of_the_wall_grammar_pass(cal, wall):
+    from microimpact._validation import check_dem_words
+
     assert check_dem_words("wall", wall) == wall
     assert f"{wall}\n" in cal.lammps(wall=wall) + "\n"
 
