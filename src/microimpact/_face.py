@@ -221,7 +221,18 @@ def outcome_arrays(model, V, E, R, m, p_y, params) -> dict:
     The array path of :meth:`microimpact.pair.ContactPair.impact`: one compiled (or, for small
     arrays, Python) loop over the model's scalar ``outcome``; flags become booleans.
     """
-    values = evaluate(model.outcome, V, E, R, m, p_y, nout=len(OUTCOME_FIELDS), params=tuple(params))
+    try:
+        values = evaluate(model.outcome, V, E, R, m, p_y, nout=len(OUTCOME_FIELDS), params=tuple(params))
+    except (ZeroDivisionError, OverflowError):
+        # a speed so small that a model's power of it underflows (the Hertz time scale's m V/T^2 at
+        # V = 1e-300 m/s) divides by zero: named as bad input, not a crash inside the loop
+        Vp = np.asarray(V, dtype=float)
+        Vp = Vp[Vp > 0.0]
+        low = float(Vp.min()) if Vp.size else 0.0
+        raise ValueError(
+            f"velocity {low!r} m/s (the smallest given): model {model.NAME!r} cannot be evaluated in double "
+            "precision there (a quotient of its scaling underflows to 0)"
+        ) from None
     out = dict(zip(OUTCOME_FIELDS, values))
     for name in ("elastic", "large_strain"):
         out[name] = out[name] == 1.0

@@ -15,6 +15,7 @@ number and returns a Python ``float``.
 
 from __future__ import annotations
 
+import math
 import re
 import sys
 
@@ -28,6 +29,9 @@ __all__ = [
     "check_poisson",
     "check_velocity",
     "check_nonnegative",
+    "check_pair_scales",
+    "check_dem_words",
+    "check_dem_lines",
 ]
 
 
@@ -43,6 +47,9 @@ def _describe(value) -> str:
 
 
 _F64 = np.dtype(np.float64)
+#: The smallest normal double. A positive input below it (subnormal) has lost precision, and every
+#: quotient by it (``1/x``; the models divide by the radius, the mass, the speed) overflows to inf.
+TINY_NORMAL = float(np.finfo(np.float64).tiny)
 
 
 def _as_float_array(name: str, value) -> np.ndarray:
@@ -118,15 +125,27 @@ def check_positive(name: str, value, *, allow_inf: bool = False, scalar: bool = 
 
     ``allow_inf`` admits ``+inf`` (an infinite radius or mass is a flat, fixed wall).
     ``scalar=True`` requires a single number and returns a ``float``.
+
+    A subnormal value (below :data:`TINY_NORMAL`) is refused too, naming it: it has lost
+    precision and every quotient by it overflows. Not with ``allow_inf``: there the quantity's
+    reciprocal tends to 0 as it grows, and a tiny one (a ``p_y`` whose ``V_y`` underflows) is
+    named by the pair's check with what it breaks (:func:`check_pair`).
     """
     arr = _as_float_array(name, value)
     ext = _extremes(arr)
-    if ext is not None and not (ext[0] > 0 and (allow_inf or ext[1] < np.inf)):
+    if ext is not None and not (
+        (ext[0] > 0.0 if allow_inf else ext[0] >= TINY_NORMAL) and (allow_inf or ext[1] < np.inf)
+    ):
         bad = ~(arr > 0) | (np.isinf(arr) if not allow_inf else np.isnan(arr))
+        if bad.any():
+            raise ValueError(
+                f"{name} must be positive and finite, got {_first_bad(arr, bad)!r}"
+                if not allow_inf
+                else f"{name} must be positive, got {_first_bad(arr, bad)!r}"
+            )
         raise ValueError(
-            f"{name} must be positive and finite, got {_first_bad(arr, bad)!r}"
-            if not allow_inf
-            else f"{name} must be positive, got {_first_bad(arr, bad)!r}"
+            f"{name} must be a normal float (at least {TINY_NORMAL!r}), got the subnormal "
+            f"{_first_bad(arr, arr < TINY_NORMAL)!r}: it has lost precision and its reciprocal overflows"
         )
     return _scalar(name, arr, value) if scalar else arr
 
@@ -191,7 +210,54 @@ def check_pair(effective_modulus, effective_radius, effective_mass, limiting_pre
     p_y = out[3]
     if p_y.size and np.min(p_y) < TINY_LIMITING_PRESSURE:
         check_yield_velocity(*out)
+    check_pair_scales(*out)
     return out
+
+
+_NAMES = ("effective_modulus", "effective_radius", "effective_mass", "limiting_pressure")
+#: Decimal exponents of the yield point's factors that double precision holds with room to spare.
+_EXPONENT_ROOM = 300.0
+
+
+def check_pair_scales(E, R, m, p_y) -> None:
+    """Raise a ValueError naming the most extreme input where the yield velocity ``V_y`` (eq. 28)
+    underflows to 0 or a subnormal, or is NaN, for positive ``E*``, ``R*``, ``m*`` and ``p_y``.
+
+    Every model divides by ``V_y`` (``V/V_y``; seed eqs. 22-27): a pair whose ``V_y`` is not a normal
+    float (``E* = 1e308`` Pa: the yield approach ``alpha_y = (pi p_y/(2 E*))^2 R*`` underflows) gives
+    a division by zero instead of a result. ``V_y = inf`` (``p_y`` or ``R*`` so large that the pair
+    never yields at a finite speed) is the elastic limit and is kept, as is ``p_y = inf``. The
+    decimal exponents of ``alpha_y``, ``P_y`` and ``P_y alpha_y/m*`` are estimated with logarithms
+    (cheap, over arrays); only a pair whose estimate leaves ``10^(+-300)`` is evaluated exactly.
+    """
+    arrs = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (E, R, m, p_y)))
+    if arrs[0].size == 0:
+        return
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        lE, lR, lm, lp = (np.log10(a) for a in arrs)
+        l_ay = lR + 2.0 * (lp - lE + math.log10(math.pi / 2.0))
+        l_Py = math.log10(4.0 / 3.0) + lE + 0.5 * lR + 1.5 * l_ay
+        l_v2 = math.log10(0.8) + l_Py + l_ay - lm
+        worst = np.maximum(np.maximum(np.abs(l_ay), np.abs(l_Py)), np.abs(l_v2))
+        suspect = (worst > _EXPONENT_ROOM) & ~np.isinf(arrs[3])
+    if not suspect.any():
+        return
+    from .core.models.thornton_ning_2016 import yield_point
+
+    for i in np.flatnonzero(suspect):
+        args = tuple(float(a.flat[i]) for a in arrs)
+        try:
+            V_y = yield_point(*args)[2]
+        except (ZeroDivisionError, OverflowError):
+            V_y = math.nan
+        if not V_y >= TINY_NORMAL:
+            k = max(range(4), key=lambda j: abs(math.log10(args[j])))
+            what = "underflows to 0" if V_y == 0.0 else ("is subnormal" if V_y > 0.0 else "is not a number")
+            raise ValueError(
+                f"{_NAMES[k]} {args[k]!r} is outside what double precision can model with the other inputs "
+                f"(effective_modulus {args[0]!r} Pa, effective_radius {args[1]!r} m, effective_mass {args[2]!r} kg, "
+                f"limiting_pressure {args[3]!r} Pa): the yield velocity V_y (eq. 28) {what}"
+            )
 
 
 def check_yield_velocity(E, R, m, p_y) -> None:
@@ -225,3 +291,62 @@ def parse_number(text, name: str = "value") -> float:
     if not is_number_text(text):
         raise ValueError(f"{name} must be a number, got {text!r}")
     return float(str(text).strip())
+
+
+# ------------------------------------------------------------------ text that enters a DEM input deck
+#
+# LAMMPS reads its input one line at a time and, before splitting a line into words, gives five
+# characters a meaning of their own (the "Parsing rules" of its manual; LIGGGHTS-PUBLIC keeps
+# LAMMPS's parser): a trailing ``&`` joins the next line to this one (before comments are
+# stripped, so even a comment line ending in ``&`` swallows the next command), ``#`` starts a
+# comment, ``$x``, ``${name}`` and ``$(expression)`` are replaced by a variable's value, and single,
+# double and triple quotes make one word of several. A line break starts a new command, which may
+# be ``shell`` (any program) or ``include``. So user text in a deck is held to the words the
+# command's grammar takes there: IDs, keywords, numbers and ``NULL`` are ASCII letters, digits and
+# ``_ . + -``; nothing else is needed for a wall style (``zplane 0.0 NULL``, ``zcylinder 1e-3``,
+# ``region ID``, ``primitive type 1 zplane 0.0``, the ``v_name`` of an equal-style variable).
+
+_DEM_WORDS = re.compile(r" *[A-Za-z0-9_.+-]+(?: +[A-Za-z0-9_.+-]+)* *")
+_DEM_SPECIAL = "#&$'\""
+
+
+def check_dem_words(name: str, value) -> str:
+    """``value`` if it is one or more DEM input words (ASCII letters, digits, ``_ . + -``, separated by
+    spaces), else a ValueError naming ``name`` and the value.
+
+    Refused: line breaks (a new command), ``#`` (a comment), ``&`` (continuation), ``$``
+    (substitution), quotes, any other character and the empty text (see the parsing rules above).
+    """
+    if not isinstance(value, str):
+        raise ValueError(f"{name} must be text (DEM input words), got {_describe(value)}")
+    if _DEM_WORDS.fullmatch(value) is None:
+        raise ValueError(
+            f"{name} must be DEM input words (ASCII letters, digits and _ . + - separated by spaces; no line break, "
+            f"'#', '&', '$' or quote, which LAMMPS and LIGGGHTS read as a new command, comment, continuation, "
+            f"substitution or quoting), got {value!r}"
+        )
+    return value
+
+
+def check_dem_lines(lines, source: str) -> list:
+    """``lines`` (a list of str) checked as input lines of LAMMPS or LIGGGHTS written by ``source``.
+
+    Each must be one line of printable ASCII; no line may end in ``&``; a command line (not a
+    ``#`` comment) may hold none of ``# & $`` or quotes. The last guard before a deck is written:
+    user text is checked where it is given (:func:`check_dem_words`), this catches text that reached
+    a line another way (a model or parameter name of a hand-built calibration, a face's line).
+    """
+    out = []
+    for line in lines:
+        if not isinstance(line, str) or not (line.isascii() and line.isprintable()):
+            raise ValueError(f"{source} gave a DEM input line that is not one line of printable ASCII: {line!r}")
+        body = line.strip()
+        if body.endswith("&"):
+            raise ValueError(f"{source} gave a DEM input line ending in '&' (it would swallow the next line): {line!r}")
+        if not body.startswith("#") and any(c in body for c in _DEM_SPECIAL):
+            raise ValueError(
+                f"{source} gave a DEM command line holding one of # & $ ' \" (comment, continuation, "
+                f"substitution, quoting): {line!r}"
+            )
+        out.append(line)
+    return out

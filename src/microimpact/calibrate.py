@@ -33,6 +33,7 @@ import numpy as np
 
 from . import _calibration_cache
 from . import models as _models
+from ._validation import check_dem_lines, check_dem_words, check_poisson
 from .core.quantities import OUTCOME_FIELDS
 
 __all__ = ["Calibration", "CalibrationWarning", "calibrate", "calibrate_all", "DEM_MODELS"]
@@ -203,7 +204,13 @@ class Calibration:
         LAMMPS version: ``tsuji_sqrt2=False`` (default) for LAMMPS 22 Jul 2025 and earlier, ``True``
         for the development source that multiplies the polynomial by ``2^(1/2)``
         (:func:`microimpact.core.models.hertz_tsuji.alpha_tsuji`).
+
+        ``wall`` is held to DEM input words (ASCII letters, digits, ``_ . + -`` and spaces): a line
+        break, ``#``, ``&``, ``$`` or a quote would be a new command, a comment, a continuation, a
+        substitution or quoting to LAMMPS's parser (ValueError naming ``wall``).
         """
+        check_dem_words("wall", wall)
+        head = self._head()
         if damping not in ("coeff_restitution", "tsuji"):
             raise ValueError(f"damping must be 'coeff_restitution' or 'tsuji', got {damping!r}")
         if not isinstance(tsuji_sqrt2, bool):
@@ -220,17 +227,16 @@ class Calibration:
                     f"damping='tsuji' is for model {' or '.join(map(repr, takes))} only, not {self.model!r}"
                 )
             coeff, legacy = face.lammps(self, damping=damping, tsuji_sqrt2=tsuji_sqrt2)
-        return "\n".join(
-            [
-                f"# {self.model}: {', '.join(f'{n} = {v:.12g}' for n, v in zip(self.names, self.params))}",
-                "units si",
-                "comm_modify vel yes",
-                "pair_style granular",
-                f"pair_coeff * * {coeff}",
-                f"fix wall all wall/gran granular {coeff} {wall}",
-                legacy,
-            ]
-        )
+        lines = [
+            head,
+            "units si",
+            "comm_modify vel yes",
+            "pair_style granular",
+            f"pair_coeff * * {coeff}",
+            f"fix wall all wall/gran granular {coeff} {wall}",
+            legacy,
+        ]
+        return "\n".join(check_dem_lines(lines, f"the face of {self.model!r} (lammps)"))
 
     # ---------------------------------------------------------------- LIGGGHTS
     def liggghts(self, poisson: float = 0.3, wall: str = "zplane 0.0") -> str:
@@ -240,11 +246,25 @@ class Calibration:
         hooke/stiffness`` for the linear spring-dashpot, ``hertz`` for Tsuji's damping,
         ``hooke/hysteresis`` for Luding's spring (``plasticity_depth > 0``), each documented
         there. A law LIGGGHTS has no normal model for (Hertz with Brilliantov's damping, the
-        constant-``k2`` spring): ValueError.
+        constant-``k2`` spring): ValueError. ``wall`` (the ``primitive`` wall's arguments) is held to
+        DEM input words as in :meth:`lammps`; ``poisson`` lies in (-1, 0.5].
         """
+        check_dem_words("wall", wall)
+        poisson = check_poisson("poisson", poisson, scalar=True)
+        head = self._head()
         lines = _models.face(self.model).liggghts(self, poisson, wall)
-        head = f"# {self.model}: {', '.join(f'{n} = {v:.12g}' for n, v in zip(self.names, self.params))}"
-        return "\n".join([head, "units si"] + lines)
+        return "\n".join(check_dem_lines([head, "units si", *lines], f"the face of {self.model!r} (liggghts)"))
+
+    def _head(self) -> str:
+        """The comment line naming the law and its parameters, once the names are checked to be
+        identifiers: a name is printed into the deck, where a line break or a trailing ``&`` in it
+        would start or swallow a command."""
+        for what, name in (("model", self.model), *(("names", n) for n in self.names)):
+            if not (isinstance(name, str) and name.isascii() and name.isidentifier()):
+                raise ValueError(
+                    f"Calibration.{what} must be an identifier (it is printed into a DEM deck), got {name!r}"
+                )
+        return f"# {self.model}: {', '.join(f'{n} = {v:.12g}' for n, v in zip(self.names, self.params))}"
 
 
 def calibrate(

@@ -237,7 +237,8 @@ def deck(
     record : str
         File name of the per-step record the run writes (time, positions, velocities, force).
     **options
-        Passed to the printing method (e.g. ``damping="tsuji"`` for LAMMPS).
+        Passed to the printing method (e.g. ``damping="tsuji"`` for LAMMPS, ``wall="zplane 0.0 NULL"``:
+        DEM input words only, see :func:`microimpact._validation.check_dem_words`).
 
     Returns
     -------
@@ -246,13 +247,19 @@ def deck(
     Raises
     ------
     ValueError
-        Unknown code or geometry, bad speed or step (named), or a law the code has no model for.
+        Unknown code or geometry, bad speed or step (named), a law the code has no model for, or
+        text the code's parser would read as more than words (a ``wall`` or ``record`` with a line
+        break, ``#``, ``&``, ``$`` or quotes: a comment, continuation, substitution or new command).
     """
     _check_code(code)
     if geometry not in GEOMETRIES:
         raise ValueError(f"geometry must be one of {', '.join(GEOMETRIES)}; got {geometry!r}")
-    if not (isinstance(record, str) and record and all(c.isalnum() or c in "._-" for c in record)):
-        raise ValueError(f"record must be a plain file name (letters, digits, '._-'), got {record!r}")
+    if not (
+        isinstance(record, str)
+        and record.strip(".")
+        and all(c.isascii() and (c.isalnum() or c in "._-") for c in record)
+    ):
+        raise ValueError(f"record must be a plain file name (ASCII letters, digits, '._-'), got {record!r}")
     V = _speed(velocity)
     if isinstance(steps_per_contact, bool) or not isinstance(steps_per_contact, (int, np.integer)):
         raise ValueError(f"steps_per_contact must be an integer >= 20, got {steps_per_contact!r}")

@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from ._validation import check_nonnegative, check_positive
+from ._validation import TINY_NORMAL, check_nonnegative, check_pair_scales, check_positive
 from .adhesion import ADDITIVE_RULE
 from .core import adhesion as _adh
 from .core import models as _models
@@ -91,6 +91,16 @@ def capture_velocities(pair, diameter, work_of_adhesion, laws=ADHESION_LAWS) -> 
     laws = [_law(n) for n in laws]
     E, p_y = pair.effective_modulus, pair.limiting_pressure
     R, m = _sizes(pair, d)
+    for dd, r, mm in zip(d, R, m):  # 4/3 pi R^3 rho and the yield velocity must be numbers double precision holds
+        if not (TINY_NORMAL <= mm < math.inf):
+            raise ValueError(
+                f"diameter {float(dd)!r} m is outside what double precision can model: the particle mass "
+                f"4/3 pi R^3 rho is {float(mm)!r} kg"
+            )
+        try:
+            check_pair_scales(E, float(r), float(mm), p_y)
+        except ValueError as exc:
+            raise ValueError(f"diameter {float(dd)!r} m: {exc}") from None
     out = {"diameter": d}
     for law in laws:
         pairs = [_one(law, E, float(r), float(mm), p_y, G) for r, mm in zip(R, m)]

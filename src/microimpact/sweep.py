@@ -177,6 +177,16 @@ def _check_input(name, value):
         raise ValueError(f"{name} must be a scalar or a 1-D array, got an array of shape {arr.shape}")
     if arr.ndim == 1 and arr.size == 0:
         raise ValueError(f"{name} must not be empty")
+    if arr.ndim == 1 and arr.size > 1:
+        # the values label a dimension: a repeated one makes selection by value (ds.sel) return
+        # several points for one label, and alignment with another sweep fail
+        s = np.sort(arr)
+        dup = s[1:][s[1:] == s[:-1]]
+        if dup.size:
+            raise ValueError(
+                f"{name} has the value {float(dup[0])!r} more than once (the values of a swept input label "
+                "a dimension and must be distinct)"
+            )
     return arr
 
 

@@ -13,12 +13,17 @@ def comment_text(text) -> str:
     Control characters and line breaks become spaces, anything outside printable
     ASCII becomes ``?``, and the comment delimiters ``*/`` and ``/*`` are broken
     apart (``* /``, ``/ *``), so a label cannot end the comment and inject code.
+    Two question marks in a row are set apart too (``? ?``): ``??`` and one of ``= / ' ( ) ! < > -``
+    is a trigraph, replaced before comments are recognised by a compiler that honours them
+    (``gcc -std=c99``, ``-trigraphs``); ``??/`` is a backslash, which before a line break joins
+    the next line to the comment. Both rules are applied until none is left (a non-ASCII
+    character becoming ``?`` can make a new pair).
     """
     out = "".join(
         c if 32 <= ord(c) < 127 else (" " if ord(c) < 32 or c in "\u2028\u2029\x85" else "?") for c in str(text)
     )
-    while "*/" in out or "/*" in out:
-        out = out.replace("*/", "* /").replace("/*", "/ *")
+    while "*/" in out or "/*" in out or "??" in out:
+        out = out.replace("*/", "* /").replace("/*", "/ *").replace("??", "? ?")
     return out
 
 

@@ -5,11 +5,12 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import sys
 
 import numpy as np
 
-from .._validation import check_positive, parse_number
+from .._validation import check_pair_scales, check_positive, parse_number
 from ..io import check_figure_path, check_input_file, check_memory, check_output_path
 from ..materials import DEFAULT_K, PAPER_CASES, limiting_pressure, list_materials, sphere_mass
 from ..pair import ContactPair
@@ -20,8 +21,10 @@ __all__ = [
     "check_pair_options",
     "parse_values",
     "parse_float",
+    "parse_names",
     "refuse_together",
     "check_outputs",
+    "check_distinct_paths",
     "check_input_file",
     "show_progress",
     "add_model_arguments",
@@ -135,6 +138,18 @@ def parse_values(texts, name: str = "velocity", *, bytes_per_value: float = 8.0,
     return out
 
 
+def parse_names(text, name: str) -> list[str]:
+    """The items of a comma list (``lammps,liggghts``), stripped; a ValueError naming ``name`` when the
+    list or one of its items is empty (``lammps,``, ``,x``, ``a,,b``): a stray comma is a typo, not a
+    request for fewer items."""
+    items = [t.strip() for t in str(text).split(",")]
+    if not any(items):
+        raise ValueError(f"{name}: nothing named in {str(text)!r}")
+    if not all(items):
+        raise ValueError(f"{name} has an empty item in {str(text)!r} (items are separated by one comma)")
+    return items
+
+
 def refuse_together(args, *groups) -> None:
     """Raise a ValueError naming both options when options of two ``groups`` are both given.
 
@@ -160,6 +175,71 @@ def check_outputs(files=(), figures=(), directories=()) -> None:
     for path in directories:
         if path is not None:
             check_output_path(path, directory=True)
+
+
+def _same_file(a: str, b: str, real_a: str, real_b: str) -> bool:
+    """True when ``a`` and ``b`` name one file: the same path once links are resolved, or (both
+    existing) the same device and inode, which also catches hard links and bind mounts."""
+    if real_a == real_b:
+        return True
+    try:
+        return os.path.samefile(a, b)
+    except OSError:  # one of them does not exist yet: only the resolved paths can tell
+        return False
+
+
+def _inside(real_path: str, real_dir: str) -> bool:
+    try:
+        return os.path.commonpath([real_path, real_dir]) == real_dir
+    except ValueError:  # different drives
+        return False
+
+
+def check_distinct_paths(inputs=(), outputs=(), directories=()) -> None:
+    """Refuse a run whose output would overwrite one of its inputs or another of its outputs.
+
+    Each argument is a sequence of ``(option, path)``; ``None`` and ``"-"`` (stdout) paths are
+    skipped. ``outputs`` are files the run writes, ``directories`` output folders it replaces.
+    Paths are compared after resolving symbolic links (:func:`os.path.realpath`) and, where both
+    exist, by :func:`os.path.samefile`, so that a link or a second name of an input is caught
+    too; an input inside an output folder is refused as well. Called before anything is
+    computed or written; the ValueError names both options and paths (the CLI prints it on
+    one line, exit 2).
+    """
+
+    def norm(items):
+        return [
+            (opt, os.fspath(p), os.path.realpath(os.fspath(p))) for opt, p in items if p is not None and str(p) != "-"
+        ]
+
+    ins, outs, dirs = norm(inputs), norm(outputs), norm(directories)
+    for i, (o_opt, o_path, o_real) in enumerate(outs):
+        for i_opt, i_path, i_real in ins:
+            if _same_file(o_path, i_path, o_real, i_real):
+                raise ValueError(
+                    f"{o_opt} {o_path!r} is the input {i_opt} {i_path!r}: the run would overwrite what it reads"
+                )
+        for p_opt, p_path, p_real in outs[:i]:
+            if _same_file(o_path, p_path, o_real, p_real):
+                raise ValueError(
+                    f"{o_opt} {o_path!r} and {p_opt} {p_path!r} name the same file: one output would overwrite the other"
+                )
+        for d_opt, d_path, d_real in dirs:
+            if _inside(o_real, d_real):
+                raise ValueError(
+                    f"{o_opt} {o_path!r} lies inside the output folder {d_opt} {d_path!r}, which the run replaces"
+                )
+    for d_opt, d_path, d_real in dirs:
+        for i_opt, i_path, i_real in ins:
+            if _inside(i_real, d_real) or _same_file(d_path, i_path, d_real, i_real):
+                raise ValueError(
+                    f"the input {i_opt} {i_path!r} lies inside the output folder {d_opt} {d_path!r}, which the run "
+                    "replaces: the run would overwrite or delete what it reads"
+                )
+    for j, (d_opt, d_path, d_real) in enumerate(dirs):
+        for e_opt, e_path, e_real in dirs[:j]:
+            if _inside(d_real, e_real) or _inside(e_real, d_real):
+                raise ValueError(f"the output folders {e_opt} {e_path!r} and {d_opt} {d_path!r} overlap")
 
 
 def add_pair_arguments(parser: argparse.ArgumentParser) -> None:
@@ -228,7 +308,15 @@ def _check_mass(radius, density, option, value):
 
 
 def pair_from_args(args) -> ContactPair:
-    """Build the :class:`ContactPair` the options describe (after :func:`check_pair_options`)."""
+    """Build the :class:`ContactPair` the options describe (after :func:`check_pair_options`); a pair
+    whose yield velocity double precision cannot hold (``--effective-modulus 1e308``) is refused,
+    naming the input (:func:`microimpact._validation.check_pair_scales`)."""
+    pair = _pair_from_args(args)
+    check_pair_scales(pair.effective_modulus, pair.effective_radius, pair.effective_mass, pair.limiting_pressure)
+    return pair
+
+
+def _pair_from_args(args) -> ContactPair:
     check_pair_options(args)
     radius = _radius(args)
     size_value = args.diameter if args.diameter is not None else args.radius
@@ -318,9 +406,7 @@ def parse_models(text) -> list[str] | None:
         return None
     from ..models import get
 
-    names = [t.strip() for t in str(text).split(",") if t.strip()]
-    if not names:
-        raise ValueError(f"--model: no model named in {text!r}")
+    names = parse_names(text, "--model")
     for n in names:
         try:
             get(n)
@@ -369,9 +455,9 @@ def parse_tangential(text, known):
         return ["mindlin", "rigid"]
     if text == "all":
         return list(known)
-    names = [t.strip() for t in str(text).split(",") if t.strip()]
-    if not names:
+    if not str(text).strip():
         raise ValueError(f"tangential must name at least one model, got {text!r}")
+    names = parse_names(text, "--tangential")
     for n in names:
         if n not in known:
             raise ValueError(f"tangential must be among {', '.join(known)} (or both, all), got {n!r}")

@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from .._optional import MissingExtraError
+from ._stdout import encodable_stdout
 
 __all__ = ["BENCHMARKS", "FILES", "find_suite", "machine_info", "format_table", "register", "run"]
 
@@ -180,8 +181,10 @@ def format_table(report: dict) -> str:
 def _parse_only(text):
     if not text:
         return list(range(1, len(BENCHMARKS) + 1))
+    from ._common import parse_names
+
     try:
-        only = [int(x) for x in text.split(",") if x.strip()]
+        only = [int(x) for x in parse_names(text, "--only")]
     except ValueError:
         raise ValueError(f"--only must be comma-separated numbers 1-{len(BENCHMARKS)}, got {text!r}") from None
     bad = [i for i in only if not 1 <= i <= len(BENCHMARKS)]
@@ -209,7 +212,7 @@ def register(sub) -> None:
         help="where to write the JSON report (default microimpact-bench.json; '-' for none)",
     )
     p.add_argument("--suite", default=None, metavar="DIR", help="the suite's directory (default ./benchmarks)")
-    p.set_defaults(func=run)
+    p.set_defaults(func=encodable_stdout(run))
 
 
 def run(args) -> int:

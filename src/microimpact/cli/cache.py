@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from ._stdout import encodable_stdout
+
 
 def register(sub) -> None:
     p = sub.add_parser(
@@ -19,7 +21,7 @@ def register(sub) -> None:
     g = p.add_mutually_exclusive_group()
     g.add_argument("--info", action="store_true", help="print the folder, its files and their size (default)")
     g.add_argument("--clear", action="store_true", help="delete the cache's own files")
-    p.set_defaults(func=run)
+    p.set_defaults(func=encodable_stdout(run))
 
 
 def run(args) -> int:

@@ -14,6 +14,7 @@ from ..quantities import header as heading
 from ._common import (
     add_model_arguments,
     add_pair_arguments,
+    check_distinct_paths,
     check_outputs,
     pair_from_args,
     parse_float,
@@ -22,6 +23,7 @@ from ._common import (
     parse_tangential,
     parse_values,
 )
+from ._stdout import encodable_stdout
 
 #: Memory per speed and model [bytes]: ten result arrays, their temporaries and the text.
 BYTES_PER_SPEED = 4000
@@ -81,7 +83,7 @@ def register(sub) -> None:
     t.add_argument("--poisson", metavar="NU", help="Poisson's ratio for G* (default: from the pair's materials)")
     t.add_argument("--spin", metavar="RAD/S", help="incoming spin, positive adding to the slip (default 0)")
     t.add_argument("--alumina", action="store_true", help="the alumina case of microimpact oblique --alumina")
-    p.set_defaults(func=run)
+    p.set_defaults(func=encodable_stdout(run))
 
 
 #: Options of the tangential mode (dest), refused without --tangential.
@@ -147,6 +149,7 @@ def run(args) -> int:
     if out is not None and out.suffix.lower() not in (".nc", ".csv"):
         raise ValueError(f"--out must end in .nc (NetCDF) or .csv, got {args.out!r}")
     check_outputs(files=[out], figures=[args.plot])
+    check_distinct_paths(outputs=[("--out", out), ("--plot", args.plot)])
     names = parse_models(args.model)
     from ..compare import default_models
 
@@ -274,6 +277,7 @@ def run_tangential(args) -> int:
     if out is not None and out.suffix.lower() not in (".nc", ".csv"):
         raise ValueError(f"--out must end in .nc (NetCDF) or .csv, got {args.out!r}")
     check_outputs(files=[out], figures=[args.plot])
+    check_distinct_paths(outputs=[("--out", out), ("--plot", args.plot)])
     if args.alumina:
         refuse_together(args, ("alumina",), tuple(PAIR_OPTIONS))
         pair = ob.alumina_pair()

@@ -15,6 +15,7 @@ from ._common import (
     parse_float,
     parse_values,
 )
+from ._stdout import encodable_stdout
 
 
 def register(sub) -> None:
@@ -44,7 +45,7 @@ def register(sub) -> None:
     p.add_argument("--steps-per-contact", metavar="N", help="time steps per contact time (default 5000)")
     p.add_argument("--time-step", metavar="S", help="time step [s] (instead of --steps-per-contact)")
     add_pair_arguments(p)
-    p.set_defaults(func=run)
+    p.set_defaults(func=encodable_stdout(run))
 
 
 def _calibration(args, pair, V):

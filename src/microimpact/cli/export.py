@@ -14,13 +14,16 @@ from ..oblique import DEM_LAWS as LAWS
 from ._common import (
     DeferredHelp,
     add_pair_arguments,
+    check_distinct_paths,
     check_input_file,
     check_outputs,
     check_pair_options,
     pair_from_args,
     parse_float,
+    parse_names,
     parse_values,
 )
+from ._stdout import encodable_stdout
 
 
 def register(sub) -> None:
@@ -123,7 +126,7 @@ def register(sub) -> None:
         metavar="KIND",
         help=DeferredHelp("interval of the fit: %(kinds)s (default auto)", kinds=lambda: _names("INTERVALS")),
     )
-    p.set_defaults(func=run)
+    p.set_defaults(func=encodable_stdout(run))
 
 
 def _names(what: str) -> str:
@@ -139,6 +142,7 @@ def run(args) -> int:
 
     check_pair_options(args)
     check_outputs(directories=[args.out])
+    check_distinct_paths(inputs=[("--fit", args.fit)], directories=[("--out", args.out)])
     adhesion = check_adhesion_rule(args.adhesion, "--adhesion")
     tangential, kappa_kw = _tangential_options(args)
     if args.fit is None:
@@ -258,9 +262,9 @@ def _dem_codes(args):
         return []
     if args.fit is not None:
         raise ValueError("--dem and --fit cannot be combined (export the decks of one pair, without --fit)")
-    codes = [c.strip() for c in str(args.dem).split(",") if c.strip()]
+    codes = parse_names(args.dem, "--dem")
     bad = [c for c in codes if c not in ("lammps", "liggghts")]
-    if not codes or bad:
+    if bad:
         raise ValueError(f"--dem must be lammps, liggghts or lammps,liggghts; got {args.dem!r}")
     return sorted(set(codes))
 
@@ -388,7 +392,7 @@ def _fit(args):
 
     data = load_restitution_csv(args.fit)
     velocity, restitution, sigma = data
-    free = [x.strip() for x in (args.free or "limiting_pressure").split(",") if x.strip()]
+    free = parse_names(args.free or "limiting_pressure", "--free")
     if len(free) != 1:
         raise ValueError(f"--free: the band's ends need exactly one free parameter, got {args.free!r}")
     confidence = parse_float(args.confidence, "--confidence") if args.confidence is not None else 0.95

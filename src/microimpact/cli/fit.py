@@ -21,12 +21,15 @@ from ..io import load_restitution_csv, save_figure, write_json
 from ..materials import PAPER_CASES, get_material
 from ._common import (
     add_pair_arguments,
+    check_distinct_paths,
     check_input_file,
     check_outputs,
     pair_from_args,
     parse_float,
     parse_model_params,
+    parse_names,
 )
+from ._stdout import encodable_stdout
 
 
 def register(sub) -> None:
@@ -91,7 +94,7 @@ def register(sub) -> None:
         "--fig2", metavar="FILE.png", help="also draw the fitted curve with the data in the layout of the seed's Fig. 2"
     )
     p.add_argument("--json", action="store_true", help="print JSON (SI units) instead of text")
-    p.set_defaults(func=run)
+    p.set_defaults(func=encodable_stdout(run))
 
 
 def fit_pair(args, free):
@@ -195,7 +198,7 @@ def _rank(args, data, pair, f_scale_given, confidence) -> int:
 
 def _model_specs(models, params):
     """``--models`` as rank_models specs, each with the values ``--param MODEL:NAME=VALUE`` gives its model."""
-    texts = [t.strip() for t in str(models).split(",")]
+    texts = parse_names(models, "--models")
     names = [t.partition(":")[0].strip() for t in texts]  # checked by rank_models
     values = parse_model_params(params, sorted(set(names))) if params else {}
     specs = []
@@ -249,6 +252,7 @@ def report_warnings(caught) -> None:
 def run(args) -> int:
     check_input_file(args.data, "data")  # errors name the file (missing, a directory, binary)
     check_outputs(figures=[args.plot, args.fig2])  # before fitting: nothing computed for an unwritable path
+    check_distinct_paths(inputs=[("data", args.data)], outputs=[("--plot", args.plot), ("--fig2", args.fig2)])
     data = load_restitution_csv(args.data)
     velocity, restitution, sigma = data
     f_scale = None if args.f_scale is None else parse_float(args.f_scale, "--f-scale")
@@ -258,7 +262,7 @@ def run(args) -> int:
     if args.models:
         pair = fit_pair(args, "limiting_pressure")
         return _rank(args, data, pair, f_scale is not None, confidence)
-    free = [s.strip() for s in (args.free or "limiting_pressure").split(",") if s.strip()]
+    free = parse_names(args.free or "limiting_pressure", "--free")
     pair = fit_pair(args, free[0] if free else "")
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", FitWarning)

@@ -5,7 +5,6 @@ from __future__ import annotations
 import math
 import sys
 import warnings
-from pathlib import Path
 
 import numpy as np
 
@@ -14,6 +13,7 @@ from ..io import check_memory
 from ._common import (
     add_model_arguments,
     add_pair_arguments,
+    check_distinct_paths,
     check_outputs,
     pair_from_args,
     parse_float,
@@ -21,6 +21,7 @@ from ._common import (
     parse_models,
     show_progress,
 )
+from ._stdout import encodable_stdout
 
 
 def register(sub) -> None:
@@ -60,7 +61,7 @@ def register(sub) -> None:
     p.add_argument(
         "--quiet", "-q", action="store_true", help="no progress bar (shown for long histories on a terminal)"
     )
-    p.set_defaults(func=run)
+    p.set_defaults(func=encodable_stdout(run))
 
 
 def _count(text: str) -> int:
@@ -115,8 +116,7 @@ def run(args) -> int:
         raise ValueError("--hertz draws into the plot: give --plot FILE.png with it")
     out = None if args.out == "-" else args.out
     check_outputs(files=[out], figures=[args.plot])
-    if out is not None and args.plot is not None and Path(out).resolve() == Path(args.plot).resolve():
-        raise ValueError(f"--out and --plot name the same file {args.out!r}")
+    check_distinct_paths(outputs=[("--out", out), ("--plot", args.plot)])
     check_memory(n * BYTES_PER_POINT, f"--n {n}", "give a smaller --n")
     pair = pair_from_args(args)
     history = _history(pair, V, n, args.method, module.NAME, params)

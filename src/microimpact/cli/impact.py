@@ -14,6 +14,7 @@ from .._validation import check_velocity
 from ..io import write_json
 from ..pair import RESULT_FIELDS, ImpactResult, LargeStrainWarning
 from ._common import add_pair_arguments, pair_from_args, parse_values
+from ._stdout import encodable_stdout
 
 #: Memory per speed [bytes]: 18 result arrays with their temporaries, and the JSON or table text.
 BYTES_PER_SPEED = 2000
@@ -53,7 +54,7 @@ def register(sub) -> None:
         help="a parameter of the model (repeat for several); fields a model does not define print as nan",
     )
     p.add_argument("--json", action="store_true", help="print JSON (SI units) instead of a table")
-    p.set_defaults(func=run)
+    p.set_defaults(func=encodable_stdout(run))
 
 
 def parse_params(items) -> dict:

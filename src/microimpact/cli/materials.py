@@ -4,16 +4,19 @@ from __future__ import annotations
 
 from ..materials import get_material, list_materials
 from ..quantities import header
+from ._stdout import encodable_stdout
 
 
 def register(sub) -> None:
     p = sub.add_parser("materials", help="list the named materials with their sources")
     p.add_argument("name", nargs="?", help="show one material in full")
-    p.set_defaults(func=run)
+    p.set_defaults(func=encodable_stdout(run))
 
 
 def run(args) -> int:
-    if args.name:
+    if args.name is not None:  # '' names no material: an error, not the list (which is the no-argument call)
+        if not args.name.strip():
+            raise ValueError(f"the material name is empty ({args.name!r}); give a name, or none to list them all")
         m = get_material(args.name)
         print(f"{m.name}: {m.description}")
         print(

@@ -18,6 +18,7 @@ from ._common import (
     parse_values,
     refuse_together,
 )
+from ._stdout import encodable_stdout
 
 
 def register(sub) -> None:
@@ -61,7 +62,7 @@ def register(sub) -> None:
     )
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
     p.add_argument("--plot", metavar="FILE.png", help="also draw the three curves to this image")
-    p.set_defaults(func=run)
+    p.set_defaults(func=encodable_stdout(run))
 
 
 def _rows(out):

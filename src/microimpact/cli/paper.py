@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import sys
 
-from ._common import check_input_file, check_outputs, show_progress
+from ._common import check_distinct_paths, check_input_file, check_outputs, parse_names, show_progress
+from ._stdout import encodable_stdout
 
 
 def register(sub) -> None:
@@ -45,7 +46,7 @@ def register(sub) -> None:
         "core and a whole core is idle, else 1); the files are the same bytes whatever N",
     )
     p.add_argument("--quiet", "-q", action="store_true", help="no progress bar and no summary")
-    p.set_defaults(func=run)
+    p.set_defaults(func=encodable_stdout(run))
 
 
 def parse_data(items) -> dict:
@@ -65,12 +66,14 @@ def run(args) -> int:
     out = args.out or DEFAULT_OUT_DIR
     check_outputs(directories=[out])
     data = parse_data(args.data)
+    formats = parse_names(args.formats, "--formats")
     for name, path in data.items():
         check_input_file(path, f"--data {name}")
+    check_distinct_paths(inputs=[(f"--data {name}", path) for name, path in data.items()], directories=[("--out", out)])
     report = reproduce(
         out,
         data=data,
-        formats=[f for f in args.formats.split(",") if f.strip()],
+        formats=formats,
         progress=show_progress(args),
         workers=args.workers,
     )

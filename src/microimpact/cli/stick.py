@@ -3,6 +3,7 @@ table, JSON, CSV and a stick/bounce map."""
 
 from __future__ import annotations
 
+import argparse
 import math
 
 import numpy as np
@@ -10,7 +11,16 @@ import numpy as np
 from ..io import write_csv, write_json
 from ..quantities import QUANTITIES
 from ..quantities import header as heading
-from ._common import add_pair_arguments, check_outputs, pair_from_args, parse_float, parse_values
+from ._common import (
+    add_pair_arguments,
+    check_distinct_paths,
+    check_outputs,
+    pair_from_args,
+    parse_float,
+    parse_names,
+    parse_values,
+)
+from ._stdout import encodable_stdout
 
 #: Memory per diameter [bytes]: a few result arrays and the text.
 BYTES_PER_DIAMETER = 400
@@ -48,15 +58,13 @@ def register(sub) -> None:
     o.add_argument("--json", action="store_true", help="print JSON (SI units) instead of a table")
     o.add_argument("--out", metavar="FILE.csv", help="also write the table to a CSV file")
     o.add_argument("--plot", metavar="FILE", help="also draw the stick/bounce map to this image (png, pdf, svg)")
-    p.set_defaults(func=run)
+    p.set_defaults(func=encodable_stdout(run))
 
 
 def _laws(text):
     from ..stick import ADHESION_LAWS
 
-    names = [t.strip() for t in str(text).split(",") if t.strip()]
-    if not names:
-        raise ValueError(f"--law: no law named in {text!r}")
+    names = parse_names(text, "--law")
     for n in names:
         if n not in ADHESION_LAWS:
             raise ValueError(f"--law must name {' and/or '.join(ADHESION_LAWS)}; got {n!r}")
@@ -96,9 +104,13 @@ def run(args) -> int:
         raise ValueError(f"--work-of-adhesion must be non-negative and finite, got {G!r}")
     laws = _laws(args.law)
     check_outputs(files=[args.out], figures=[args.plot])
+    check_distinct_paths(outputs=[("--out", args.out), ("--plot", args.plot)])
     if args.out is not None and not str(args.out).lower().endswith(".csv"):
         raise ValueError(f"--out must end in .csv, got {args.out!r}")
-    pair = pair_from_args(args)
+    pair_args = args  # the particle is resized to every diameter: the positional ones size the pair too
+    if (args.particle or args.surface) and args.radius is None and args.diameter is None:
+        pair_args = argparse.Namespace(**{**vars(args), "diameter": float(d[0])})
+    pair = pair_from_args(pair_args)
     if pair.density is None:
         raise ValueError("stick needs a sphere-on-flat pair with a particle density")
     from ..stick import capture_velocities, parting_diameter

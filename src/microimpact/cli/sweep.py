@@ -23,6 +23,7 @@ from ..pair import ContactPair
 from ..sweep import AUTO_BLOCK_POINTS, SWEEP_DIMENSIONS
 from ._common import (
     add_model_arguments,
+    check_distinct_paths,
     check_outputs,
     parse_float,
     parse_model_params,
@@ -30,6 +31,7 @@ from ._common import (
     parse_values,
     show_progress,
 )
+from ._stdout import encodable_stdout
 
 # option dest -> (unit, help); the dest is the sweep() keyword.
 SWEEP_OPTIONS = quantities.table(SWEEP_DIMENSIONS)
@@ -78,7 +80,7 @@ def register(sub) -> None:
         action="store_true",
         help="no progress bar (drawn only when stderr is a terminal)",
     )
-    p.set_defaults(func=run)
+    p.set_defaults(func=encodable_stdout(run))
 
 
 class _Once(argparse.Action):
@@ -162,6 +164,7 @@ def run(args) -> int:
     if kind not in (".nc", ".csv"):
         raise ValueError(f"--out must end in .nc (NetCDF) or .csv, got {args.out!r}")
     check_outputs(files=[out])
+    check_distinct_paths(outputs=[("--out", out)])  # no input files: nothing else to collide with
     chunks = _chunks(args.chunks)
     values = {}
     for dest in SWEEP_OPTIONS:

@@ -23,9 +23,9 @@ contact") print it in their eqs. 5-30, read in ``tmd-lab/microslip-rough-contact
 
 **Hardness term.** Eq. 28's cosine form is the one both tmd-lab codes print (labelled "Eqn 28").
 It is Jackson & Green's *2006* hardness (Tribol. Int. 39:906, the rough-surface paper);
-the 2005 paper's own fit is ``H_G/S_y = 2.84 [1 - exp(-0.82 (a/R)^(-0.7))]``, the form
-``/work/shared/SOURCES.md`` points to in a public ``JG.m``. That file could not be read here (the
-only indexed ``JG.m`` is an unrelated clustering script), so the 2005 form is not implemented:
+the 2005 paper's own fit is ``H_G/S_y = 2.84 [1 - exp(-0.82 (a/R)^(-0.7))]``, the form a
+public ``JG.m`` is said to use. That script could not be found (the only public ``JG.m`` found is
+an unrelated clustering script), so the 2005 form is not implemented:
 this model follows Ghaednia et al. 2019 as printed. Both tend to 2.84 as ``a/R -> 0`` and differ by
 a few per cent at ``a/R ~ 0.3``.
 
