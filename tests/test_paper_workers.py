@@ -358,7 +358,7 @@ def test_default_workers_need_an_idle_core(monkeypatch, cores, load, frozen, for
 
 _SUBSET = """
 import io, sys
-from microimpact.paper._driver import defer_font_subsetting
+from microimpact.paper._draw import defer_font_subsetting
 deferred = defer_font_subsetting() if sys.argv[1] == "defer" else False
 import matplotlib
 matplotlib.use("Agg")

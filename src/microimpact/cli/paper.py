@@ -61,7 +61,7 @@ def parse_data(items) -> dict:
 
 def run(args) -> int:
     from ..paper import DEFAULT_OUT_DIR, reproduce
-    from ..paper._driver import defer_font_subsetting
+    from ..paper._draw import defer_font_subsetting
 
     defer_font_subsetting()  # this process's own: fontTools.subset loads only if a font is subset
 

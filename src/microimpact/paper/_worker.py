@@ -5,7 +5,7 @@ once the caller has imported matplotlib, so that it shares the caller's imports;
 new interpreter (:func:`main`, started by :class:`Helper` as ``python -c`` code, never by hand).
 Either reads pickled jobs from a pipe and writes pickled answers to another (:func:`_serve`); it
 writes no file. The first message is the caller's rcParams and image formats; each job is a
-figure's stem and table, answered with the figure's image bytes (:func:`._driver.draw_figure`, the same
+figure's stem and table, answered with the figure's image bytes (:func:`._draw.draw_figure`, the same
 function the caller draws its own figures with: a figure's bytes do not depend on the process
 that draws it nor on the figures drawn before it) and the warnings raised while drawing, which
 the caller raises again. SIGINT is ignored (a Ctrl-C reaches the whole process group; the caller
@@ -36,7 +36,7 @@ def main() -> int:
     out = os.fdopen(os.dup(1), "wb")
     os.dup2(2, 1)
     inp = sys.stdin.buffer
-    from ._driver import defer_font_subsetting
+    from ._draw import defer_font_subsetting
 
     defer_font_subsetting()
     _prepare()
@@ -69,7 +69,7 @@ def _prepare() -> None:
 
 def _serve(inp, out) -> int:
     """Answer jobs read from ``inp`` on ``out`` until the end of ``inp``."""
-    from ._driver import draw_figure, one_mathtext_cache
+    from ._draw import draw_figure, one_mathtext_cache
 
     try:
         rc, formats = pickle.load(inp)
@@ -151,7 +151,7 @@ def _fork():
     process's imports (a new interpreter imports them again, about 1 CPU-s). The child answers jobs
     until the end of its input and leaves with ``os._exit``: it never returns into this process's
     code (its ``finally`` blocks, its staging folder), whatever happens."""
-    from ._driver import forget_open_fonts
+    from ._draw import forget_open_fonts
 
     _prepare()
     jobs_r, jobs_w = os.pipe()
