@@ -10,13 +10,13 @@ import warnings
 
 import numpy as np
 
-from .. import impact as _impact
 from .._validation import check_velocity
 from ..core import adhesion as _adhesion
 from ..core import models
 from ..core.arrays import evaluate as _evaluate  # ENGINE-MERGE
 from ..core.constants import LARGE_STRAIN_RATIO
 from ..core.models import thornton_ning_2016 as _seed
+from ..impact import outcome_arrays, restitution_coefficient
 from ._adhesion import range_warning_text, tabor_check
 from ._result import FALSE, LARGE, TRUE, AdhesionRangeWarning, LargeStrainWarning, one_result, trusted_result
 
@@ -71,7 +71,7 @@ def impact(values, velocity, model, warn, params):
         V = check_velocity("velocity", velocity)
         # the pair's floats as they are: numpy scalars would make a small array's Python loop
         # compute in numpy's scalar arithmetic, ~3x slower for a model that integrates
-        out = _impact.outcome_arrays(mod, V, *values, p)
+        out = outcome_arrays(mod, V, *values, p)
         # arrays of V's shape, or 0-d ones for a 0-d V (then numpy scalars, as for one speed)
         res = trusted_result(out if V.ndim else {k: v[()] for k, v in out.items()})
         flagged = res.any_large_strain
@@ -98,7 +98,7 @@ def impact(values, velocity, model, warn, params):
 def restitution(velocity, yield_velocity, out):
     """:meth:`ContactPair.restitution <microimpact.pair.ContactPair.restitution>` at the pair's ``V_y``."""
     if out is not None:
-        return _impact.restitution_coefficient(velocity, yield_velocity, out=out)
+        return restitution_coefficient(velocity, yield_velocity, out=out)
     if type(velocity) is float or type(velocity) is int:  # one speed: the core's scalar function itself
         V = float(velocity)
         if not 0.0 <= V < math.inf:
