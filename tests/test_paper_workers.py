@@ -19,7 +19,7 @@ import pytest
 pytest.importorskip("matplotlib")
 
 import microimpact.paper as paper  # noqa: E402
-from microimpact.paper import _driver, _worker  # noqa: E402
+from microimpact.paper import _draw, _driver, _worker  # noqa: E402
 from microimpact.paper._setup import FIGURES  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -43,10 +43,10 @@ def test_a_worker_draws_the_same_bytes_as_this_process_with_its_rcparams():
     import matplotlib as mpl
 
     tables = _tables(["fig06", "fig09"])
-    here = {stem: _driver.draw_figure(stem, table, FORMATS) for stem, table in tables}
+    here = {stem: _draw.draw_figure(stem, table, FORMATS) for stem, table in tables}
     with mpl.rc_context({"lines.linewidth": 2.5, "font.family": "serif"}):
         rc = _driver._rc_snapshot()
-        here_rc = {stem: _driver.draw_figure(stem, table, FORMATS) for stem, table in tables}
+        here_rc = {stem: _draw.draw_figure(stem, table, FORMATS) for stem, table in tables}
     before = {p.pid for p in multiprocessing.active_children()}
     pool = _worker.Pool(1)
     try:
@@ -151,7 +151,7 @@ def test_a_failing_worker_costs_nothing_but_time(tmp_path, monkeypatch, fault, p
         monkeypatch.setattr(_worker, "draw", faults.dies if fault == "dies-holding-a-job" else faults.answers_then_errs)
     # the worker must get its jobs: this process waits for the worker's feeder to end before drawing
     gate = threading.Event()
-    orig_run, orig_draw = _worker.Feeder._run, _driver.draw_figure
+    orig_run, orig_draw = _worker.Feeder._run, _draw.draw_figure
 
     def run(self):
         try:
@@ -164,7 +164,7 @@ def test_a_failing_worker_costs_nothing_but_time(tmp_path, monkeypatch, fault, p
         return orig_draw(*args, **kws)
 
     monkeypatch.setattr(_worker.Feeder, "_run", run)
-    monkeypatch.setattr(_driver, "draw_figure", draw)
+    monkeypatch.setattr(_draw, "draw_figure", draw)
     paper.reproduce(tmp_path / "out", workers=2, progress=False, formats=["png"])
     monkeypatch.undo()
     a, b = _files(tmp_path / "out"), png_only

@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from microimpact import _history
+from microimpact import dynamics
 from microimpact.core import adhesion, models
 from microimpact.core.models import thornton_ning_1998_adhesive_plastic as ap
 from microimpact.core.models import thornton_ning_1998_elastic_adhesive as tn
@@ -158,7 +158,7 @@ def test_energy_never_created(V, g, pexp, r, Eexp):
 
 def _sticks_in_the_ode(V, E, R, m, p_y, G):
     """True where Newton's equation with the force law does not separate (the project's ODE run)."""
-    return not _history.leaves(models.get(ap.NAME), (G,), V, E, R, m, p_y)
+    return not dynamics._leaves(models.get(ap.NAME), (G,), V, E, R, m, p_y)
 
 
 @pytest.mark.parametrize(

@@ -108,7 +108,7 @@ from __future__ import annotations
 import math
 
 from ._jit import jitable
-from .tangential import (
+from .tangential_stages import (
     REGIME_MICROSLIP,
     REGIME_SLIDING,
     REGIME_STICKING,

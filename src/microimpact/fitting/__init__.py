@@ -195,8 +195,8 @@ __all__ = [
     "rank_models",
 ]
 
-#: Plot functions that moved to :mod:`microimpact.figures.fit` (plots live in figures): still read
-#: here for one release, with a DeprecationWarning naming their home.
+#: Plot functions that moved to :mod:`microimpact.figures.fit` (plots live in figures, above
+#: fitting): still read here for one release, with a DeprecationWarning naming their home.
 _MOVED_PLOTS = ("plot_fit", "plot_models", "plot_residuals")
 
 
@@ -218,7 +218,6 @@ def __getattr__(name):
         )
         return getattr(_io, name)
     if name in _MOVED_PLOTS:
-        import importlib
         import warnings
 
         warnings.warn(
@@ -226,6 +225,9 @@ def __getattr__(name):
             DeprecationWarning,
             stacklevel=2,
         )
-        # by name, not an import statement: figures comes after fitting in the application order
-        return getattr(importlib.import_module("microimpact.figures.fit"), name)
+        # The one import from fitting up to figures, a deprecation shim (DEPRECATION_SHIMS of
+        # tests/test_architecture.py): it goes with these aliases.
+        from ..figures import fit as plots
+
+        return getattr(plots, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

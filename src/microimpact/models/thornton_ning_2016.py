@@ -17,8 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import _history
-from .._face import array_function, outcome_arrays, outcome_function
+from .._face import array_function, free_flight, outcome_arrays, outcome_function, scalar_pair, stage_of, time_grid
 from .._validation import check_nonnegative, check_pair, check_positive, check_velocity
 from ..core import hertz
 from ..core import special as _special
@@ -862,9 +861,7 @@ def impact_history(
     >>> round(float(h["approach_velocity"][-1]), 2)  # -V_r; seed: 36.31
     -36.24
     """
-    V, E, R, m, p_y = _history.scalar_pair(
-        velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure
-    )
+    V, E, R, m, p_y = scalar_pair(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)
     outcome = impact_outcome(V, E, R, m, p_y)
     out = {k: float(np.asarray(v)) for k, v in outcome.items()}
     tm = contact_times(V, E, R, m, p_y, outcome=outcome)
@@ -877,9 +874,9 @@ def impact_history(
     alpha_m = float(elastic_max_approach(V, E, R, m))
     T_m = hertz.rise_time(alpha_m, V)  # time of a purely elastic impact to reach alpha_m
 
-    t = _history.time_grid(n, times, (t1, t_L), t_c)
-    stage = _history.stage_of(t, t1, t_L, t_c)
-    approach, vel = _history.free_flight(t, V, t_c, a_p, V_r)
+    t = time_grid(n, times, (t1, t_L), t_c)
+    stage = stage_of(t, t1, t_L, t_c)
+    approach, vel = free_flight(t, V, t_c, a_p, V_r)
     force = np.zeros_like(t)
 
     # Stage 1: Hertz loading (eqs. 2, 17, 20).

@@ -2,7 +2,7 @@
 
 The other processes are a :class:`concurrent.futures.ProcessPoolExecutor` (:class:`Pool`). Each
 figure is a job, :func:`draw`: its stem and table in, its image bytes out (the same function the
-caller draws its own figures with, :func:`._driver.draw_figure`: a figure's bytes depend neither on
+caller draws its own figures with, :func:`._draw.draw_figure`: a figure's bytes depend neither on
 the process that draws it nor on the figures drawn before it), with the warnings raised while
 drawing, which the caller raises again. A worker writes no file.
 
@@ -127,7 +127,7 @@ def prepare() -> None:
 
 def draw(stem, table, formats, rc):
     """``(images, warnings, seconds)`` of figure ``stem`` drawn from ``table`` with the caller's ``rc``."""
-    from ._driver import draw_figure
+    from ._draw import draw_figure
 
     t0 = time.perf_counter()
     with warnings.catch_warnings(record=True) as caught:
