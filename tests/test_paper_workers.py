@@ -402,14 +402,12 @@ def test_no_fork_once_numbas_threading_layer_has_started():
     code = """
 import sys
 import numpy as np
-from microimpact.core import arrays
+from microimpact import engine
 from microimpact.core.models import thornton_ning_2016 as seed
 from microimpact.paper import _worker
 before = _worker.can_fork()
-serial, parallel = arrays._numba_loops(seed.restitution_at, "as", 1, False)
-V = np.linspace(1.0, 100.0, 60000)
-out = np.empty((1, V.size))
-parallel(V.size, V, 0.37, (), out)
+V = np.linspace(1.0, 100.0, engine.PARALLEL_MIN)  # the multi-threaded loop
+engine.evaluate(seed.restitution_at, V, 0.37, backend="numba")
 print(before == sys.platform.startswith("linux"), _worker.can_fork())
 """
     out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True).stdout.split()

@@ -28,12 +28,11 @@ from ._validation import (
 from .core import adhesion as _adhesion
 from .core import hertz as _hertz
 from .core import models, quantities
-from .core.arrays import evaluate as _evaluate
-from .core.arrays import on_speeds as _on_speeds
 from .core.constants import LARGE_STRAIN_RATIO
 from .core.models import thornton_ning_2016 as _seed
 from .core.quantities import FLAG_FIELDS, OUTCOME_FIELDS
 from .core.wall import sphere_mass as _sphere_mass
+from .engine import evaluate as _evaluate
 
 if TYPE_CHECKING:  # the history machinery loads only when a history is asked for
     from .dynamics import ImpactHistory
@@ -1208,11 +1207,7 @@ class ContactPair:
                 check_velocity("velocity", V)
             # V_y read from the cached yield point, not through the property (0.1 us of a 0.8 us call)
             return np.float64(_seed.restitution_at(V, self._yield_point[2]))
-        # the pair's own V_y was checked with the pair: only the speeds are (a fixed cost per call), in
-        # the usual small call by the loop's ufunc itself (on_speeds), else here
-        e = _on_speeds(_seed.restitution_at, velocity, self._yield_point[2])
-        if e is not None:
-            return e
+        # the pair's own V_y was checked with the pair: only the speeds are (a fixed cost per call)
         V = check_velocity("velocity", velocity)
         return _scalar_or_array(_evaluate(_seed.restitution_at, V, self._yield_point[2])[0])
 
