@@ -21,6 +21,9 @@ damaged index, a full disk), the loop is compiled in memory from the same source
 :class:`~microimpact.engine.cache.CacheWarning` naming the folder; a damaged entry is deleted, so
 the next process writes it anew. An error that compiling in memory raises too is not the cache's
 doing and is raised.
+
+Where ``NUMBA_CACHE_DIR`` is set, numba keeps its entries in that folder instead of
+``kernels/__pycache__``: the user's choice of numba's folder, under numba's own rules.
 """
 
 from __future__ import annotations
@@ -135,6 +138,8 @@ class _Family:
 
         pycache = self.folder / "__pycache__"
         why, unsafe = _cache.folder_trouble(pycache, create=True)
+        if not why and not os.access(pycache, os.W_OK):  # numba would look for another folder
+            why = f"{pycache} is read-only"
         if not why:
             why, unsafe = self._entry_trouble(pycache)
         if why:
