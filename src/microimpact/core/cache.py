@@ -10,7 +10,7 @@ from __future__ import annotations
 import hashlib
 import tempfile
 
-__all__ = ["mkstemp", "mkdtemp", "sha256"]
+__all__: list = []  # not public: the three names below are for microimpact.io alone
 
 
 def mkstemp(folder, prefix: str = "", suffix: str = "") -> tuple[int, str]:
