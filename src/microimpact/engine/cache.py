@@ -145,7 +145,7 @@ def trouble(st, *, folder: bool = False) -> str:
         if not stat.S_ISDIR(st.st_mode):
             return "is no folder"
     elif not stat.S_ISREG(st.st_mode):
-        return "is no regular file (a link, FIFO or device)"
+        return f"is no regular file ({_kind(st.st_mode)})"
     user = current_user()
     if user is not None and st.st_uid != user:
         return f"belongs to another user (uid {st.st_uid})"
@@ -154,6 +154,21 @@ def trouble(st, *, folder: bool = False) -> str:
     if not folder and st.st_size > MAX_BYTES:
         return f"is larger than any entry ({st.st_size} bytes)"
     return ""
+
+
+def _kind(mode) -> str:
+    """What a file of mode ``mode`` is, when it is no regular file."""
+    for test, name in (
+        (stat.S_ISLNK, "a link"),
+        (stat.S_ISFIFO, "a FIFO"),
+        (stat.S_ISDIR, "a folder"),
+        (stat.S_ISSOCK, "a socket"),
+        (stat.S_ISCHR, "a device"),
+        (stat.S_ISBLK, "a device"),
+    ):
+        if test(mode):
+            return name
+    return "of another kind"  # pragma: no cover
 
 
 def folder_trouble(path, *, create: bool = False) -> tuple[str, bool]:
