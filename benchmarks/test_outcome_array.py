@@ -28,7 +28,7 @@ def test_outcome(timed, size, pair):
 
 
 def _run_1e3(pair):
-    from microimpact.core import arrays
+    from microimpact import engine as arrays
     from microimpact.core.models import thornton_ning_2016 as seed
 
     V = _speeds(1000)
@@ -43,7 +43,7 @@ def test_threads_at_1e3(record, pair):
     """The compiled loop over 1e3 speeds as the library runs it ("default"), with the serial loop
     forced and with the multi-threaded loop forced: timed round by round, interleaved (each round
     sets the thresholds its variant needs), so that the three bests are taken under the same load."""
-    from microimpact.core import arrays
+    from microimpact import engine as arrays
 
     variants = {
         "default": (arrays.PARALLEL_MIN, arrays.PARALLEL_WORK),

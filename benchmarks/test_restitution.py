@@ -41,7 +41,7 @@ def test_pair_restitution_into_out(timed, speeds, reference, pair):
 
 def test_compiled_loop_into_out(timed, speeds, reference, pair):
     """The compiled loop alone (no input checks) into a preallocated array: the physics' own cost."""
-    from microimpact.core import arrays
+    from microimpact import engine as arrays
     from microimpact.core.models import thornton_ning_2016 as seed
 
     buf = np.empty_like(speeds)

@@ -32,7 +32,8 @@ GOALS = {
     "microimpact export (one diameter, tables)": ("import numpy", 2.0),
     "microimpact sweep (50 speeds, .nc)": ("import xarray", 1.5),
     "microimpact compare (24 speeds)": ("import xarray", 1.5),
-    "first compiled call, 1e6 speeds (whole process)": ("import numba", 1.3),
+    # numba loads a cached loop only after building its target context (every implementation it has)
+    "first compiled call, 1e6 speeds (whole process)": ("import numba", 2.5),
 }
 
 

@@ -1,6 +1,7 @@
 """The layering of the package, as docs/architecture.rst states it, enforced on every import.
 
-Layers, bottom up: ``core`` (the physics, one scalar source per formula and model) -> ``base``
+Layers, bottom up: ``core`` (the physics, one scalar source per formula and model) -> ``engine``
+(how a core function runs over an array: the compiled loops and the on-disk cache) -> ``base``
 (validation, optional extras, materials) -> ``object`` (the array functions and the objects users
 hold) -> ``applications`` -> ``cli``. A module imports only from its own layer or below (imports
 inside functions count too); no module imports a private name (``_x``) of another module; the core
@@ -23,6 +24,7 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "microimpact"
 
 LAYERS = {
     "core": 0,
+    "engine": 0.5,  # between the core and the base: runs the core's functions, knows nothing above
     "_validation": 1,
     "_optional": 1,
     "materials": 1,
@@ -36,7 +38,7 @@ LAYERS = {
     "models": 2,
     "pair": 2,
     "cache": 2,
-    "_calibration_cache": 2,  # the calibrations' files on disk: imports only the core (core.cache)
+    "_calibration_cache": 2,  # the calibrations' files on disk: imports only the engine's cache
     "cli": 4,
     "__main__": 4,
 }
@@ -107,10 +109,19 @@ def _report(title, violations):
     assert not violations, f"{title} ({len(violations)}):\n" + "\n".join(violations)
 
 
+#: Imports allowed to go upward, and why (``(importer, module reached)``).
+UPWARD_ALLOWED = {
+    # the deprecated home of the array engine: its module __getattr__ hands out the engine's names
+    ("microimpact.core.arrays", "microimpact.engine"),
+}
+
+
 def test_no_import_goes_upward():
     violations = []
     for importer, target, name, line in IMPORTS:
         full = _full(target, name)
+        if (importer, full) in UPWARD_ALLOWED:
+            continue
         if _layer(full) > _layer(importer):
             violations.append(
                 f"{importer} (layer {_layer(importer)}) imports {full} (layer {_layer(full)}) at line {line}"
@@ -335,7 +346,9 @@ def test_core_imports_only_the_core():
     violations = [
         f"{importer} imports {target} at line {line}"
         for importer, target, name, line in IMPORTS
-        if importer.startswith("microimpact.core") and not target.startswith("microimpact.core")
+        if importer.startswith("microimpact.core")
+        and not target.startswith("microimpact.core")
+        and (importer, _full(target, name)) not in UPWARD_ALLOWED
     ]
     _report("core modules importing outside the core", violations)
 

@@ -20,6 +20,7 @@ import microimpact as mi
 from microimpact import _calibration_cache as cc
 from microimpact import calibrate as cal_mod
 from microimpact.calibrate import CalibrationWarning, calibrate
+from microimpact.engine import CacheWarning
 
 
 @pytest.fixture
@@ -169,8 +170,9 @@ def test_unwritable_or_unreadable_cache_computes(tmp_path, pair, monkeypatch):
         {},
     )
     (folder / "calibrations" / f"{name}.json").mkdir(parents=True)
-    _same(a, calibrate(pair, "linear_spring_dashpot", 50.0))
-    assert len(calls) == 3
+    with pytest.warns(CacheWarning, match=r"is no regular file \(a folder\)") as said:
+        _same(a, calibrate(pair, "linear_spring_dashpot", 50.0))
+    assert len(said) == 1 and len(calls) == 3
 
 
 def test_options_that_cannot_be_named_are_not_cached(cache_in):

@@ -18,7 +18,7 @@ from scipy import optimize
 import microimpact as mi
 from microimpact import fitting
 from microimpact.adhesion import adhesive_restitution, sticking_velocity
-from microimpact.core.arrays import evaluate
+from microimpact.engine import evaluate
 from microimpact.fitting import LOSSES, FitWarning, _models, _solver, fit_restitution
 
 SILICON = mi.ContactPair.paper_case("silicon")

@@ -143,9 +143,10 @@ def test_the_fit_compiles_by_the_declared_cost_class_not_by_a_clock():
 
     code = """
 import sys
-from microimpact.core import arrays, models
+from microimpact import engine
+from microimpact.core import models
 from microimpact.fitting import _models as fitting
-limit = arrays.PYTHON_BUDGET / (models.COST_CLASSES["cheap"] * fitting._FIT_CALLS)
+limit = engine.PYTHON_BUDGET / (models.COST_CLASSES["cheap"] * fitting._FIT_CALLS)
 seed, liggghts = models.get(models.DEFAULT), models.get("liggghts_thornton_ning")
 fitting._compile_if_costly(seed, int(limit), outcome=False)
 fitting._compile_if_costly(liggghts, 31, outcome=False)

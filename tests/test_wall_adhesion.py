@@ -24,10 +24,10 @@ from microimpact.adhesion import ADHESION_RULES, WHOLE_LAW, whole_law_correction
 from microimpact.cexport import generate_c_source, write_c_source
 from microimpact.core import adhesion as core_adh
 from microimpact.core import wall as wall_core
-from microimpact.core.arrays import evaluate
 from microimpact.core.models import thornton_ning_1998_adhesive_plastic as ap
 from microimpact.core.models import thornton_ning_2016 as seed
 from microimpact.core.quantities import OUTCOME_FIELDS
+from microimpact.engine import evaluate
 from microimpact.wall import wall_interaction
 
 PROFILE = dict(derandomize=True, deadline=None)

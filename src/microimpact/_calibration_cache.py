@@ -3,12 +3,12 @@
 A calibration costs a root search or a least-squares fit over integrated impacts (``compare``
 calibrates four DEM laws: about a second, and the import of :mod:`scipy.optimize`), and its result
 depends only on its inputs and on the code that computes it. It is kept in the cache folder of the
-compiled loops and tables (:func:`microimpact.core.cache.cache_dir`, ``calibrations/``), named by
+compiled loops and tables (:func:`microimpact.engine.cache.cache_dir`, ``calibrations/``), named by
 the same rule as they are: a SHA-256 of
 
 * the inputs: the model's name, the pair's four effective values, the calibration speeds, the
   targets ``e`` and contact time at them (their float64 bytes) and the options;
-* the sources that compute it: the core's (:func:`microimpact.core.cache.core_hash`, every model's
+* the sources that compute it: the core's (:func:`microimpact.engine.cache.core_hash`, every model's
   physics), the faces' (``microimpact/models/*.py``: each law's inverse, the generic least
   squares), :mod:`microimpact.calibrate` (the driver and its monotonicity check), this module, and
   the files of a model added from outside the package;
@@ -23,6 +23,13 @@ is checked), of another layout or of the wrong sizes is computed again, and a fo
 be written is left alone; nothing here raises. Entries are written atomically (a temporary file
 beside them, then renamed), so processes writing the same entry at once leave one whole file.
 Set ``MICROIMPACT_CACHE_DIR`` to move the folder; delete it to clear the cache.
+
+An entry is read only when no one but the current user can have written it (the rule of
+:func:`microimpact.engine.cache.trouble`: the folders and the file the user's own and writable by
+no one else, a regular file no larger than :data:`MAX_BYTES`); else it is passed over with one
+:class:`~microimpact.engine.cache.CacheWarning` and the calibration computed. The warning text an
+entry holds is shown only without control characters (:func:`printable`): a file is no place for
+a terminal's escape sequences.
 """
 
 from __future__ import annotations
@@ -35,15 +42,17 @@ from pathlib import Path
 
 import numpy as np
 
-from .core import cache as _cache
+from .engine import cache as _cache
 
-__all__ = ["key", "load", "store", "owned_files"]
+__all__ = ["key", "load", "store", "owned_files", "printable", "MAX_BYTES"]
 
 #: Bumped when the layout of an entry changes.
 _FORMAT = "microimpact-calibration-1"
 _HERE = Path(__file__).resolve().parent
 #: The option values a key can name exactly; a calibration with any other is not cached.
 _PLAIN = (bool, int, float, str, type(None))
+#: Largest calibration entry read [bytes] (a calibration at 10^4 speeds is about 0.5 MB).
+MAX_BYTES = 1 << 24
 
 
 @functools.lru_cache(maxsize=1)
@@ -124,8 +133,13 @@ def load(name, n_params, n_speeds):
     corrupt or not of ``n_params`` parameters and ``n_speeds`` speeds)."""
     if name is None:
         return None
+    path = _path(name)
+    if not _cache.usable_folder(path.parent):
+        return None
+    data = _cache.read_entry(path, MAX_BYTES)
+    if data is None:
+        return None
     try:
-        data = _path(name).read_bytes()
         digest, _, body = data.partition(b"\n")
         if hashlib.sha256(body).hexdigest().encode() != digest:
             return None
@@ -140,7 +154,16 @@ def load(name, n_params, n_speeds):
             return None
     except (OSError, ValueError, TypeError, KeyError, AttributeError):
         return None
-    return params, e, t, warning
+    return params, e, t, None if warning is None else printable(warning)
+
+
+def printable(text: str) -> str:
+    """``text`` without control and format characters (Unicode categories ``Cc`` and ``Cf``: escape
+    sequences, carriage returns, bells, direction overrides), line breaks and tabs aside: what a
+    stored warning may show."""
+    import unicodedata
+
+    return "".join(c for c in text if c in "\n\t" or unicodedata.category(c) not in ("Cc", "Cf"))
 
 
 def store(name, params, restitution, contact_time, warning) -> bool:
@@ -156,8 +179,11 @@ def store(name, params, restitution, contact_time, warning) -> bool:
         "warning": warning,
     }
     body = json.dumps(entry).encode()
+    path = _path(name)
     try:
-        _cache.write_atomic(_path(name), hashlib.sha256(body).hexdigest().encode() + b"\n" + body)
+        if not _cache.usable_folder(path.parent, create=True):
+            return False
+        _cache.write_atomic(path, hashlib.sha256(body).hexdigest().encode() + b"\n" + body)
     except OSError:
         return False
     return True

@@ -2,7 +2,7 @@
 
 :func:`array_function` turns a scalar ``@jitable`` core function into the public array function
 of :mod:`microimpact.contact` (and the like): the inputs checked (each ``ValueError`` names the
-parameter and its value), broadcast and handed to :func:`microimpact.core.arrays.evaluate`, and a
+parameter and its value), broadcast and handed to :func:`microimpact.engine.evaluate`, and a
 numpydoc docstring whose parameters and return value come from
 :data:`microimpact.core.quantities.QUANTITIES` (description and SI unit), so that a wrapper
 repeats neither the formula nor the units. The function is generated as source with the real
@@ -22,8 +22,8 @@ import textwrap
 import numpy as np
 
 from ._validation import check_nonnegative, check_pair, check_positive, check_velocity
-from .core.arrays import evaluate
 from .core.quantities import OUTCOME_FIELDS, QUANTITIES
+from .engine import evaluate
 
 __all__ = [
     "array_function",

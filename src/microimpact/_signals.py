@@ -13,8 +13,6 @@ and checks for a pending interrupt before it renames anything into place) and
   a watchdog: if the command has not ended :data:`GRACE` seconds later (a deadlock in a library's
   lock, a blocking call), the registered temporary files are removed and the process exits with
   ``128 + signal``. A second signal ends it at once the same way.
-  Inside a section of :mod:`microimpact.core._defer` (compiling a loop) the signal is only
-  recorded, and raised when the section ends.
 * :func:`restore` -- the previous handlers back, the watchdog disarmed.
 
 A signal the process was started with ignored stays ignored in every stage, as Python itself
@@ -28,8 +26,6 @@ from __future__ import annotations
 import os
 import signal
 import sys
-
-from .core import _defer
 
 try:  # already imported by the interpreter's start in most programs; cheap
     import _thread
@@ -126,12 +122,6 @@ def late() -> bool:
     return _state["committed"] and _state["pending"] is not None
 
 
-def _leave() -> None:
-    """A deferred section ended (:mod:`microimpact.core._defer`): raise a signal it held."""
-    if not late():
-        check()
-
-
 def pending():
     """The signal number received during the command and not yet reported, or None."""
     return _state["pending"]
@@ -169,8 +159,6 @@ def _raise(signum, frame):
     timer.start()
     _state["timer"] = timer
     if _state["committed"]:  # an output is in place, complete: see committed() and late()
-        return
-    if _defer.active():  # compiling a loop: raised when the section ends (core._defer), or the watchdog ends it
         return
     raise Interrupted(signum)
 
@@ -219,7 +207,6 @@ def install() -> None:
         return
     _state["pending"] = None
     _state["committed"] = False
-    _defer.on_leave = _leave
     if sys.unraisablehook is not _unraisable:
         _state["hook"] = sys.unraisablehook
         sys.unraisablehook = _unraisable
@@ -252,7 +239,6 @@ def restore(exiting: bool = False) -> None:
     _state["old"] = {}
     _state["pending"] = None
     _state["committed"] = False
-    _defer.on_leave = None
     if sys.unraisablehook is _unraisable:
         sys.unraisablehook = _silent if exiting else (_state["hook"] or sys.__unraisablehook__)
         _state["hook"] = None

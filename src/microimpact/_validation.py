@@ -21,8 +21,6 @@ import sys
 
 import numpy as np
 
-from .core.arrays import nonnegative_finite
-
 __all__ = [
     "check_number",
     "check_positive",
@@ -33,6 +31,22 @@ __all__ = [
     "check_dem_words",
     "check_dem_lines",
 ]
+
+#: The bits of float64 ``+inf`` as an unsigned integer.
+_INF_BITS = 0x7FF0000000000000
+_U64 = np.dtype(np.uint64)
+
+
+def nonnegative_finite(arr: np.ndarray) -> bool:
+    """True when every element of the float64 ``arr`` lies in ``[+0, inf)``, in one read-only pass.
+
+    IEEE 754: read as unsigned integers, the bit patterns of exactly those numbers (sign bit clear,
+    exponent not all ones) lie below that of ``+inf``; a negative number (sign bit set), ``inf`` and
+    every NaN lie at or above it. One integer maximum instead of a float minimum and maximum.
+    ``-0.0`` reads as False: callers check again element by element. ``arr`` is not empty.
+    """
+    bits = arr.view(_U64)
+    return bits.item(bits.argmax()) < _INF_BITS
 
 
 def _first_bad(arr: np.ndarray, bad: np.ndarray):

@@ -19,8 +19,8 @@ import numpy as np
 from ._validation import check_nonnegative, check_positive
 from .core import adhesion as _core
 from .core.adhesion import STICKING_CONSTANT  # noqa: F401  (its old home; the core's is the one)
-from .core.arrays import evaluate
 from .core.models import Parameter, declare
+from .engine import evaluate
 
 __all__ = [
     "work_of_adhesion",
@@ -333,7 +333,7 @@ def whole_law_table(*, t_min=-1.0, t_max=3.0, n_t=161, y_max=10.0, n_u=81) -> Wh
 
     Building evaluates :func:`microimpact.core.adhesion.whole_law_correction` at every node
     (``n_t x n_u`` impacts of the whole law, in closed form; compiled, well under a second);
-    the table is kept in the cache folder (:mod:`microimpact.core.cache`), named by its grid and
+    the table is kept in the cache folder (:mod:`microimpact.engine.cache`), named by its grid and
     a hash of the sources that compute it.
 
     The default grid (``V/V_y`` from 0.1 to 1000, ``V_s/V_y`` from 0 to 10, 161 x 81 nodes) against
@@ -462,12 +462,14 @@ def whole_law_restitution(velocity, yield_velocity, sticking_velocity):
 
 @functools.lru_cache(maxsize=4)
 def _whole_law_table(t_min, t_max, n_t, y_max, n_u):
-    from .core import cache
+    import hashlib
+
+    from .engine import cache
 
     t = np.linspace(t_min, t_max, n_t)
     t[int(round(-t_min * (n_t - 1) / (t_max - t_min)))] = 0.0  # the seed's yield, exactly
     u = np.linspace(0.0, y_max**0.6, n_u)
-    h = cache.sha256(cache.core_hash().encode())
+    h = hashlib.sha256(cache.core_hash().encode())
     with open(__file__, "rb") as fh:
         h.update(fh.read())
     h.update(repr((t_min, t_max, n_t, y_max, n_u)).encode())

@@ -31,7 +31,7 @@ import numpy as np
 
 from . import calibrate as _calibrate
 from . import models as _models
-from ._optional import require, without_dask_probe
+from ._optional import require
 from ._validation import check_velocity
 from .core import quantities
 from .pair import ContactPair, LargeStrainWarning
@@ -258,8 +258,7 @@ def compare_models(pair=None, velocity=None, models=None, params=None, *, refere
         "reference_velocity": ref if calibrated else math.nan,
         "calibration": note,
     }
-    with without_dask_probe():  # numpy data only: xarray need not import dask.array to know (0.4 s)
-        return xr.Dataset(variables, coords=coords, attrs=attrs)
+    return xr.Dataset(variables, coords=coords, attrs=attrs)
 
 
 def dem_input_lines(ds, pair=None, params=None) -> dict:

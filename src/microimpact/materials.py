@@ -387,8 +387,8 @@ def sphere_mass(radius, density):
     """
     radius = check_positive("radius", radius)
     density = check_positive("density", density)
-    from .core.arrays import evaluate
     from .core.wall import sphere_mass as _mass
+    from .engine import evaluate
 
     return evaluate(_mass, radius, density)[0]
 

@@ -38,10 +38,10 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from ._validation import check_nonnegative, check_poisson, check_positive
-from .core import cache, hertz
+from .core import hertz
 from .core import tangential as tg
 from .core import tangential_laws as tl
-from .core.arrays import evaluate
+from .engine import cache, evaluate
 from .impact import elastic_max_approach, restitution_coefficient, yield_velocity
 
 __all__ = [
@@ -256,7 +256,9 @@ def _table(kappa, dpsi, psi_max, n_x, x_min, steps, law):
 
 def _table_key(*args) -> str:
     """Name of a table on disk: its arguments, the core's sources and this module's (what computes it)."""
-    h = cache.sha256(cache.core_hash().encode())
+    import hashlib
+
+    h = hashlib.sha256(cache.core_hash().encode())
     with open(__file__, "rb") as fh:
         h.update(fh.read())
     h.update(repr(tuple(float(a) for a in args)).encode())
@@ -281,7 +283,7 @@ def universal_table(kappa, *, dpsi=0.025, psi_max=None, n_x=31, x_min=1e-3, step
 
     Building integrates ``n_psi x n_x`` impacts (about 10^4, compiled: 3-4 s in a new process with
     the compiled loop cached on disk), once: the table is kept in the cache folder beside the compiled
-    loops (:mod:`microimpact.core.cache`; named by its arguments and a hash of the sources that compute
+    loops (:mod:`microimpact.engine.cache`; named by its arguments and a hash of the sources that compute
     it), so later processes read it (a few ms). Where the cache cannot be read or written it is built
     again, as before. Its error against direct integration is
     below ``3e-3`` of ``mu J_n`` (largest 2.96e-3, mean 6e-5, over random ``psi``, ``x`` and

@@ -25,8 +25,8 @@ from ._validation import TINY_NORMAL, check_nonnegative, check_pair_scales, chec
 from .adhesion import ADDITIVE_RULE
 from .core import adhesion as _adh
 from .core import models as _models
-from .core.arrays import evaluate
 from .core.models import thornton_ning_2016 as _seed
+from .engine import evaluate
 
 __all__ = ["ADHESION_LAWS", "FULL_LAW", "capture_velocities", "parting_diameter", "stick_map"]
 

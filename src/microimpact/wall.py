@@ -59,8 +59,8 @@ import numpy as np
 from ._validation import check_nonnegative, check_positive
 from .adhesion import check_adhesion_rule, whole_law_correction
 from .core import wall as _wall
-from .core.arrays import evaluate
 from .core.tangential_laws import ALL_LAWS as LAWS
+from .engine import evaluate
 from .io import check_memory
 from .materials import DEFAULT_K, Material, get_material
 from .materials import effective_modulus as _effective_modulus

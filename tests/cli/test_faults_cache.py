@@ -1,22 +1,22 @@
-"""Fault corpus, part 4 (issue 24): the compiled-kernel cache never breaks a computation.
+"""Fault corpus, part 4: the compiled-loop cache never breaks a computation.
 
-Each case ran an array computation through the compiled loops (``impact 1:120:100000``, or a cheap
-loop that compiles in a second) in a fresh process with the cache in trouble; on the code before, each failed: a read-only cache with a warm
-cache made numba raise ``RuntimeError: cannot cache function``, a truncated index gave a
-permanent ``UnpicklingError``/``EOFError`` naming no folder, a full file system ``No space left
-on device`` naming nothing. Now the numbers come out the same (checked against a run with a
-healthy cache), with one warning naming the folder, and a corrupt entry is rebuilt.
+Each case runs an array computation through the compiled loops (``impact 1:120:100000``, or a cheap
+loop that compiles in a second) in a fresh process with the cache in trouble: read-only, full, a
+damaged numba index, or files that another user could have written (a folder writable by others, an
+entry of another owner, a FIFO where an entry should be). Each time the numbers come out the same
+(checked against a run with a healthy cache), with one :class:`~microimpact.engine.CacheWarning`
+naming the folder; a damaged entry is rebuilt by the next process.
 
-Both routes of the compiled loops are tried: ``native`` (the machine code core._native keeps, what
-a new process runs) and ``numba`` (numba's own loops and cache: calls the kept code cannot take, a
-cache from an older version).
-
-Running as root, file modes do not make a folder read-only, so the read-only and full cases make
-numba's writability probe and writes fail the way the kernel reports them (EROFS, ENOSPC).
+Running as root, file modes do not make a folder read-only: that case runs its process without root's
+override of file modes (``capsh``; skipped where that cannot be done). Another user's file is made
+with ``os.chown`` (as root; skipped otherwise).
 """
 
 from __future__ import annotations
 
+import os
+import shutil
+import stat
 import subprocess
 import sys
 
@@ -26,33 +26,23 @@ from .test_faults import _env
 
 pytest.importorskip("numba")
 
+#: A user id no file of this machine belongs to (the "other user" of the cases below).
+OTHER_UID = 12345
+
 DRIVER = r"""
 import errno, os, sys
-import numba.core.caching as c
-import microimpact.core.arrays as a
-import microimpact.core.cache as k
-from microimpact.core import _native
+from microimpact.engine import loops
 
-if os.environ["ROUTE"] == "numba":  # numba's own loops and cache, not the machine code core._native keeps
-    _native.entry_path = lambda *args: None
 mode = sys.argv[1]
-def fail(code, text):
-    def f(self, *args, **kw):
-        raise OSError(code, text, str(getattr(self, "_index_path", "") or self.get_cache_path()))
-    return f
-if mode == "read-only":  # numba's probe of every cache folder fails; our files cannot be written
-    c._CacheLocator.ensure_cache_path = fail(errno.EROFS, "Read-only file system")
-    k.write_atomic = lambda path, data: (_ for _ in ()).throw(OSError(errno.EROFS, "Read-only file system", str(path)))
-elif mode == "full-native":  # the kept machine code cannot be written
-    k.write_atomic = lambda path, data: (_ for _ in ()).throw(OSError(errno.ENOSPC, "No space left on device", str(path)))
-elif mode == "full-kernels":  # the loop file cannot be written
-    a._write_atomic = lambda path, text: (_ for _ in ()).throw(OSError(errno.ENOSPC, "No space left on device", str(path)))
-elif mode == "full-numba":  # the loop file is there, numba's entry cannot be saved
-    c.IndexDataCacheFile._save_index = fail(errno.ENOSPC, "No space left on device")
+if mode == "full-kernels":  # the loop file cannot be written
+    def full(path, text):
+        raise OSError(errno.ENOSPC, "No space left on device", str(path))
+    loops.write_atomic = full
 if sys.argv[2:] == ["api"]:  # a cheap loop (compiles in a second): sphere masses of 5000 radii
     import numpy as np
+    from microimpact.engine import evaluate
     from microimpact.core.wall import sphere_mass
-    out = a.evaluate(sphere_mass, np.linspace(1e-6, 1e-5, 5000), np.array(1350.0), backend="numba")
+    out = evaluate(sphere_mass, np.linspace(1e-6, 1e-5, 5000), np.array(1350.0), backend="numba")
     print(out.tobytes().hex()[:64], float(out.sum()).hex())
     raise SystemExit(0)
 from microimpact.cli import main
@@ -61,18 +51,19 @@ raise SystemExit(main(sys.argv[2:]))
 ARGV = ["api"]
 
 
-def _run(mode, cache, argv=ARGV, route="numba"):
+def _run(mode, cache, argv=ARGV, prefix=()):
     return subprocess.run(
-        [sys.executable, "-c", DRIVER, mode, *argv],
+        [*prefix, sys.executable, "-c", DRIVER, mode, *argv],
         capture_output=True,
         text=True,
-        env=_env(MICROIMPACT_CACHE_DIR=str(cache), MICROIMPACT_BACKEND="numba", ROUTE=route),
+        env=_env(MICROIMPACT_CACHE_DIR=str(cache), MICROIMPACT_BACKEND="numba"),
         timeout=600,
     )
 
 
 def _warnings(err):
-    return [ln for ln in err.splitlines() if "kernel cache " in ln]
+    """The cache's warnings: as Python shows them, or as the command does (``warning: ...``)."""
+    return [ln for ln in err.splitlines() if "CacheWarning: cache " in ln or ln.startswith("warning: cache ")]
 
 
 @pytest.fixture(scope="module")
@@ -80,78 +71,118 @@ def healthy(tmp_path_factory):
     cache = tmp_path_factory.mktemp("cache")
     proc = _run("healthy", cache)
     assert proc.returncode == 0 and _warnings(proc.stderr) == [], proc.stderr
+    assert list(cache.rglob("*.nbi"))  # numba's index: the loop was cached
     return cache, proc.stdout
 
 
-@pytest.mark.parametrize("route", ["native", "numba"])
-def test_a_read_only_warm_cache_under_the_impact_command(tmp_path, route):
-    """``native``: the machine code kept by core._native (what a new process runs); ``numba``:
-    numba's own loops and cache (calls the kept code cannot take, a cache of an older version)."""
+def _copy(warm, tmp_path):
     cache = tmp_path / "cache"
-    argv = ["impact", "1:120:100000"]  # 10^5 impacts: the compiled loops
-    want = _run("healthy", cache, argv, route)
-    assert want.returncode == 0 and _warnings(want.stderr) == [], want.stderr
-    proc = _run("read-only", cache, argv, route)
-    assert proc.returncode == 0 and proc.stdout == want.stdout, proc.stderr
-    lines = _warnings(proc.stderr)
-    if route == "native":  # the kept machine code is only read: nothing to write, nothing to say
-        assert lines == [], proc.stderr
-    else:
-        assert len(lines) == 1 and str(cache) in lines[0] and "cannot cache" in lines[0], proc.stderr
+    shutil.copytree(warm, cache)
+    return cache
 
 
-@pytest.mark.parametrize("mode", ["read-only", "full-native"])
-def test_machine_code_that_cannot_be_kept_runs_from_memory(healthy, tmp_path, mode):
-    _, want = healthy  # numba's loops: the same numbers
-    cache = tmp_path / "cache"
-    proc = _run(mode, cache, route="native")
+def _one_warning(proc, want, cache, *words):
     assert proc.returncode == 0 and "Traceback" not in proc.stderr, proc.stderr
-    assert proc.stdout == want
-    lines = _warnings(proc.stderr)
-    assert len(lines) == 1 and str(cache) in lines[0], proc.stderr
-    assert ("Read-only" if mode == "read-only" else "No space left") in lines[0]
-    assert not list(cache.rglob("*.bin"))
-
-
-@pytest.mark.parametrize("mode", ["read-only", "full-kernels", "full-numba"])
-def test_an_unwritable_cache_compiles_in_memory(healthy, tmp_path, mode):
-    warm, want = healthy
-    cache = warm if mode == "read-only" else tmp_path / "cache"  # read-only: with the warm cache
-    proc = _run(mode, cache)
-    assert proc.returncode == 0, proc.stderr
-    assert "Traceback" not in proc.stderr
     assert proc.stdout == want  # the same numbers
     lines = _warnings(proc.stderr)
     assert len(lines) == 1 and str(cache) in lines[0], proc.stderr  # one line, naming the folder
-    assert ("cannot cache" if mode == "read-only" else "No space left") in lines[0]
+    for word in words:
+        assert word in lines[0], lines[0]
 
 
+# ----------------------------------------------------------------------------- cannot be written
+#: Runs a command as root without the capabilities that let root write what its modes refuse.
+NO_OVERRIDE = ("capsh", "--drop=cap_dac_override,cap_dac_read_search", "--", "-c", 'exec "$0" "$@"')
+
+
+def test_a_read_only_warm_cache_under_the_impact_command(tmp_path):
+    """A warm cache its owner cannot write: modes without write permission, and a process that
+    respects them (root, run without its override of file modes)."""
+    if not hasattr(os, "geteuid") or os.geteuid() != 0 or shutil.which("capsh") is None:
+        pytest.skip("needs root and capsh, to run a process that file modes bind")
+    cache = tmp_path / "cache"
+    argv = ["impact", "1:120:100000"]  # 10^5 impacts: the compiled loops
+    want = _run("healthy", cache, argv)
+    assert want.returncode == 0 and _warnings(want.stderr) == [], want.stderr
+    assert list(cache.rglob("*.nbi"))
+    for p in [cache, *cache.rglob("*")]:
+        p.chmod(stat.S_IMODE(p.stat().st_mode) & ~0o222)
+    try:
+        proc = _run("healthy", cache, argv, prefix=NO_OVERRIDE)
+    finally:
+        for p in [cache, *cache.rglob("*")]:
+            p.chmod(stat.S_IMODE(p.stat().st_mode) | 0o200)
+    _one_warning(proc, want.stdout, cache, "read-only")
+
+
+def test_a_loop_file_that_cannot_be_written_compiles_in_memory(healthy, tmp_path):
+    _, want = healthy
+    cache = tmp_path / "cache"
+    proc = _run("full-kernels", cache)
+    _one_warning(proc, want, cache, "No space left")
+
+
+# ----------------------------------------------------------------------------- damaged
 @pytest.mark.parametrize("damage", ["truncate", "garbage", "empty"])
 def test_a_corrupt_index_is_rebuilt(healthy, tmp_path, damage):
-    import shutil
-
     warm, want = healthy
-    cache = tmp_path / "cache"
-    shutil.copytree(warm, cache)
+    cache = _copy(warm, tmp_path)
     indexes = sorted(cache.rglob("*.nbi"))
     assert indexes
     for p in indexes:
         data = p.read_bytes()
         p.write_bytes({"truncate": data[:10], "garbage": b"\x80\x04not a pickle" * 7, "empty": b""}[damage])
     proc = _run("healthy", cache)
-    assert proc.returncode == 0 and proc.stdout == want, proc.stderr
-    lines = _warnings(proc.stderr)
-    assert len(lines) == 1 and "corrupt" in lines[0] and str(cache) in lines[0], proc.stderr
+    _one_warning(proc, want, cache, "corrupt")
     again = _run("healthy", cache)  # healed: the rebuilt entry loads without a word
     assert again.returncode == 0 and again.stdout == want and _warnings(again.stderr) == [], again.stderr
 
 
-def test_cache_info_and_clear_touch_only_the_caches_files(healthy, tmp_path):
-    import shutil
+# ----------------------------------------------------------------------------- whose files
+def test_a_folder_others_can_write_is_not_used(healthy, tmp_path):
+    warm, want = healthy
+    cache = _copy(warm, tmp_path)
+    (cache / "kernels").chmod(0o777)
+    before = {p: p.stat().st_mtime_ns for p in cache.rglob("*") if p.is_file()}
+    proc = _run("healthy", cache)
+    _one_warning(proc, want, cache, "can be written by others", "kernels")
+    assert {p: p.stat().st_mtime_ns for p in cache.rglob("*") if p.is_file()} == before  # nothing written there
 
+
+def test_a_group_writable_cache_folder_is_not_used(healthy, tmp_path):
+    warm, want = healthy
+    cache = _copy(warm, tmp_path)
+    cache.chmod(0o770)
+    proc = _run("healthy", cache)
+    _one_warning(proc, want, cache, "can be written by others")
+
+
+@pytest.mark.parametrize("which", ["index", "loop file"])
+def test_an_entry_of_another_user_is_not_used(healthy, tmp_path, which):
+    if not hasattr(os, "geteuid") or os.geteuid() != 0:
+        pytest.skip("needs root, to give a file to another user")
+    warm, want = healthy
+    cache = _copy(warm, tmp_path)
+    (entry,) = sorted(cache.rglob("*.nbi")) if which == "index" else sorted((cache / "kernels").glob("*.py"))
+    os.chown(entry, OTHER_UID, OTHER_UID)
+    proc = _run("healthy", cache)
+    _one_warning(proc, want, cache, "another user", entry.name)
+
+
+def test_a_fifo_where_an_index_should_be_is_not_used(healthy, tmp_path):
+    warm, want = healthy
+    cache = _copy(warm, tmp_path)
+    (entry,) = sorted(cache.rglob("*.nbi"))
+    entry.unlink()
+    os.mkfifo(entry)
+    proc = _run("healthy", cache)  # no hang on the FIFO: it is never opened
+    _one_warning(proc, want, cache, "no regular file", entry.name)
+
+
+# ----------------------------------------------------------------------------- what is the cache's
+def test_cache_info_and_clear_touch_only_the_caches_files(healthy, tmp_path):
     warm, _ = healthy
-    cache = tmp_path / "cache"
-    shutil.copytree(warm, cache)
+    cache = _copy(warm, tmp_path)
     mine = cache / "kernels" / "notes.py"
     mine.write_text("# a user's file that happens to sit in the folder\n")
     (cache / "kernels" / "__pycache__" / "other.nbi").write_bytes(b"not ours")
@@ -171,7 +202,7 @@ def test_cache_info_and_clear_touch_only_the_caches_files(healthy, tmp_path):
 _TABLES_AND_CALIBRATIONS = r"""
 import numpy as np
 import microimpact as mi
-from microimpact.core import cache
+from microimpact.engine import cache
 cache.store_array("demo_table", "k" * 16, np.linspace(0.0, 1.0, 7))
 with cache.locked(cache.cache_dir() / "tables", "demo_table_" + "k" * 16):
     pass
@@ -182,11 +213,8 @@ mi.compare_models("silicon", [10.0, 50.0], ["hertz_viscoelastic"])  # stores one
 def test_clear_deletes_the_tables_and_calibrations_it_can_prove_it_wrote(healthy, tmp_path):
     """``cache --clear`` also empties tables/ and calibrations/, by what each file proves (its format
     line and checksum), never by its name: a user's file, a look-alike and a damaged entry stay."""
-    import shutil
-
     warm, _ = healthy
-    cache = tmp_path / "cache"
-    shutil.copytree(warm, cache)
+    cache = _copy(warm, tmp_path)
     proc = subprocess.run(
         [sys.executable, "-c", _TABLES_AND_CALIBRATIONS],
         capture_output=True,

@@ -237,40 +237,6 @@ def test_what_an_interrupt_cut_short_is_not_reported(tmp_path):
     assert len(proc.stderr.strip().splitlines()) == 1 and "interrupted" in proc.stderr, proc.stderr
 
 
-_IN_COMPILER = """
-import os, sys
-from microimpact.core import _native, arrays
-from microimpact.cli import main
-
-_native.entry_path = lambda *a: None  # numba's own loops, not the machine code core._native keeps
-heal = arrays._heal_call
-seen = []
-def heal_after_a_signal(dispatcher, *args):
-    os.kill(os.getpid(), SIG)  # arrives as numba starts compiling (or loading from its cache) the loop
-    out = heal(dispatcher, *args)
-    seen.append(bool(dispatcher.signatures))  # the compiler ran to its end
-    return out
-arrays._heal_call = heal_after_a_signal
-rc = main(["impact", "1:100:50"])
-print("compiled" if seen == [True] else f"cut {seen}", flush=True)
-sys.exit(rc)
-"""
-
-
-@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
-def test_a_signal_inside_numbas_compiler_waits_for_it(tmp_path, sig):
-    # an interrupt raised inside numba's compiler leaves llvmlite objects half built: once in 1,210 soak
-    # runs freeing them aborted the process ("free(): double free detected", exit -6), once it printed an
-    # "Exception ignored" line. The compile (or cache load) of a loop now runs to its end, then the
-    # interrupt is raised there: one line, 128 + signal, no table printed
-    driver = _IN_COMPILER.replace("SIG", str(int(sig)), 1)
-    env = _env(MICROIMPACT_BACKEND="numba")
-    proc = subprocess.run([sys.executable, "-c", driver], capture_output=True, text=True, env=env, cwd=tmp_path)
-    assert proc.returncode == 128 + sig, proc.stderr
-    assert len(proc.stderr.strip().splitlines()) == 1 and "interrupted" in proc.stderr, proc.stderr
-    assert proc.stdout.split() == ["compiled"], proc.stdout
-
-
 _AFTER_COMMIT = """
 import os, sys
 from microimpact import _signals

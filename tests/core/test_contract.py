@@ -13,8 +13,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from microimpact.core import models
-from microimpact.core.arrays import evaluate
 from microimpact.core.quantities import OUTCOME_FIELDS
+from microimpact.engine import evaluate
 
 WITH_PARAMETERS = [n for n in models.available() if models.get(n).PARAMETERS]
 values = st.one_of(

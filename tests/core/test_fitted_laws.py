@@ -384,7 +384,7 @@ def test_jackson_green_far_below_its_modulus_range_is_nan_on_both_paths():
     same outcome, NaN where the radius is beyond floats and the law's numbers where it is not."""
     import numpy as np
 
-    from microimpact.core import arrays
+    from microimpact import engine
     from microimpact.core.quantities import OUTCOME_FIELDS
 
     e = OUTCOME_FIELDS.index("restitution")
@@ -392,8 +392,8 @@ def test_jackson_green_far_below_its_modulus_range_is_nan_on_both_paths():
     V = np.array([200.0, 1000.0, 1e4, 1e5])
     for Y in (1e8, 5e7, 1e10):  # E*/S_y = 2, 4 and 0.02 (exp(23 S_y/E) itself beyond floats)
         params = (Y, 0.3, 0.0)
-        py = arrays.evaluate(jg.outcome, V, E, R, m, 1.0, nout=18, params=params, backend="python")
-        nb = arrays.evaluate(jg.outcome, V, E, R, m, 1.0, nout=18, params=params, backend="numba")
+        py = engine.evaluate(jg.outcome, V, E, R, m, 1.0, nout=18, params=params, backend="python")
+        nb = engine.evaluate(jg.outcome, V, E, R, m, 1.0, nout=18, params=params, backend="numba")
         assert np.array_equal(py, nb, equal_nan=True)
         assert np.isnan(py[e, 1]) == (Y == 1e8)  # the restitution at 1000 m/s
     assert math.isnan(fl.jg_contact_radius(1e3, 2e8, 1e-6, 1e8, 0.3))

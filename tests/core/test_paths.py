@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 
 import microimpact as mi
+from microimpact import engine
 from microimpact.cexport import generate_c_source
-from microimpact.core import arrays
 from microimpact.core.models import thornton_ning_2016 as seed
 from microimpact.core.quantities import OUTCOME_FIELDS
 
@@ -70,14 +70,14 @@ def _all_paths(fn, *arrays_, nout, params=None):
     n = arrays_[0].size
     scalar = np.array([fn(*(float(a[i]) for a in arrays_), *(() if params is None else (params,))) for i in range(n)])
     scalar = scalar.reshape(n, nout).T if nout > 1 else scalar.reshape(1, n)
-    py = arrays.evaluate(fn, *arrays_, nout=nout, params=params, backend="python")
-    serial = arrays.evaluate(fn, *arrays_, nout=nout, params=params, backend="numba")  # n < PARALLEL_MIN
-    old = arrays.PARALLEL_MIN
+    py = engine.evaluate(fn, *arrays_, nout=nout, params=params, backend="python")
+    serial = engine.evaluate(fn, *arrays_, nout=nout, params=params, backend="numba")  # n < PARALLEL_MIN
+    old = engine.PARALLEL_MIN
     try:
-        arrays.PARALLEL_MIN = 1
-        parallel = arrays.evaluate(fn, *arrays_, nout=nout, params=params, backend="numba")
+        engine.PARALLEL_MIN = 1
+        parallel = engine.evaluate(fn, *arrays_, nout=nout, params=params, backend="numba")
     finally:
-        arrays.PARALLEL_MIN = old
+        engine.PARALLEL_MIN = old
     return {"scalar": scalar, "python loop": py, "compiled serial": serial, "compiled parallel": parallel}
 
 
@@ -129,7 +129,7 @@ def test_c_export_matches_the_core_on_edge_and_random_cases(tmp_path):
     np.testing.assert_array_equal(c_vy, Vy)  # same operations in the same order: same bits
     speeds = np.concatenate([_edge_speeds(VY) / VY * v for v in (VY,)] + [V])
     vys = np.concatenate([np.full(_edge_speeds(VY).size, VY), Vy])
-    core = arrays.evaluate(seed.restitution_at, speeds, vys)[0]
+    core = engine.evaluate(seed.restitution_at, speeds, vys)[0]
     c_e = np.array([so.microimpact_restitution(a, b) for a, b in zip(speeds, vys)])
     np.testing.assert_array_equal(c_e, core)  # the same operations in the same order
     assert c_e[0] == 1.0 and core[-1] <= 1.0
@@ -217,14 +217,14 @@ def test_small_arrays_stay_in_python_only_while_that_is_cheap():
 import sys, numpy as np, microimpact as mi
 pair = mi.ContactPair.paper_case("silicon")
 V = np.linspace(1.0, 100.0, 1000)
-from microimpact.core import arrays
+from microimpact import engine
 pair.impact(V, warn=False)
-print("numba" in sys.modules or bool(arrays._KERNELS))
+print("numba" in sys.modules or bool(engine._LOOPS))
 a = pair.impact(V[:400], model="hertz_viscoelastic", dissipative_constant=1e-9, warn=False).restitution
-print(bool(arrays._KERNELS))  # compiled: by numba, or its machine code kept by an earlier process (core._native)
+print(bool(engine._LOOPS))  # compiled (or loaded from numba's cache)
 from microimpact.core.models import hertz_viscoelastic as hv
 E, R, m, p = (np.float64(x) for x in pair._args)
-b = arrays.evaluate(hv.outcome, V[:400], E, R, m, p, nout=18, params=(1e-9, 1.0), backend="python")[4]
+b = engine.evaluate(hv.outcome, V[:400], E, R, m, p, nout=18, params=(1e-9, 1.0), backend="python")[4]
 print(bool(np.array_equal(a, b)))
 """
     out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True).stdout.split()
@@ -242,19 +242,19 @@ def test_many_small_calls_go_compiled_once_python_has_cost_enough():
 
     code = """
 import sys, numpy as np
-from microimpact.core import arrays
+from microimpact import engine
 from microimpact.core.models import thornton_ning_2016 as seed
-arrays.PYTHON_BUDGET = float("inf")  # the first call stays in Python, and times one element
+engine.PYTHON_BUDGET = float("inf")  # the first call stays in Python, and times one element
 V = np.linspace(1.0, 100.0, 500)
-first = arrays.evaluate(seed.restitution_at, V, 0.37)
-arrays.PYTHON_BUDGET = 5.5 * arrays._PY_COST[seed.restitution_at] * V.size
-print("numba" in sys.modules or bool(arrays._KERNELS))
+first = engine.evaluate(seed.restitution_at, V, 0.37)
+engine.PYTHON_BUDGET = 5.5 * engine._PY_COST[seed.restitution_at] * V.size
+print("numba" in sys.modules or bool(engine._LOOPS))
 calls = 1
-while not arrays._KERNELS and calls < 10000:
-    assert arrays.evaluate(seed.restitution_at, V, 0.37).tobytes() == first.tobytes()
+while not engine._LOOPS and calls < 10000:
+    assert engine.evaluate(seed.restitution_at, V, 0.37).tobytes() == first.tobytes()
     calls += 1
-print(bool(arrays._KERNELS), calls == 6)
-print(arrays.evaluate(seed.restitution_at, V, 0.37).tobytes() == first.tobytes())
+print(bool(engine._LOOPS), calls == 6)
+print(engine.evaluate(seed.restitution_at, V, 0.37).tobytes() == first.tobytes())
 """
     out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True).stdout.split()
     assert out == ["False", "True", "True", "True"]

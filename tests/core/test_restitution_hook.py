@@ -17,8 +17,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from microimpact import fitting
-from microimpact.core import arrays
+from microimpact import engine, fitting
 from microimpact.core import models as zoo
 from microimpact.core.quantities import OUTCOME_FIELDS
 from microimpact.impact import outcome_arrays, restitution_arrays
@@ -102,15 +101,15 @@ def test_hook_bitwise_equal_on_every_path(name):
     ref = np.array([mod.outcome(*(float(a[i]) for a in (V, E, R, m, p_y)), p)[E_FIELD] for i in range(n)])
     assert _same(scalar, ref).all()
     assert np.isfinite(scalar).sum() > n // 2
-    old = arrays.PARALLEL_MIN
+    old = engine.PARALLEL_MIN
     paths = {}
     for backend in ("python", "numba"):
-        paths[backend] = arrays.evaluate(mod.restitution_only, V, E, R, m, p_y, params=p, backend=backend)[0]
+        paths[backend] = engine.evaluate(mod.restitution_only, V, E, R, m, p_y, params=p, backend=backend)[0]
     try:
-        arrays.PARALLEL_MIN = 1
-        paths["parallel"] = arrays.evaluate(mod.restitution_only, V, E, R, m, p_y, params=p, backend="numba")[0]
+        engine.PARALLEL_MIN = 1
+        paths["parallel"] = engine.evaluate(mod.restitution_only, V, E, R, m, p_y, params=p, backend="numba")[0]
     finally:
-        arrays.PARALLEL_MIN = old
+        engine.PARALLEL_MIN = old
     for path, got in paths.items():
         assert _same(got, scalar).all(), path
     # the generic array function equals the outcome's field (the path fitting takes)

@@ -12,7 +12,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from microimpact.core import arrays
+from microimpact import engine
 from microimpact.core import tangential as tg
 from microimpact.core import tangential_laws as tl
 
@@ -83,14 +83,14 @@ def test_paths_bitwise_equal():
     steps = np.full(n, 60.0)
     args = (code, v0, w0, kap, x, eps, steps)
     scalar = np.array([tl.integrate_law(*(float(a[i]) for a in args)) for i in range(n)]).T
-    py = arrays.evaluate(tl.integrate_law, *args, nout=3, backend="python")
-    serial = arrays.evaluate(tl.integrate_law, *args, nout=3, backend="numba")
-    old = arrays.PARALLEL_MIN
+    py = engine.evaluate(tl.integrate_law, *args, nout=3, backend="python")
+    serial = engine.evaluate(tl.integrate_law, *args, nout=3, backend="numba")
+    old = engine.PARALLEL_MIN
     try:
-        arrays.PARALLEL_MIN = 1
-        parallel = arrays.evaluate(tl.integrate_law, *args, nout=3, backend="numba")
+        engine.PARALLEL_MIN = 1
+        parallel = engine.evaluate(tl.integrate_law, *args, nout=3, backend="numba")
     finally:
-        arrays.PARALLEL_MIN = old
+        engine.PARALLEL_MIN = old
     assert np.array_equal(py, scalar)
     assert np.array_equal(parallel, serial)
     # Compiled against Python: the same bits, since the integer powers of core.tangential's stage
@@ -187,14 +187,14 @@ def test_stronge_paths_bitwise_equal():
     n = 20
     args = (rng.uniform(-8, 8, n), rng.uniform(0.6, 1.2, n), rng.uniform(0.2, 1.0, n), np.full(n, 50.0))
     scalar = np.array([tl.integrate_stronge(*(float(a[i]) for a in args)) for i in range(n)]).T
-    py = arrays.evaluate(tl.integrate_stronge, *args, nout=2, backend="python")
-    serial = arrays.evaluate(tl.integrate_stronge, *args, nout=2, backend="numba")
-    old = arrays.PARALLEL_MIN
+    py = engine.evaluate(tl.integrate_stronge, *args, nout=2, backend="python")
+    serial = engine.evaluate(tl.integrate_stronge, *args, nout=2, backend="numba")
+    old = engine.PARALLEL_MIN
     try:
-        arrays.PARALLEL_MIN = 1
-        parallel = arrays.evaluate(tl.integrate_stronge, *args, nout=2, backend="numba")
+        engine.PARALLEL_MIN = 1
+        parallel = engine.evaluate(tl.integrate_stronge, *args, nout=2, backend="numba")
     finally:
-        arrays.PARALLEL_MIN = old
+        engine.PARALLEL_MIN = old
     assert np.array_equal(py, scalar)
     assert np.array_equal(parallel, serial)
     assert np.array_equal(serial, scalar)
@@ -355,14 +355,14 @@ def test_md_paths_bitwise_equal():
         np.full(n, 60.0),
     )
     scalar = np.array([tl.integrate_law(*(float(a[i]) for a in args)) for i in range(n)]).T
-    py = arrays.evaluate(tl.integrate_law, *args, nout=3, backend="python")
-    serial = arrays.evaluate(tl.integrate_law, *args, nout=3, backend="numba")
+    py = engine.evaluate(tl.integrate_law, *args, nout=3, backend="python")
+    serial = engine.evaluate(tl.integrate_law, *args, nout=3, backend="numba")
     assert np.array_equal(py, scalar)
     # Compiled against Python: bit for bit (test_paths_bitwise_equal). A last-bit difference would
     # be carried far here: a step that ends within rounding of the limit under a growing normal
     # force takes K_t = 0 in one path and not in the other.
     assert np.array_equal(serial, scalar)
     cyc = np.array([[0.5, 1.0, 2.0], [-0.5, -0.4, -0.5], [0.5, 0.7, 0.5], [100.0, 100.0, 100.0]])
-    cyc_py = arrays.evaluate(tl.mindlin_deresiewicz_cycle, *cyc, nout=4, backend="python")
-    cyc_nb = arrays.evaluate(tl.mindlin_deresiewicz_cycle, *cyc, nout=4, backend="numba")
+    cyc_py = engine.evaluate(tl.mindlin_deresiewicz_cycle, *cyc, nout=4, backend="python")
+    cyc_nb = engine.evaluate(tl.mindlin_deresiewicz_cycle, *cyc, nout=4, backend="numba")
     assert np.array_equal(cyc_nb, cyc_py)

@@ -16,7 +16,6 @@ import sys
 import numpy as np
 
 from .. import models, quantities
-from .._optional import without_dask_probe
 from .._validation import check_positive
 from ..materials import DEFAULT_K, PAPER_CASES, limiting_pressure, list_materials
 from ..pair import ContactPair
@@ -185,9 +184,8 @@ def run(args) -> int:
     if names is not None:  # two or more models make a dimension; one is a scalar coordinate
         values["model"] = names if len(names) > 1 else names[0]
     if args.chunks is None and npoints <= AUTO_BLOCK_POINTS:
-        # one block either way: computed now, and written without dask's import (a small sweep costs less than importing it)
-        with without_dask_probe():
-            return _sweep_and_write(args, out, kind, values, pair, params, None, npoints)
+        # one block either way: computed now, in numpy
+        return _sweep_and_write(args, out, kind, values, pair, params, None, npoints)
     return _sweep_and_write(args, out, kind, values, pair, params, chunks, npoints)
 
 

@@ -68,9 +68,7 @@ def generate(digits: int = 60, nodes: int = 24):
     """
     import mpmath as mp
 
-    old = mp.mp.dps
-    mp.mp.dps = digits
-    try:
+    with mp.workdps(digits):  # mpmath's working precision, restored on leaving
         a = mp.mpf(2) / 5
         b = mp.mpf(1) / 2
 
@@ -107,8 +105,6 @@ def generate(digits: int = 60, nodes: int = 24):
             return tuple(coeffs)
 
         return pieces(g_of_u), pieces(g_of_s)
-    finally:
-        mp.mp.dps = old
 
 
 def _source() -> str:  # pragma: no cover - run by hand: python -m microimpact.core.hertz_beta_table

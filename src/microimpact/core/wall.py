@@ -1,7 +1,7 @@
 """One sphere bouncing off, or sticking to, a flat, fixed, massive wall: scalar floats in and out.
 
 The physics of :func:`microimpact.wall.wall_interaction` for one particle, written once; the array
-path (:func:`~microimpact.core.arrays.evaluate`) runs this function, and the C export
+path (:func:`~microimpact.engine.evaluate`) runs this function, and the C export
 (:mod:`microimpact.cexport`) is its one second copy, tested bit for bit against it.
 
 * **Normal**: the seed's elastic-plastic restitution (eq. 27, yield point eqs. 5, 7, 28) with

@@ -53,9 +53,9 @@ def _zoo():
 
 
 def _arrays():
-    from ..core import arrays  # imported here: keeps `import microimpact` fast
+    from .. import engine  # imported here: keeps `import microimpact` fast
 
-    return arrays
+    return engine
 
 
 def available_models() -> list[str]:
@@ -165,9 +165,9 @@ def _restitution_by_group(module, V, E, R, m, p_y, params):
 
 def _compile_if_costly(module, n, outcome):
     """Import numba (from then on the array layer runs compiled loops:
-    :func:`microimpact.core.arrays.backend_for`; bit for bit the same numbers) where a fit's
+    :func:`microimpact.engine.backend_for`; bit for bit the same numbers) where a fit's
     :data:`_FIT_CALLS` evaluations of ``n`` points in Python loops would exceed the array layer's
-    budget for one call (:data:`microimpact.core.arrays.PYTHON_BUDGET`), at the nominal time per
+    budget for one call (:data:`microimpact.engine.PYTHON_BUDGET`), at the nominal time per
     point of the model's declared cost class (:data:`microimpact.core.models.COST_CLASSES`: its
     ``OUTCOME_COST`` for the whole outcome, else its ``COST``). Deterministic: no timing decides. A
     model that integrates its equation of motion for ``e`` costs ~0.5-2 ms a point in Python,

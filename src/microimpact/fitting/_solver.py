@@ -24,7 +24,7 @@ _START_POINTS = 2048
 _SORT_POINTS = 1 << 20
 
 #: Points per block of the fit's passes over the data: its working memory is a few such blocks.
-#: Below :data:`microimpact.core.arrays.PARALLEL_MIN`: serial compiled loops (threads bought no
+#: Below :data:`microimpact.engine.PARALLEL_MIN`: serial compiled loops (threads bought no
 #: time on two cores and their runtime cost 15 MB of a 10^7-point fit's peak).
 _BLOCK = 1 << 15
 

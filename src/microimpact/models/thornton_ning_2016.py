@@ -21,10 +21,10 @@ from .._face import array_function, free_flight, outcome_arrays, outcome_functio
 from .._validation import check_nonnegative, check_pair, check_positive, check_velocity
 from ..core import hertz
 from ..core import special as _special
-from ..core.arrays import evaluate
 from ..core.models import thornton_ning_2016 as _seed
 from ..core.quantities import OUTCOME_FIELDS
 from ..core.special import BETA_25_12
+from ..engine import evaluate
 
 #: The face's own names (its contract, :mod:`microimpact.models._base`); the array functions below are
 #: public, and documented, as the names of :mod:`microimpact.contact`, :mod:`microimpact.impact` and

@@ -13,9 +13,9 @@ import numpy as np
 from .._validation import check_velocity
 from ..core import adhesion as _adhesion
 from ..core import models
-from ..core.arrays import evaluate as _evaluate  # ENGINE-MERGE
 from ..core.constants import LARGE_STRAIN_RATIO
 from ..core.models import thornton_ning_2016 as _seed
+from ..engine import evaluate as _evaluate
 from ..impact import outcome_arrays, restitution_coefficient
 from ._adhesion import range_warning_text, tabor_check
 from ._result import FALSE, LARGE, TRUE, AdhesionRangeWarning, LargeStrainWarning, one_result, trusted_result
