@@ -1,5 +1,5 @@
 """Deprecated: the names of :mod:`microimpact.adhesion`, :mod:`microimpact.wall` and
-:mod:`microimpact.cexport`, in one place as before their split (issue 20: kept one release).
+:mod:`microimpact.cexport`, in one place as before their split (kept one release).
 
 Each name still works here and warns (:class:`DeprecationWarning`) naming its home; import it from
 there instead.

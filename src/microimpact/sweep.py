@@ -732,7 +732,7 @@ def _format_rows(cols, start, stop, buf):
     Numbers go through polars' compiled CSV writer: floats in their shortest exact form (they read
     back bit for bit; the same digits as Python's ``repr``, positional notation down to 1e-5), NaN
     written ``nan`` (as a null), infinities ``inf`` and ``-inf``, booleans 0/1. Python's ``repr``
-    cost about 2 us a number, 20x the NetCDF write of the same sweep (issue 25). Polars formats
+    costs about 20x the NetCDF write of the same sweep. Polars formats
     with the GIL released, so two threads format two pieces at once (:func:`_write_pieces`). Text
     columns (a ``model`` dimension) take :func:`microimpact.io.csv_rows`.
     """
@@ -763,7 +763,7 @@ def _write_pieces(fh, pieces, step):
     blocks are computed there) and cuts each into :data:`_CSV_FORMAT_ROWS` rows; two threads
     format them (:func:`_format_rows`: polars formats with the GIL released, so two pieces are
     formatted at once); this thread alone writes to ``fh``, in the order produced. Serially, at
-    10^7 points, formatting took half the time, writing a fifth and computing a sixth (issue 25).
+    10^7 points, formatting takes half the time, writing a fifth and computing a sixth.
     At most :data:`_CSV_WINDOW` pieces wait between the stages, so memory stays bounded; the text
     buffers are reused. Every :data:`_CSV_WRITEBACK_BYTES` the kernel is asked to start writing
     the new bytes to the disk (``posix_fadvise(..., POSIX_FADV_DONTNEED)``, which never drops

@@ -224,8 +224,8 @@ def run(args) -> int:
     else:
         if adhesion != "additive":
             c_kw["adhesion"] = adhesion
-        # generated (every input checked) before anything is written, then written as is: generating
-        # it again in write_c_source formatted the compliant law's table twice (issue 25)
+        # generated (every input checked) before anything is written, then written as is, so the
+        # compliant law's table is formatted once
         c_text = None if args.no_c else generate_c_source(pair, work_of_adhesion=G, friction=mu, **c_kw)
         with owned_directory(out, "export") as tmp:
             written = write_tables(

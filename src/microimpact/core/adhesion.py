@@ -56,9 +56,9 @@ __all__ = [
 #: :data:`~microimpact.core.models.thornton_ning_1998_elastic_adhesive.WORK_CONSTANT`, the integral
 #: in closed form, ``(2^(2/3) + 12 2^(1/3))/5 (pi/2)^(5/3) = 7.092196``. Their eq. 52 prints it
 #: rounded as ``W_s = 0.9355 P_c alpha_f = 7.09 (...)^(1/3)`` and eq. 54 the constant as ``14.18``
-#: (``2 x 7.09``); the exact value is 14.18439 (``0.9355`` is 0.935503 unrounded). Until issue 20
-#: this module used the printed 14.18, which made ``V_s`` 1.5485e-4 (relative) smaller than the
-#: elastic-adhesive model's own ``(2 W_s/m*)^(1/2)``; both now use the derived constant.
+#: (``2 x 7.09``); the exact value is 14.18439 (``0.9355`` is 0.935503 unrounded). The printed 14.18
+#: would make ``V_s`` 1.5485e-4 (relative) smaller than the elastic-adhesive model's own
+#: ``(2 W_s/m*)^(1/2)``; both use the derived constant.
 STICKING_CONSTANT = 2.0 * WORK_CONSTANT
 
 

@@ -4,8 +4,8 @@ The quadratures of the adhesive and fitted laws (:mod:`~microimpact.core.models.
 :mod:`~microimpact.core.models._fitted_laws` with 24 and 6) take their nodes and weights from
 :func:`numpy.polynomial.legendre.leggauss` (the nodes as eigenvalues of the symmetric companion matrix,
 improved by one Newton step; the weights ``1/(L_{n-1} L_n')``, ``L_{n-1}`` at the improved nodes and
-``L_n'`` at the eigenvalues; nodes and weights symmetrised, the weights scaled to sum to 2; DLMF 3.5(v)). Computing them when the core was imported cost every process 10-12 ms
-(``numpy.polynomial`` 4-6 ms, the three rules 5-7 ms; issue 25): they are kept here as the doubles
+``L_n'`` at the eigenvalues; nodes and weights symmetrised, the weights scaled to sum to 2; DLMF 3.5(v)). Computing them when the core is imported would cost every process
+the import of ``numpy.polynomial`` and three eigenvalue problems: they are kept here as the doubles
 numpy gave, each written in its shortest exact form. ``tests/core/test_special.py`` computes them
 again with numpy and compares (bit for bit, or within 2 units in the last place where another
 LAPACK rounds the eigenvalues differently); ``python -m microimpact.core.gauss_legendre`` prints
