@@ -34,7 +34,7 @@ NAME = "throwaway_hysteretic_spring"
 TITLE = "Linear hysteretic spring (Walton & Braun 1986), a test's throw-away model"
 LABEL = "throw-away spring"
 PARAMETERS = (
-    Parameter("restitution", "1", "e in (0, 1]", low=0.0, high=1.0, low_open=True),
+    Parameter.of("restitution", "e in (0, 1]", low=0.0, high=1.0, low_open=True),  # unit: its row's
     Parameter("stiffness", "N/m", "loading stiffness k > 0", default=1000.0, low=0.0, low_open=True),
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)

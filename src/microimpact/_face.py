@@ -22,7 +22,7 @@ import textwrap
 import numpy as np
 
 from ._validation import check_nonnegative, check_pair, check_positive, check_velocity
-from .core.quantities import OUTCOME_FIELDS, QUANTITIES
+from .core.quantities import DIMENSIONLESS_SHOWN, OUTCOME_FIELDS, QUANTITIES, unit_text
 from .engine import evaluate
 
 __all__ = [
@@ -64,8 +64,9 @@ _ALIASES = {
 }
 
 
-def _unit(q):
-    return q.unit if q.unit not in ("", "1") else "-"
+def _unit(unit):
+    """A parameter's unit as its docstring shows it (``[-]`` dimensionless); text has none of its own."""
+    return unit_text(unit) or DIMENSIONLESS_SHOWN
 
 
 def _parameter_doc(param, check, note, described=None, optional=False):
@@ -73,9 +74,10 @@ def _parameter_doc(param, check, note, described=None, optional=False):
     ``(words, unit)`` pair for a parameter that is not a quantity), its check and ``note``."""
     if described is not None:
         words, unit = described
+        unit = _unit(unit)
     else:
         q = QUANTITIES[_ALIASES.get(param, param)]
-        unit = _unit(q)
+        unit = _unit(q.unit)
         words = q.description.split(",")[0].split(" (")[0].split(" = ")[0]  # "effective modulus E*"
         if q.symbol and words.endswith(" " + q.symbol):
             words = words[: -len(q.symbol)] + f"``{q.symbol}``"
@@ -149,7 +151,8 @@ def array_function(
         signature, as in a hand-written function).
     described : dict, optional
         ``{parameter: (words, unit)}`` for a parameter that is not a quantity of
-        :data:`~microimpact.core.quantities.QUANTITIES` (a prefactor, say).
+        :data:`~microimpact.core.quantities.QUANTITIES` (a prefactor, say); the unit spelled as the
+        table spells it (``"1"`` dimensionless).
 
     Returns
     -------
@@ -178,7 +181,7 @@ def array_function(
         summary,
         notes,
         [_parameter_doc(p, c, n, described.get(p), p in defaults) for p, c, n in params],
-        f"{words} [{_unit(q)}].",
+        f"{words} [{_unit(q.unit)}].",
         examples,
         f"Generated from :func:`{core_function.__module__}.{core_function.__name__}`.",
     )
@@ -219,7 +222,7 @@ def outcome_function(namespace, name, model, summary, notes="", returns="", exam
         summary,
         notes,
         [_parameter_doc(*p if len(p) == 3 else (*p, "")) for p in _PAIR],
-        returns or f"{q.description} [{_unit(q)}].",
+        returns or f"{q.description} [{_unit(q.unit)}].",
         examples,
         f"The field ``{field}`` of :func:`{model.__name__}.outcome`.",
     )

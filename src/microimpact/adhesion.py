@@ -53,9 +53,7 @@ class _AdditiveRule:
 
     NAME = ADDITIVE_RULE
     TITLE = "Thornton & Ning (1998) additive rule: e^2 = e_p^2 - (V_s/V)^2 (seed eq. 27, TN98 eq. 54)"
-    PARAMETERS = (
-        Parameter("work_of_adhesion", "J/m^2", "G >= 0, the work of adhesion (TN98's interface energy)", low=0.0),
-    )
+    PARAMETERS = (Parameter.of("work_of_adhesion", "G >= 0, the work of adhesion (TN98's interface energy)", low=0.0),)
     STICKS = True
     outcome = None  # e alone, by restitution_of_pair
     force = None

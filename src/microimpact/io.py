@@ -1011,9 +1011,10 @@ def write_table(path, table: dict, title: str = "", columns: dict | None = None,
         First comment line of the file (one line).
     columns : dict of str to (str, str), optional
         Column name -> (unit, description) for the header and the ``#`` lines
-        (e.g. :data:`microimpact.figures.paper.COLUMNS`); a unit ``"-"`` or
-        ``"unit"`` marks a column without a unit of its own (text, or in the unit
-        of another column). Columns not named have no unit.
+        (e.g. :data:`microimpact.figures.paper.COLUMNS`), units spelled as the
+        quantities table spells them (``"1"`` dimensionless, ``""`` text); ``"unit"``
+        marks a column in the unit of another column (and ``"-"``, read as before,
+        one without a unit of its own). Columns not named have no unit.
     source : str, optional
         Appended to the provenance line (``"; "`` between).
 

@@ -37,6 +37,7 @@ from pathlib import Path
 import numpy as np
 
 from ._optional import require
+from .quantities import DIMENSIONLESS, QUANTITIES
 from .wall import wall_interaction
 
 __all__ = ["PatchHits", "read_patch_hits", "decide", "deposition_report", "plot_report"]
@@ -263,6 +264,11 @@ def decide(
     return {"normal_speed": vn, "tangential_speed": vt, "angle": angle, "restitution": e, "stuck": stuck}
 
 
+def _attrs(unit):
+    """The NetCDF attributes of a variable in ``unit`` (a unit of the quantities table), by its long name."""
+    return lambda long_name: {"units": unit, "long_name": long_name}
+
+
 def deposition_report(hits: PatchHits, decision: dict, injected, *, speed_bins=20, angle_bins=18):
     """Deposition against particle size and the distributions of impact speed and angle.
 
@@ -316,30 +322,28 @@ def deposition_report(hits: PatchHits, decision: dict, injected, *, speed_bins=2
         return out
 
     every = np.ones(vn.size, bool)
+    count = _attrs(DIMENSIONLESS)  # numbers of particles and their ratios
+    speed = _attrs(QUANTITIES["velocity"].unit)
     return xr.Dataset(
         {
-            "injected": ("diameter", counts, {"units": "1", "long_name": "particles injected"}),
-            "impacted": ("diameter", imp, {"units": "1", "long_name": "particles that hit the wall"}),
-            "deposited": ("diameter", dep, {"units": "1", "long_name": "particles that stuck"}),
-            "impact_fraction": ("diameter", imp / counts, {"units": "1", "long_name": "impacted / injected"}),
-            "deposition_fraction": ("diameter", dep / counts, {"units": "1", "long_name": "deposited / injected"}),
-            "mean_impact_speed": ("diameter", mean_v, {"units": "m/s", "long_name": "mean normal impact speed"}),
-            "speed_count": (("diameter", "speed"), hist(vn, v_edges, every), {"units": "1", "long_name": "impacts"}),
-            "speed_stuck": (("diameter", "speed"), hist(vn, v_edges, stuck), {"units": "1", "long_name": "stuck"}),
-            "angle_count": (("diameter", "angle"), hist(ang, a_edges, every), {"units": "1", "long_name": "impacts"}),
-            "angle_stuck": (("diameter", "angle"), hist(ang, a_edges, stuck), {"units": "1", "long_name": "stuck"}),
+            "injected": ("diameter", counts, count("particles injected")),
+            "impacted": ("diameter", imp, count("particles that hit the wall")),
+            "deposited": ("diameter", dep, count("particles that stuck")),
+            "impact_fraction": ("diameter", imp / counts, count("impacted / injected")),
+            "deposition_fraction": ("diameter", dep / counts, count("deposited / injected")),
+            "mean_impact_speed": ("diameter", mean_v, speed("mean normal impact speed")),
+            "speed_count": (("diameter", "speed"), hist(vn, v_edges, every), count("impacts")),
+            "speed_stuck": (("diameter", "speed"), hist(vn, v_edges, stuck), count("stuck")),
+            "angle_count": (("diameter", "angle"), hist(ang, a_edges, every), count("impacts")),
+            "angle_stuck": (("diameter", "angle"), hist(ang, a_edges, stuck), count("stuck")),
         },
         coords={
-            "diameter": ("diameter", d_all, {"units": "m", "long_name": "particle diameter"}),
-            "speed": (
-                "speed",
-                0.5 * (v_edges[1:] + v_edges[:-1]),
-                {"units": "m/s", "long_name": "normal impact speed"},
-            ),
+            "diameter": ("diameter", d_all, _attrs(QUANTITIES["diameter"].unit)("particle diameter")),
+            "speed": ("speed", 0.5 * (v_edges[1:] + v_edges[:-1]), speed("normal impact speed")),
             "angle": (
                 "angle",
                 0.5 * (a_edges[1:] + a_edges[:-1]),
-                {"units": "deg", "long_name": "impact angle from the normal"},
+                _attrs(QUANTITIES["angle"].unit)("impact angle from the normal"),
             ),
         },
         attrs={"title": "microimpact: deposition from OpenFOAM wall hits (one-way, first impacts)"},

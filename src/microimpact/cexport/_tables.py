@@ -15,6 +15,7 @@ from ..adhesion import (
     whole_law_table,
 )
 from ..core import models as _models
+from ..quantities import QUANTITIES
 from ._common import check_size_names, comment_text, sized_pair
 
 __all__ = ["restitution_table", "write_tables", "DEFAULT_V_OVER_VY", "DEFAULT_VS_OVER_VY", "DEFAULT_SPEEDS"]
@@ -73,6 +74,12 @@ def _slug(text):
     return "_".join(p for p in keep.split("_") if p) or "pair"
 
 
+def _head(text, quantity):
+    """One header cell ``(name, unit)``: the column's name as users read it (kept as released) and the
+    unit of its quantity's row of :data:`~microimpact.quantities.QUANTITIES`."""
+    return text, QUANTITIES[quantity].unit
+
+
 def _write_csv(path, comments, header, columns):
     """One table in the project's CSV layout (:mod:`microimpact.io`), written atomically."""
     from ..io import write_csv
@@ -106,7 +113,7 @@ def write_tables(
     * ``restitution_vs_v_over_vy.csv``: ``e`` against ``V/V_y`` with one column
       per ``V_s/V_y`` value (:func:`restitution_table`); valid for any pair.
     * ``restitution_<pair>_d<diameter>um.csv`` for each pair and diameter:
-      normal impact speed [m/s], ``e`` [1] and the stick flag (0/1), with the
+      normal impact speed [m/s], ``e`` [-] and the stick flag (0/1), with the
       pair's ``V_y`` and the size's ``V_s`` in the comments; with the whole law a fourth
       column, ``outside table`` (0/1), and the law's own capture speed in the comments.
 
@@ -207,7 +214,7 @@ def write_universal_table(out_dir, v, s, adhesion="additive"):
             "V: normal impact speed, V_y: yield velocity (eq. 28), V_s: sticking velocity",
             *extra,
         ],
-        [("V/V_y", "1")] + [(f"e at V_s/V_y={_fmt_num(x)}", "1") for x in s],
+        [_head("V/V_y", "normalized_velocity")] + [_head(f"e at V_s/V_y={_fmt_num(x)}", "restitution") for x in s],
         [v, *np.asarray(table).T],
     )
     return path
@@ -217,7 +224,7 @@ def write_size_table(path, pair, d, p, V, G, extra=(), adhesion="additive"):
     """One per-size table of :func:`write_tables` (``p`` is ``pair`` at diameter ``d``)."""
     Vy = p.yield_velocity
     Vs = float(sticking_velocity(G, p.effective_modulus, p.effective_radius, p.effective_mass))
-    columns = [("normal speed", "m/s"), ("restitution e", "1"), ("stuck", "1")]
+    columns = [_head("normal speed", "velocity"), _head("restitution e", "restitution"), _head("stuck", "stuck")]
     if adhesion == "additive":
         e = adhesive_restitution(V, Vy, Vs)
         law = []
@@ -228,7 +235,7 @@ def write_size_table(path, pair, d, p, V, G, extra=(), adhesion="additive"):
                 p.effective_modulus, p.effective_radius, p.effective_mass, p.limiting_pressure, (G,)
             )
         )
-        columns.append(("outside table", "1"))
+        columns.append(_head("outside table", "outside_table"))
         law = [
             f"adhesion: {adhesion} (Thornton & Ning 1998, the whole law, through its table); its capture "
             f"velocity {Vc:.10g} m/s",

@@ -102,7 +102,8 @@ def run(args) -> int:
         for name in models.available():
             print(f"{name}: {models.get(name).TITLE}")
             for pname, (unit, desc, default) in models.parameters(name).items():
-                print(f"    {pname} [{unit}]: {desc}" + ("" if math.isnan(default) else f" (default {default:g})"))
+                shown = quantities.unit_text(unit)
+                print(f"    {pname} [{shown}]: {desc}" + ("" if math.isnan(default) else f" (default {default:g})"))
         return 0
     module = models.get(args.model)  # ValueError naming the models when unknown
     params = parse_params(args.param)

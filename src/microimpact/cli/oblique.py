@@ -9,6 +9,7 @@ import sys
 
 import numpy as np
 
+from ..quantities import column
 from ._common import (
     PAIR_OPTIONS,
     add_pair_arguments,
@@ -67,7 +68,7 @@ def register(sub) -> None:
 
 def _rows(out):
     return {
-        "angle_deg": out.angle,
+        column("angle"): out.angle,
         "psi": out.normalized_angle,
         "e_n": out.normal_restitution,
         "e_t": out.tangential_restitution,

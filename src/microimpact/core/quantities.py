@@ -5,7 +5,12 @@ documentation, the CLI's table and JSON units, CSV headers, a sweep's attributes
 and the figures' data columns. Units are UDUNITS strings (``"1"`` for dimensionless), as CF
 conventions for NetCDF expect; text has ``""``. The display columns (symbol, display unit and
 scale, format) label the CLI's table and the figures' axes, and the check column names what an
-input must be. A new outcome field is one row here.
+input must be. A new outcome field is one row here, and so is a model parameter that several
+models share (a model's :class:`~microimpact.core.models.Parameter` takes its unit from its row).
+
+Dimensionless is spelled one way in data, ``"1"`` (:data:`DIMENSIONLESS`), and one way where people
+read it, ``"-"`` (``[-]``; :data:`DIMENSIONLESS_SHOWN`), the second derived from the first by
+:func:`unit_text` (figures typeset it as a dash, :func:`tex_unit`).
 
 Two spellings of a name, both derived here: the attribute name (``max_approach``) for attributes,
 JSON keys, NetCDF variables and options, and the CSV column name with its SI unit as a suffix
@@ -29,6 +34,9 @@ __all__ = [
     "header",
     "axis_label",
     "tex_unit",
+    "unit_text",
+    "DIMENSIONLESS",
+    "DIMENSIONLESS_SHOWN",
 ]
 
 
@@ -59,6 +67,24 @@ class Quantity(NamedTuple):
     def shown_unit(self) -> str:
         """The unit shown to people: :attr:`display_unit`, else the SI :attr:`unit`."""
         return self.display_unit or self.unit
+
+
+#: The table's spelling of a dimensionless unit: UDUNITS' ``"1"``, what files carry (CSV headers
+#: ``e [1]``, NetCDF ``units``) and every unit field in code means by dimensionless.
+DIMENSIONLESS = "1"
+#: The spelling of a dimensionless unit shown to people (docstrings ``[-]``, lists, reports);
+#: :func:`unit_text` is the one place that turns :data:`DIMENSIONLESS` into it.
+DIMENSIONLESS_SHOWN = "-"
+
+
+def unit_text(unit: str) -> str:
+    """``unit`` as shown to people: :data:`DIMENSIONLESS_SHOWN` (``"-"``) for the table's dimensionless
+    ``"1"``, every other unit as it is (text's ``""`` stays empty).
+
+    >>> unit_text("1"), unit_text("m/s"), unit_text("")
+    ('-', 'm/s', '')
+    """
+    return DIMENSIONLESS_SHOWN if unit == DIMENSIONLESS else unit
 
 
 def _q(name, unit, description, equation="", symbol="", tex="", display="", scale=1.0, fmt="{:.6g}", check=""):
@@ -183,6 +209,9 @@ QUANTITIES: dict[str, Quantity] = dict(
         ),
         _q("effective_radius", "m", "effective radius R*", "", "R*", "$R^*$", "um", 1e6, check="positive"),
         _q("effective_mass", "kg", "effective mass m*", "", "m*", "$m^*$", check="positive"),
+        # the yield point of a pair (eqs. 5, 7, 28)
+        _q("yield_approach", "m", "yield approach alpha_y", "5", "alpha_y", r"$\alpha_y$", "nm", 1e9, "{:.5g}"),
+        _q("yield_force", "N", "yield force P_y", "7", "P_y", "$P_y$", "uN", 1e6, "{:.5g}"),
         # one impact against time
         _q("time", "s", "time since first contact t", "", "t", "$t$", **_NS),
         _q("approach", "m", "approach alpha (negative: a gap, no contact)", "", "alpha", r"$\alpha$", "nm", 1e9),
@@ -207,8 +236,25 @@ QUANTITIES: dict[str, Quantity] = dict(
         _q("deresiewicz_time", "s", "Deresiewicz's elastic contact time", "30", "t_D", "$t_D$", **_NS),
         _q("ning_loading_time", "s", "Ning's high-speed loading time", "31", "t_N", "$t_N$", **_NS),
         _q("calibrated", "1", "1 where the model was calibrated to the reference, else 0", check="flag"),
+        _q("angle", "deg", "impact angle from the wall normal (0: head-on)", "", "theta", r"$\theta$"),
+        _q("stuck", "1", "1 where the particle sticks to the wall (e = 0), else 0", check="flag"),
+        _q(
+            "outside_table",
+            "1",
+            "1 where the whole adhesive law's table was left (its edge used), else 0",
+            check="flag",
+        ),
         # adhesion: stick or bounce (Thornton & Ning 1998)
         _q("work_of_adhesion", "J/m^2", "work of adhesion G", "", "G", "$G$", check="nonnegative"),
+        _q(
+            "surface_energy",
+            "J/m^2",
+            "surface energy gamma, LAMMPS' cohesion (work of adhesion G = 2 gamma)",
+            "",
+            "gamma",
+            r"$\gamma$",
+            check="nonnegative",
+        ),
         _q(
             "capture_velocity", "m/s", "capture (sticking) velocity V_s: e = 0 at and below it", "", "V_s", "$V_s$"
         ),  # fmt: skip
@@ -222,6 +268,34 @@ QUANTITIES: dict[str, Quantity] = dict(
             "um",
             1e6,
         ),  # fmt: skip
+        # parameters several impact models share (their Parameter specs read unit and meaning here)
+        _q("poisson_ratio", "1", "Poisson ratio nu", "", "nu", r"$\nu$", check="poisson"),
+        _q("loading_stiffness", "N/m", "stiffness of the loading branch k1", "", "k1", "$k_1$", check="positive"),
+        _q("unloading_stiffness", "N/m", "stiffness of the unloading branch k2", "", "k2", "$k_2$", check="positive"),
+        _q(
+            "plasticity_depth",
+            "1",
+            "plastic flow depth phi_f (LIGGGHTS' phiF) of Luding's hysteretic spring",
+            "",
+            "phi_f",
+            r"$\phi_f$",
+            check="nonnegative",
+        ),
+        _q(
+            "damping_ratio",
+            "1",
+            "damping coefficient alpha_T of Tsuji's dashpot",
+            "",
+            "alpha_T",
+            r"$\alpha_T$",
+            check="nonnegative",
+        ),
+        _q(
+            "limit_force",
+            "1",
+            "1: force clipped at zero, contact ends when it vanishes; 0: ends at zero approach",
+            check="flag",
+        ),
         # text
         _q("model", "", "name of the impact model"),
         _q("series", "", "label of the curve"),
@@ -272,7 +346,7 @@ def table(names) -> dict[str, tuple[str, str]]:
 
 def _suffix(unit: str) -> str:
     """``"m/s"`` -> ``"_m_s"``, ``"kg/m^3"`` -> ``"_kg_m3"``; ``""`` for ``"1"`` and text."""
-    if unit in ("", "1"):
+    if unit in ("", DIMENSIONLESS):
         return ""
     return "_" + unit.replace("/", "_").replace("^", "").replace(" ", "_")
 
@@ -299,7 +373,7 @@ def header(name: str) -> str:
     """A short table heading: the symbol and the display unit, ``alpha* [nm]`` (no unit if dimensionless)."""
     q = QUANTITIES[name]
     unit = q.shown_unit
-    return f"{q.symbol or name} [{unit}]" if unit not in ("", "1") else (q.symbol or name)
+    return f"{q.symbol or name} [{unit}]" if unit not in ("", DIMENSIONLESS) else (q.symbol or name)
 
 
 def axis_label(name: str, text: str = "") -> str:
@@ -312,14 +386,17 @@ def axis_label(name: str, text: str = "") -> str:
     words = text or q.description.split(",")[0].split(" (")[0]
     if not text and q.symbol and words.endswith(" " + q.symbol):  # "impact speed V" -> "impact speed"
         words = words[: -len(q.symbol) - 1]
-    unit = q.shown_unit
-    tail = {"": "", "1": " (–)"}.get(unit, f" ({tex_unit(unit)})")
+    unit = unit_text(q.shown_unit)
+    tail = f" ({tex_unit(unit)})" if unit else ""
     sym = f", {q.tex}" if q.tex else ""
     return f"{words[0].upper()}{words[1:]}{sym}{tail}"
 
 
 def tex_unit(unit: str) -> str:
-    """A UDUNITS unit in matplotlib text: ``"kg/m^3"`` -> ``"kg m$^{-3}$"``, ``"uN"`` -> ``"µN"``."""
+    """A UDUNITS unit in matplotlib text: ``"kg/m^3"`` -> ``"kg m$^{-3}$"``, ``"uN"`` -> ``"µN"``; dimensionless
+    (``"1"`` or its shown ``"-"``) the typeset dash ``"–"``."""
+    if unit in (DIMENSIONLESS, DIMENSIONLESS_SHOWN):
+        return "–"
     if unit.startswith("u"):
         unit = "µ" + unit[1:]
     if "/" in unit:

@@ -674,7 +674,7 @@ deresiewicz_contact_time = array_function(
         0.03349
     """,
     defaults={"constant": _special.HERTZ_TIME_CONSTANT_PRINTED},
-    described={"constant": ("Prefactor", "-")},
+    described={"constant": ("Prefactor", "1")},
 )
 
 

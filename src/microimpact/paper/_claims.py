@@ -11,7 +11,7 @@ import numpy as np
 from ..figures import paper as figs
 from ..impact import restitution_coefficient
 from ..materials import PAPER_CASES
-from ..quantities import column
+from ..quantities import DIMENSIONLESS, QUANTITIES, column, unit_text
 from ._setup import (
     FIG3_PRESSURES,
     FIG4_MODULI,
@@ -95,22 +95,49 @@ def _high_speed_constant():
 
 _Q = []
 
+#: Units the paper prints a number in where they are not the table's display unit: the unit, the
+#: table's SI unit it scales, and the factor from that SI unit to it.
+_PRINTED = {"us": ("s", 1e6), "%": (DIMENSIONLESS, 100.0)}
 
-def _quote(name, quantity, quoted, unit, where, how, compute, note=None):
+
+def _unit(field, printed=None):
+    """``(unit, factor)`` of a quoted number of quantity ``field``: the unit as people read it
+    (``-`` for dimensionless) and the factor from the SI value to it. The table's display unit
+    (``nm``, ``m/s``) unless the paper prints another, ``printed`` (``us``, ``%``), which must scale
+    the table's SI unit of ``field``; ``field`` None: a pure number."""
+    if field is None:
+        return unit_text(DIMENSIONLESS), 1.0
+    q = QUANTITIES[field]
+    if printed is None:
+        return unit_text(q.shown_unit), q.scale
+    si, factor = _PRINTED[printed]
+    if si != q.unit:
+        raise ValueError(f"printed unit {printed!r} does not scale {field}'s unit {q.unit!r}")
+    return printed, factor
+
+
+def _quote(name, quantity, quoted, field, where, how, compute, note=None, printed=None):
+    """Record the paper's number ``quoted`` of quantity ``field`` (a row of the quantities table, which
+    gives its unit: :func:`_unit`); ``compute`` gives its value now in SI units."""
+    unit, factor = _unit(field, printed)
     _Q.append(
         (
             {"name": name, "quantity": quantity, "quoted": quoted, "unit": unit, "where": where, "how": how},
-            compute,
+            lambda: float(compute()) * factor,
             note,
         )
     )
+
+
+def _sym(field):
+    return QUANTITIES[field].symbol
 
 
 _quote(
     "yield_velocity_silicon",
     "yield velocity, silicon",
     7.59,
-    "m/s",
+    "yield_velocity",
     "Sec. 3.1",
     "eq. 28: ContactPair.paper_case('silicon').yield_velocity",
     lambda: silicon().yield_velocity,
@@ -120,7 +147,7 @@ _quote(
     "yield_velocity_mica",
     "yield velocity, mica",
     7.92,
-    "m/s",
+    "yield_velocity",
     "Sec. 3.1",
     "eq. 28: ContactPair.paper_case('mica').yield_velocity",
     lambda: mica().yield_velocity,
@@ -130,7 +157,7 @@ _quote(
     "k_silicon",
     "k = p_y / Y, silicon (lower end of 2.1-2.3)",
     2.1,
-    "-",
+    "k",
     "Sec. 3.1",
     "p_y / Y = 156 MPa / 74 MPa from the paper's inputs",
     lambda: case("silicon", "limiting_pressure") / case("silicon", "yield_strength"),
@@ -140,7 +167,7 @@ _quote(
     "k_mica",
     "k = p_y / Y, mica (upper end of 2.1-2.3)",
     2.3,
-    "-",
+    "k",
     "Sec. 3.1",
     "p_y / Y = 158 MPa / 68 MPa from the paper's inputs",
     lambda: case("mica", "limiting_pressure") / case("mica", "yield_strength"),
@@ -151,121 +178,130 @@ for _V, _q in zip(FIG6_VELOCITIES, (69.159, 169.36, 282.48)):
         f"plastic_approach_{_V:g}",
         f"plastic displacement at {_V:g} m/s",
         _q,
-        "nm",
+        "plastic_approach",
         "Sec. 3.3.1, Fig. 6",
         f"pair.impact({_V:g}).plastic_approach (eq. 11)",
-        (lambda V=_V: float(silicon().impact(V, warn=False).plastic_approach) * 1e9),
+        (lambda V=_V: silicon().impact(V, warn=False).plastic_approach),
     )
 _quote(
     "rebound_velocity_50",
     "rebound velocity at 50 m/s",
     36.31,
-    "m/s",
+    "rebound_velocity",
     "Sec. 3.3.3, Fig. 10",
     "pair.impact(50).rebound_velocity (eqs. 25, 27)",
-    lambda: float(silicon().impact(50.0, warn=False).rebound_velocity),
+    lambda: silicon().impact(50.0, warn=False).rebound_velocity,
 )
 _quote(
     "restitution_50",
     "restitution coefficient at 50 m/s",
     0.73,
-    "-",
+    "restitution",
     "Sec. 3.3.3",
     "pair.impact(50).restitution (eq. 27)",
-    lambda: float(silicon().impact(50.0, warn=False).restitution),
+    lambda: silicon().impact(50.0, warn=False).restitution,
     _restitution_note,
 )
 _quote(
     "energy_loss_50",
     "energy lost at 50 m/s",
     46.71,
-    "%",
+    "energy_loss",
     "Sec. 3.3.3",
     "100 * pair.impact(50).energy_loss (eq. 29)",
-    lambda: 100.0 * float(silicon().impact(50.0, warn=False).energy_loss),
+    lambda: silicon().impact(50.0, warn=False).energy_loss,
     _energy_note,
+    printed="%",
 )
 _quote(
     "loading_time_50",
     "loading period at 50 m/s",
     0.01365,
-    "us",
+    "loading_time",
     "Sec. 3.3.3, Fig. 10",
     "pair.impact(50).loading_time (eq. 32)",
-    lambda: float(silicon().impact(50.0, warn=False).loading_time) * 1e6,
+    lambda: silicon().impact(50.0, warn=False).loading_time,
+    printed="us",
 )
 _quote(
     "unloading_time_50",
     "unloading period at 50 m/s",
     0.01115,
-    "us",
+    "unloading_time",
     "Sec. 3.3.3, Fig. 10",
     "pair.impact(50).unloading_time (eq. 26)",
-    lambda: float(silicon().impact(50.0, warn=False).unloading_time) * 1e6,
+    lambda: silicon().impact(50.0, warn=False).unloading_time,
+    printed="us",
 )
 _quote(
     "loading_time_7.6",
-    "loading time t_L at 7.6 m/s",
+    f"loading time {_sym('loading_time')} at 7.6 m/s",
     0.01671,
-    "us",
+    "loading_time",
     "Sec. 3.3.2, Fig. 9",
     "pair.impact(7.6).loading_time (eq. 32)",
-    lambda: float(silicon().impact(7.6, warn=False).loading_time) * 1e6,
+    lambda: silicon().impact(7.6, warn=False).loading_time,
     _time_76_note,
+    printed="us",
 )
 _quote(
     "unloading_time_7.6",
-    "unloading time t_U at 7.6 m/s",
+    f"unloading time {_sym('unloading_time')} at 7.6 m/s",
     0.01675,
-    "us",
+    "unloading_time",
     "Sec. 3.3.2, Fig. 9",
     "pair.impact(7.6).unloading_time (eq. 26)",
-    lambda: float(silicon().impact(7.6, warn=False).unloading_time) * 1e6,
+    lambda: silicon().impact(7.6, warn=False).unloading_time,
     _time_76_note,
+    printed="us",
 )
 _quote(
     "contact_time_7.6",
-    "contact time t_c at 7.6 m/s",
+    f"contact time {_sym('contact_time')} at 7.6 m/s",
     0.03346,
-    "us",
+    "contact_time",
     "Sec. 3.3.2, Fig. 9",
     "pair.impact(7.6).contact_time (eq. 33)",
-    lambda: float(silicon().impact(7.6, warn=False).contact_time) * 1e6,
+    lambda: silicon().impact(7.6, warn=False).contact_time,
     _time_76_note,
+    printed="us",
 )
 _quote(
     "deresiewicz_time_7.6",
     "Deresiewicz's contact time (eq. 30) at 7.6 m/s",
     0.03348,
-    "us",
+    "deresiewicz_time",
     "Sec. 3.3.2",
     "pair.deresiewicz_contact_time(7.6), constant 2.87 as printed",
-    lambda: float(silicon().deresiewicz_contact_time(7.6)) * 1e6,
+    lambda: silicon().deresiewicz_contact_time(7.6),
+    printed="us",
 )
 _quote(
     "loading_time_limit",
-    f"loading time t_L at high speed (taken at {FIG9_MAX_VELOCITY:g} m/s)",
+    f"loading time {_sym('loading_time')} at high speed (taken at {FIG9_MAX_VELOCITY:g} m/s)",
     0.01333,
-    "us",
+    "loading_time",
     "Sec. 3.3.2, Fig. 9",
     f"pair.impact({FIG9_MAX_VELOCITY:g}).loading_time, the largest speed of Fig. 9",
-    lambda: float(silicon().impact(FIG9_MAX_VELOCITY, warn=False).loading_time) * 1e6,
+    lambda: silicon().impact(FIG9_MAX_VELOCITY, warn=False).loading_time,
     _limit_note,
+    printed="us",
 )
 _quote(
     "ning_loading_time",
     "Ning's loading time (eq. 31)",
     0.01307,
-    "us",
+    "ning_loading_time",
     "Sec. 3.3.2",
     "pair.ning_loading_time() = (pi/2) (m*/(pi p_y R*))^(1/2)",
-    lambda: silicon().ning_loading_time() * 1e6,
+    lambda: silicon().ning_loading_time(),
+    printed="us",
 )
 _quote(
     "high_speed_restitution_constant",
     "C in e -> C (V_y/V)^(1/4) at high speed",
     1.185,
-    "-",
+    None,
     "Sec. 3.1, after eq. 28 (equation body restored in the docs' theory page)",
     "restitution_coefficient(v V_y, V_y) v^(1/4) at v = V/V_y = 1e12 (eq. 27)",
     _high_speed_constant,

@@ -363,15 +363,15 @@ def _reproduce(report, t0, data, formats, inputs, pool, progress, emit) -> Paper
             title="The seed's quoted numbers (Section 3) against the model now",
             source=_SOURCE,
             columns={
-                "name": ("-", "identifier"),
-                "quantity": ("-", "what is compared"),
-                "where": ("-", "place in the paper"),
-                "unit": ("-", "unit of quoted and computed"),
+                "name": ("", "identifier"),
+                "quantity": ("", "what is compared"),
+                "where": ("", "place in the paper"),
+                "unit": ("", "unit of quoted and computed"),
                 "quoted": ("unit", "value printed in the paper"),
                 "computed": ("unit", "value computed now"),
                 "relative_difference": ("1", "(computed - quoted) / quoted"),
                 "agrees": ("1", f"1 if |relative_difference| <= {TOLERANCE}"),
-                "note": ("-", "explanation"),
+                "note": ("", "explanation"),
             },
         )
         report.comparison_csv = out / "comparison.csv"

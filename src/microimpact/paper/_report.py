@@ -68,8 +68,8 @@ def report_blocks(report, data, formats):
                     for n in ("diameter", "density", "effective_modulus", "limiting_pressure", "yield_strength")
                 ),
                 heading("yield_velocity") + " (eq. 28)",
-                "alpha_y [nm]",
-                "P_y [uN]",
+                heading("yield_approach"),
+                heading("yield_force"),
             ],
             rows,
         )

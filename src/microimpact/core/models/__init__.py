@@ -194,6 +194,10 @@ class Parameter(NamedTuple):
     loading_stiffness``); ``low_open``/``high_open`` make the bound strict; every value must be
     finite unless ``high`` is finite (``(0, 1]``). ``flag``: a 0/1 switch. ``default`` NaN: the user
     must give a value. The first three fields are the old ``(name, unit, description)`` triple.
+
+    A parameter that is a quantity of :data:`~microimpact.core.quantities.QUANTITIES` (a work of
+    adhesion, a yield strength, a restitution, ...) is made with :meth:`of`, which takes its unit
+    from that row, so that the unit is written once for every model that has it.
     """
 
     name: str
@@ -205,6 +209,23 @@ class Parameter(NamedTuple):
     low_open: bool = False
     high_open: bool = False
     flag: bool = False
+
+    @classmethod
+    def of(cls, quantity: str, description: str | None = None, **kwargs) -> Parameter:
+        """The parameter named ``quantity``, a row of :data:`~microimpact.core.quantities.QUANTITIES`:
+        its unit is the row's; its description the row's unless the model gives its own, which states
+        what the row cannot (the bounds and the part the quantity plays in that law). ``kwargs``: the
+        default and bounds, as for the class.
+
+        >>> Parameter.of("work_of_adhesion", low=0.0)[:3]
+        ('work_of_adhesion', 'J/m^2', 'work of adhesion G')
+        """
+        from ..quantities import QUANTITIES
+
+        if quantity not in QUANTITIES:
+            raise ValueError(f"quantity must name a row of QUANTITIES, got {quantity!r}")
+        row = QUANTITIES[quantity]
+        return cls(quantity, row.unit, row.description if description is None else description, **kwargs)
 
     def check(self, value: float, values: dict) -> None:
         """ValueError naming this parameter and ``value`` when it is out of bounds (``values``: the

@@ -66,7 +66,7 @@ WALL_REFUSAL = (
     "it would never capture a particle and would drop the plastic loss (use it with pair.impact(model=...) for "
     "the contact itself)"
 )
-PARAMETERS = (Parameter("surface_energy", "J/m^2", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)", low=0.0),)
+PARAMETERS = (Parameter.of("surface_energy", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)", low=0.0),)
 BOUNDS, validate = checks(NAME, PARAMETERS)
 
 

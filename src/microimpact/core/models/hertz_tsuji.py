@@ -60,7 +60,7 @@ NAME = "hertz_tsuji"
 TITLE = "Hertz with Tsuji's nonlinear damping (LAMMPS damping tsuji/coeff_restitution, LIGGGHTS hertz)"
 LABEL = "Hertz-Tsuji damping"
 PARAMETERS = (
-    Parameter("damping_ratio", "1", "alpha_T >= 0, Tsuji's coefficient: eta_n = alpha_T (m* 4/3 E* a)^(1/2)", low=0.0),
+    Parameter.of("damping_ratio", "alpha_T >= 0, Tsuji's coefficient: eta_n = alpha_T (m* 4/3 E* a)^(1/2)", low=0.0),
     LIMIT_FORCE,
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)

@@ -93,10 +93,9 @@ NAME = "jackson_green_brake"
 TITLE = "Jackson-Green loading (Ghaednia et al. 2019 eqs. 5-29) with Brake's (2015) unloading"
 LABEL = "Jackson-Green/Brake"
 PARAMETERS = (
-    Parameter("yield_strength", "Pa", "S_y > 0, yield strength of the sphere", low=0.0, low_open=True),
-    Parameter(
+    Parameter.of("yield_strength", "S_y > 0, yield strength of the sphere", low=0.0, low_open=True),
+    Parameter.of(
         "poisson_ratio",
-        "1",
         "nu of the sphere, -1 < nu <= 0.5, in C = 1.295 exp(0.736 nu)",
         default=0.3,
         low=-1.0,

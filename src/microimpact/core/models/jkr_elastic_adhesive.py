@@ -57,7 +57,7 @@ NAME = "jkr_elastic_adhesive"
 TITLE = "JKR elastic adhesion, contact at zero approach, pull-off at -3 pi gamma R (LAMMPS granular jkr)"
 LABEL = "JKR adhesive"
 STICKS = True
-PARAMETERS = (Parameter("surface_energy", "J/m^2", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)", low=0.0),)
+PARAMETERS = (Parameter.of("surface_energy", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)", low=0.0),)
 BOUNDS, validate = checks(NAME, PARAMETERS)
 __getattr__ = deprecated_names(__name__, NAME)  # released DEFAULTS: one release, with a warning
 #: Cost class of the outcome (the contract's ``OUTCOME_COST``): its contact times' quadrature, 1.0 ms a

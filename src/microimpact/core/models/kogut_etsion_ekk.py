@@ -84,12 +84,9 @@ NAME = "kogut_etsion_ekk"
 TITLE = "Kogut-Etsion (2002) loading fits with Etsion-Kligerman-Kadin (2005) unloading"
 LABEL = "Kogut-Etsion/EKK"
 PARAMETERS = (
-    Parameter(
-        "yield_strength", "Pa", "Y > 0, yield strength of the sphere (hardness H = 2.8 Y)", low=0.0, low_open=True
-    ),
-    Parameter(
+    Parameter.of("yield_strength", "Y > 0, yield strength of the sphere (hardness H = 2.8 Y)", low=0.0, low_open=True),
+    Parameter.of(
         "poisson_ratio",
-        "1",
         "nu of the sphere, -1 < nu <= 0.5, in K = 0.454 + 0.41 nu",
         default=0.3,
         low=-1.0,

@@ -69,9 +69,8 @@ TITLE = "Linear spring-dashpot, constant e (LAMMPS/LIGGGHTS hooke with coefficie
 LABEL = "linear spring-dashpot"
 PARAMETERS = (
     Parameter("stiffness", "N/m", "spring constant k", low=0.0, low_open=True),
-    Parameter(
+    Parameter.of(
         "restitution",
-        "1",
         "coefficient of restitution e_n the damping is computed from, in (0, 1]",
         low=0.0,
         high=1.0,

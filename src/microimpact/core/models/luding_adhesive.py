@@ -73,16 +73,15 @@ TITLE = "Adhesive elasto-plastic linear law, k1 loading / k2 unloading / kc adhe
 LABEL = "Luding adhesive"
 STICKS = True
 PARAMETERS = (
-    Parameter("loading_stiffness", "N/m", "k1, stiffness of the loading branch (LIGGGHTS' kn)", low=0.0, low_open=True),
-    Parameter(
+    Parameter.of("loading_stiffness", "k1, stiffness of the loading branch (LIGGGHTS' kn)", low=0.0, low_open=True),
+    Parameter.of(
         "unloading_stiffness",
-        "N/m",
         "k2 > k1, largest unloading stiffness (k2Max)",
         low="loading_stiffness",
         low_open=True,
     ),
     Parameter("adhesion_stiffness", "N/m", "kc >= 0, stiffness of the adhesive branch", low=0.0),
-    Parameter("plasticity_depth", "1", "phi_f > 0, LIGGGHTS' phiF", low=0.0, low_open=True),
+    Parameter.of("plasticity_depth", "phi_f > 0, LIGGGHTS' phiF", low=0.0, low_open=True),
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
 __getattr__ = deprecated_names(__name__, NAME)  # released DEFAULTS: one release, with a warning

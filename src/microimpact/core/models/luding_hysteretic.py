@@ -64,15 +64,17 @@ NAME = "luding_hysteretic"
 TITLE = "Linear hysteretic spring, k1 loading / k2 unloading (Walton & Braun 1986; Luding 2008)"
 LABEL = "Luding hysteretic"
 PARAMETERS = (
-    Parameter("loading_stiffness", "N/m", "k1, stiffness of the loading branch", low=0.0, low_open=True),
-    Parameter(
+    Parameter.of("loading_stiffness", "k1, stiffness of the loading branch", low=0.0, low_open=True),
+    Parameter.of(
         "unloading_stiffness",
-        "N/m",
         "k2 >= k1, stiffness of the unloading branch (largest one if plasticity_depth > 0)",
         low="loading_stiffness",
     ),
-    Parameter(
-        "plasticity_depth", "1", "0: constant k2; > 0: Luding's k2(alpha_max) with LIGGGHTS' phiF", default=0.0, low=0.0
+    Parameter.of(
+        "plasticity_depth",
+        "phi_f = 0: constant k2; > 0: Luding's k2(alpha_max) with LIGGGHTS' phiF",
+        default=0.0,
+        low=0.0,
     ),
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
