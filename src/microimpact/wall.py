@@ -492,8 +492,9 @@ def _arm_law_ratios(vT, nT, wT, d, rho, E, V, Vy, mu, kappa):
     ``J_n``, as the tables are); and the unit slip direction's three columns.
     """
     from .core import tangential as _tg
+    from .core import tangential_laws as _tl
     from .impact import elastic_max_approach, restitution_coefficient
-    from .oblique import DEFAULT_STEPS, _integrate_law
+    from .oblique import DEFAULT_STEPS
 
     vu, wu, sx, sy, sz = evaluate(_wall.slip_split, *vT, *nT, *wT, d, nout=5)
     active = (V > 0.0) & (mu > 0.0) & ((vu + wu) > 0.0)
@@ -505,7 +506,8 @@ def _arm_law_ratios(vT, nT, wT, d, rho, E, V, Vy, mu, kappa):
     eps = np.asarray(elastic_max_approach(Vs, E, r, m), dtype=float) / r
     v0 = np.where(active, vu / scale, 0.0)
     w0 = np.where(active, wu / scale, 0.0)
-    vr, wr, rg = _integrate_law("liggghts_history", v0, w0, kappa, x, eps, DEFAULT_STEPS)
+    code = np.asarray(_tl.law_code("liggghts_history"))
+    vr, wr, rg = evaluate(_tl.integrate_law, code, v0, w0, kappa, x, eps, np.asarray(float(DEFAULT_STEPS)), nout=3)
     one_e = 1.0 + np.asarray(restitution_coefficient(Vs, Vy), dtype=float)
     F = np.where(rg == _tg.REGIME_SLIDING, 1.0, (v0 - vr) / one_e)  # sliding throughout: the Coulomb limit
     W = (w0 - wr) / one_e
