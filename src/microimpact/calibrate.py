@@ -35,7 +35,15 @@ from . import _calibration_cache
 from . import models as _models
 from .core.quantities import OUTCOME_FIELDS
 
-__all__ = ["Calibration", "CalibrationError", "CalibrationWarning", "calibrate", "calibrate_all", "DEM_MODELS"]
+__all__ = [
+    "Calibration",
+    "CalibrationError",
+    "CalibrationWarning",
+    "calibrate",
+    "calibrate_all",
+    "DEM_MODELS",
+    "MISS_TOLERANCE",
+]
 
 
 #: The DEM laws: the models whose face has a calibration of its own (at import; models added later
