@@ -308,3 +308,30 @@ def test_monotonic_laws_are_not_warned(model, opts):
     with warnings.catch_warnings():
         warnings.simplefilter("error", CalibrationWarning)
         calibrate(pair, model, [15.0, 60.0], **opts)
+
+
+def test_a_calibration_that_misses_its_target_is_an_error():
+    """DMT's elastic adhesive law is conservative (e = 1 at every speed): no surface energy brings it to
+    the seed's 0.725, at one speed or several; the search's end is refused, naming target and miss."""
+    from microimpact.calibrate import CalibrationError
+
+    pair = mi.ContactPair.paper_case("silicon")
+    with pytest.raises(CalibrationError, match=r"target e = 0\.7248.*reached e = 1 with surface_energy = ") as info:
+        calibrate(pair, "dmt_elastic_adhesive", 50.0)
+    assert isinstance(info.value, ValueError)
+    with pytest.raises(CalibrationError, match="missed its target"):
+        calibrate(pair, "dmt_elastic_adhesive", [20.0, 50.0, 100.0])
+
+
+def test_one_parameter_search_starts_where_the_law_is_not_flat():
+    """Jackson-Green + Brake from the middle of its bound is S_y = 1 Pa, where e = 2e-5 whatever the step:
+    the search starts again from a scan of the range and reaches the seed's e at 50 m/s; the yield strength
+    it finds gives that e when the model is run with it."""
+    pair = mi.ContactPair.paper_case("silicon")
+    with pytest.warns(mi.calibrate.CalibrationWarning):  # the law's e(V) turns above 100 m/s
+        cal = calibrate(pair, "jackson_green_brake", 50.0)
+    assert cal.restitution[0] == pytest.approx(cal.target_restitution[0], abs=1e-9)
+    y = cal.params[0]
+    assert 1e6 < y < 1e9
+    e = float(pair.impact(50.0, model="jackson_green_brake", yield_strength=y, warn=False).restitution)
+    assert e == pytest.approx(cal.target_restitution[0], abs=1e-9)

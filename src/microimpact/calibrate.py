@@ -36,7 +36,15 @@ from . import models as _models
 from ._validation import check_dem_lines, check_dem_words, check_poisson
 from .core.quantities import OUTCOME_FIELDS
 
-__all__ = ["Calibration", "CalibrationWarning", "calibrate", "calibrate_all", "DEM_MODELS"]
+__all__ = [
+    "Calibration",
+    "CalibrationError",
+    "CalibrationWarning",
+    "calibrate",
+    "calibrate_all",
+    "DEM_MODELS",
+    "MISS_TOLERANCE",
+]
 
 
 #: The DEM laws: the models whose face has a calibration of its own (at import; models added later
@@ -92,6 +100,44 @@ def _run(model, V, pv, params):
 class CalibrationWarning(UserWarning):
     """The calibrated law matches the target at the calibration speeds but behaves unlike it elsewhere
     (its ``e(V)`` rises and falls between a tenth of the lowest and ten times the highest speed)."""
+
+
+class CalibrationError(ValueError):
+    """The calibrated law misses its target ``e``: the search ended where the law does not bounce like the
+    target (at one speed: off by more than :data:`MISS_TOLERANCE`; at several: a worse least-squares
+    fit than a constant ``e``). The message names the model, the target, the ``e`` reached and the
+    parameters found. A ValueError, as every refused calibration is."""
+
+
+#: Largest ``|e - e_target|`` [-] a calibration at one speed may leave: the DEM laws' inverses reach
+#: 1e-10 and better, the least-squares default 1e-12 where it converges to the target at all.
+MISS_TOLERANCE = 1e-6
+
+
+def _check_reached(model, names, params, V, e_target, e_reached):
+    """Raise :class:`CalibrationError` where the calibration missed its target (:class:`CalibrationError`).
+
+    At several speeds a least-squares fit cannot reach every target; it must at least fit them no worse
+    than the best constant ``e`` (their mean), which any law whose ``e`` can vary does, and a law whose
+    ``e`` does not depend on the speed matches exactly (its least-squares ``e`` is that mean)."""
+    miss = np.asarray(e_reached, dtype=float) - e_target
+    if V.size == 1:
+        bad = not (abs(float(miss[0])) <= MISS_TOLERANCE)
+    else:
+        rms = float(np.sqrt(np.mean(miss * miss))) if np.all(np.isfinite(miss)) else np.inf
+        spread = float(np.sqrt(np.mean((e_target - np.mean(e_target)) ** 2)))
+        bad = not (rms <= spread * (1.0 + 1e-6) + MISS_TOLERANCE)
+    if bad:
+        found = ", ".join(f"{n} = {p:.6g}" for n, p in zip(names, params))
+        speeds = ", ".join(f"{v:.6g}" for v in V[:5]) + (", ..." if V.size > 5 else "")
+        targets = ", ".join(f"{e:.6g}" for e in e_target[:5]) + (", ..." if V.size > 5 else "")
+        reached = ", ".join(f"{e:.6g}" for e in np.asarray(e_reached, dtype=float)[:5]) + (
+            ", ..." if V.size > 5 else ""
+        )
+        raise CalibrationError(
+            f"the calibration of {model!r} at {speeds} m/s missed its target: target e = {targets}, reached "
+            f"e = {reached} with {found}"
+        )
 
 
 def _monotonic_note(model, params, V, pv):
@@ -311,6 +357,10 @@ def calibrate(
     ------
     ValueError
         Unknown model, bad speed or option (named), or a target the law cannot reach.
+    CalibrationError
+        (a ValueError) The search ended without reaching the target: at one speed ``e`` off by more
+        than :data:`MISS_TOLERANCE`, at several a fit worse than a constant ``e``; the message names the
+        target, the ``e`` reached and the parameters.
 
     Warns
     -----
@@ -358,6 +408,7 @@ def calibrate(
         _calibration_cache.store(name, params, e_c, t_c, note)
     else:
         params, e_c, t_c, note = found
+    _check_reached(model, tuple(p[0] for p in face.model.PARAMETERS), params, V, np.asarray(e_t, dtype=float), e_c)
     if note is not None:
         warnings.warn(note, CalibrationWarning, stacklevel=2)
     return Calibration(

@@ -328,8 +328,43 @@ def _event(fun, direction):
     return fun
 
 
-def _integrate_phase(rhs, t0, y0, span, events, method, rtol, atol, tries=60):
-    """Integrate until a terminal event; extend the span if none occurred.
+#: Most right-hand-side evaluations one phase of an impact may take (loading, the second loading
+#: stage, unloading). The phases of every model's impacts take 250-2000 (DOP853 at rtol 1e-12); a
+#: phase that needs fifty times that follows a force law the solver cannot step through in bounded
+#: time (Jackson-Green + Brake at S_y = 1 Pa crawls off the surface at e = 2e-5 and was not done
+#: after ten minutes), and is refused rather than left running.
+MAX_RHS_EVALUATIONS = 1_000_000
+#: The precise run's bound on a phase relative to the loose run's evaluations of the same phase
+#: (``PRECISE_FACTOR n + PRECISE_EXTRA``): DOP853's steps grow as ``tol^(-1/8)``, 4.2 times from rtol
+#: 1e-7 to 1e-12, so twenty times (and 5000 more) is far beyond what a phase the loose run followed can need; it stops a
+#: force law the precise run crawls through (Jackson-Green + Brake at S_y = 1 Pa: 44 evaluations of the
+#: loose unloading, more than 4000 of 15 ms each without getting 1e-6 of the way in the precise one).
+PRECISE_FACTOR = 20
+PRECISE_EXTRA = 5_000
+
+
+class _Budget:
+    """``rhs`` counting its evaluations, raising the bound's ValueError past ``limit``."""
+
+    def __init__(self, rhs, limit):
+        self.rhs = rhs
+        self.limit = limit
+        self.count = 0
+
+    def __call__(self, t, y):
+        self.count += 1
+        if self.count > self.limit:
+            raise ValueError(
+                f"the ODE integration reached its bound of {self.limit} right-hand-side evaluations in one "
+                f"phase of the impact (at t/T = {t:.6g}) before the phase ended: the force law cannot be "
+                "integrated here in bounded time (use method='closed', or other parameters)"
+            )
+        return self.rhs(t, y)
+
+
+def _integrate_phase(rhs, t0, y0, span, events, method, rtol, atol, tries=60, limit=MAX_RHS_EVALUATIONS):
+    """Integrate until a terminal event; extend the span if none occurred. At most ``limit``
+    evaluations of ``rhs`` over all the tries (ValueError beyond).
 
     Returns ``(pieces, event index, t, y, nfev)``: the dense solutions ``(t_start, t_end, sol)``.
     """
@@ -337,6 +372,7 @@ def _integrate_phase(rhs, t0, y0, span, events, method, rtol, atol, tries=60):
 
     pieces = []
     nfev = 0
+    rhs = _Budget(rhs, limit)
     for _ in range(tries):
         sol = solve_ivp(rhs, (t0, t0 + span), y0, method=method, rtol=rtol, atol=atol, events=events, dense_output=True)
         if not sol.success:  # pragma: no cover - solver failure
@@ -368,14 +404,17 @@ def _zero_force_event(mod, params, force_at_state):
     return _event(zero_force, -1)
 
 
-def _run(mod, V, E, R, m, p_y, params, T, rtol, atol, method):
+def _run(mod, V, E, R, m, p_y, params, T, rtol, atol, method, counts=None, limits=None):
     """Integrate in ``tau = t/T``, ``x = alpha/(V T)``, ``u = alpha'/V``: loading (stages 1 and 2)
     to the maximum approach, then unloading (stage 3) to the end of the contact.
 
     Returns ``(pieces, t1, t_L, x_star, t_c, x_end, u_end, nfev)`` (scaled; the pieces are
     ``(tau_start, tau_end, sol, stage)``); ``t_c`` is None where the particle has not left after
-    many loading times (it sticks).
+    many loading times (it sticks). ``counts`` (a dict), if given, receives the evaluations of each
+    stage's phase; ``limits`` bounds them (by stage; default :data:`MAX_RHS_EVALUATIONS`).
     """
+    counts = {} if counts is None else counts
+    limits = {} if limits is None else limits
     X = V * T
     c = T / (m * V)  # u' = -P c
     f = mod.force
@@ -390,12 +429,16 @@ def _run(mod, V, E, R, m, p_y, params, T, rtol, atol, method):
         x2 = mod.stage_two_approach(E, R, m, p_y, params) / X
         if x2 < math.inf:
             events.append(_event(lambda t, y: y[0] - x2, 1))
-    pc, which, t_ev, y, nfev = _integrate_phase(rhs1, 0.0, [0.0, 1.0], 2.0, events, method, rtol, atol)
+    lim = limits.get(1, MAX_RHS_EVALUATIONS)
+    pc, which, t_ev, y, nfev = _integrate_phase(rhs1, 0.0, [0.0, 1.0], 2.0, events, method, rtol, atol, limit=lim)
+    counts[1] = nfev
     pieces = [(a, b, s, 1) for a, b, s in pc]
     t1 = t_ev
     if which == 1:  # stage 2 from the event's own state, exactly on the boundary
         y[0] = x2
-        pc, _, t_ev, y, nf = _integrate_phase(rhs1, t1, y, 2.0, events[:1], method, rtol, atol)
+        lim = limits.get(2, MAX_RHS_EVALUATIONS)
+        pc, _, t_ev, y, nf = _integrate_phase(rhs1, t1, y, 2.0, events[:1], method, rtol, atol, limit=lim)
+        counts[2] = nf
         pieces += [(a, b, s, 2) for a, b, s in pc]
         nfev += nf
     tL = t_ev
@@ -416,7 +459,9 @@ def _run(mod, V, E, R, m, p_y, params, T, rtol, atol, method):
         g = mod.signed_force
         events.append(_zero_force_event(mod, params, lambda y: g(y[0] * X, y[1] * V, amax, E, R, m, p_y, params)))
     try:
-        pc, which, tc, y, nf = _integrate_phase(rhs2, tL, [x_star, 0.0], 2.0 * tL, events, method, rtol, atol, tries=8)
+        lim = limits.get(3, MAX_RHS_EVALUATIONS)
+        pc, which, tc, y, nf = _integrate_phase(rhs2, tL, [x_star, 0.0], 2.0 * tL, events, method, rtol, atol, 8, lim)
+        counts[3] = nf
     except RuntimeError:  # no separation within ~500 loading times: the particle sticks
         return pieces, t1, tL, x_star, None, None, 0.0, nfev
     if which == 0:
@@ -506,11 +551,15 @@ def _integrate(mod, params, V, E, R, m, p_y, *, rtol, atol, method, n=None, time
     if closed["contact_time"] == np.inf:  # the model's own solution says it sticks
         raise _stuck_error(mod, V)
     T0 = float(hertz.time_scale(V, E, R, m))
-    rough = _run(mod, V, E, R, m, p_y, params, T0, 1e-7, 1e-9, method)
+    counts = {}
+    rough = _run(mod, V, E, R, m, p_y, params, T0, 1e-7, 1e-9, method, counts)
     if rough[4] is None:
         raise _stuck_error(mod, V)
     T = T0 * rough[2]
-    pieces, t1, tL, x_star, tc, x_end, u_end, nfev = _run(mod, V, E, R, m, p_y, params, T, rtol, atol, method)
+    limits = {k: min(MAX_RHS_EVALUATIONS, PRECISE_FACTOR * n + PRECISE_EXTRA) for k, n in counts.items()}
+    pieces, t1, tL, x_star, tc, x_end, u_end, nfev = _run(
+        mod, V, E, R, m, p_y, params, T, rtol, atol, method, None, limits
+    )
     if tc is None:  # pragma: no cover - the loose run would have seen it
         raise _stuck_error(mod, V)
     X = V * T

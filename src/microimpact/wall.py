@@ -39,14 +39,17 @@ history, scaled by the adhesive ``J_n``: an approximation.
 The DEM codes' laws of :mod:`microimpact.core.tangential_laws` (``"lammps_mindlin"``,
 ``"lammps_mindlin_force"``, ``"lammps_mindlin_rescale"``, ``"lammps_mindlin_rescale_force"`` (=
 ``"mindlin"``), ``"lammps_linear_history"`` (stiffness ``8 G* a_m`` of each impact),
-``"liggghts_history"``, ``"di_renzo_di_maio"``) and Stronge's compliant impact (``"stronge"``) are
-applied the same way, each through its own universal table (the names of
-:func:`microimpact.oblique.oblique_impact`; its table path gives the same outcome). Two of them are not exactly the code's law here (:func:`microimpact.oblique.oblique_impact`
-integrates both exactly): LIGGGHTS's shorter arm ``R - delta/2`` is taken as ``R`` (its spin differs
-by about ``delta_max/(2R)``, 1e-3 for the alumina case), and the linear law's stiffness follows each
-impact's speed instead of being one constant. Unlike the compliant ``"mindlin"``, the laws
-``"lammps_mindlin"``, ``"liggghts_history"`` and ``"di_renzo_di_maio"`` can create energy at small
-angles (their stored force grows with the contact radius at a fixed displacement): so do the codes.
+``"di_renzo_di_maio"``) and Stronge's compliant impact (``"stronge"``) are applied the same way, each
+through its own universal table (the names of :func:`microimpact.oblique.oblique_impact`; its
+``method="table"`` gives the same outcome). The linear law's stiffness follows each impact's speed
+here instead of being one constant. ``"liggghts_history"`` has no universal table: LIGGGHTS's wall arm
+``r - delta/2`` (``src/surface_model_default.h``) moves the rim by less than ``5/2`` of the centre's
+impulse and makes the outcome depend on ``alpha_m/r`` and on the incoming spin, so each impact is
+integrated as :func:`~microimpact.oblique.oblique_impact` integrates it (along the slip's initial
+direction; about 0.4 ms an impact), and the spin takes the rim's own impulse. Unlike the compliant
+``"mindlin"``, the laws ``"lammps_mindlin"``, ``"liggghts_history"`` and ``"di_renzo_di_maio"`` can
+create energy at small angles (their stored force grows with the contact radius at a fixed
+displacement): so do the codes.
 """
 
 from __future__ import annotations
@@ -191,6 +194,9 @@ _BYTES_PER_PARTICLE = 8 * (11 + 1 + 6 + 3) + 3
 # The capture speeds after it (_capture_speeds: the sort's permutation, 5 sorted columns, the group
 # index, the result: about 9 columns) stay below that peak.
 _BYTES_WHOLE_LAW = 8 * 22 + 2
+# and with LIGGGHTS's law, integrated per particle: kappa, the two slip parts, x, eps, e, the scaled
+# velocities, the integration's three results, F and W (at most 12 columns at once)
+_BYTES_ARM_LAW = 8 * 12 + 1
 
 
 def wall_interaction(
@@ -303,6 +309,7 @@ def wall_interaction(
     # Refused before anything of size N is made: the (N, 11) result table, the per-particle inputs
     # made here (modulus, p_y, yield strength) and the compliant prepass (3 columns), 8 bytes each.
     per = _BYTES_PER_PARTICLE + (0 if adhesion == "additive" else _BYTES_WHOLE_LAW)
+    per += _BYTES_ARM_LAW if tangential == "liggghts_history" else 0
     check_memory(N * per, f"wall_interaction of {N} particles", "pass the particles in blocks")
     nrm = _vectors("normal", normal)
     if nrm.shape[0] not in (1, N):
@@ -358,13 +365,16 @@ def wall_interaction(
     wT = (
         tuple(w[:, j] if w.shape[0] == N else np.array(w[0, j]) for j in range(3)) if has_spin else (np.array(0.0),) * 3
     )
+    W = None  # the rim's impulse ratio of a law whose arm is not r (LIGGGHTS)
     if tangential == "rigid":
         F = np.array(math.nan)
     else:
         V0, slip, Vy0 = evaluate(_wall.approach_and_slip, *vT, *nT, *wT, d, rho, E, p_y, nout=3)
-        F = _compliant_impulse_ratio(
-            slip, V0, Vy0, mu, E, mats, wall_mat, poisson_ratio, effective_shear_modulus, tangential
-        )
+        kappa = _stiffness_ratios(N, E, mats, wall_mat, poisson_ratio, effective_shear_modulus, tangential)
+        if tangential == "liggghts_history":
+            F, W, slip_dir = _arm_law_ratios(vT, nT, wT, d, rho, E, V0, Vy0, mu, kappa)
+        else:
+            F = _compliant_impulse_ratio(slip, V0, Vy0, mu, kappa, tangential)
     if adhesion == "additive":
         D = np.array(math.nan)
         outside = np.zeros(N, dtype=bool)
@@ -379,6 +389,8 @@ def wall_interaction(
     approaching = regime != _wall.NONE
     stuck = regime == _wall.STUCK
     rolling = regime == _wall.ROLLING
+    if W is not None:
+        _correct_spin(table, nT, slip_dir, d, mu, F, W)
     v_out = table[:, 0:3]
     w_out = table[:, 3:6] if (has_spin or np.any(mu > 0.0)) else None
     e, V = o["restitution"], o["normal_speed"]
@@ -437,31 +449,97 @@ def _whole_law_correction(vT, nT, wT, d, rho, E, p_y, G):
     return np.where(approaching, D, 0.0), outside & approaching
 
 
-def _compliant_impulse_ratio(ut_mag, V, Vy, mu, E, mats, wall_mat, poisson_ratio, effective_shear_modulus, law):
-    """``|J_t| / (mu J_n)`` of the compliant law per particle, from the universal tables."""
+def _stiffness_ratios(n, E, mats, wall_mat, poisson_ratio, effective_shear_modulus, law):
+    """``kappa = 4 G*/E*`` per particle (:func:`microimpact.core.tangential.stiffness_ratio`)."""
     from .core import hertz as _hertz
     from .core import tangential as _tg
-    from .oblique import universal_table
 
-    n = ut_mag.size
     if effective_shear_modulus is not None:
         G = _per_particle(
             "effective_shear_modulus", check_positive("effective_shear_modulus", effective_shear_modulus), n
         )
-        kappa = _tg.stiffness_ratio(G, E)
-    elif poisson_ratio is not None:
+        return _tg.stiffness_ratio(G, E)
+    if poisson_ratio is not None:
         nu = float(poisson_ratio)
         if isinstance(poisson_ratio, bool) or not (-1.0 < nu <= 0.5):
             raise ValueError(f"poisson_ratio must be in (-1, 0.5], got {poisson_ratio!r}")
-        kappa = np.full(n, _tg.stiffness_ratio_same_poisson(nu))
-    elif mats is not None and wall_mat is not None:
+        return np.full(n, _tg.stiffness_ratio_same_poisson(nu))
+    if mats is not None and wall_mat is not None:
         Ew, nuw = wall_mat.youngs_modulus, wall_mat.poisson_ratio
         G = np.array([_tg.effective_shear_modulus(e1, n1, Ew, nuw) for e1, n1 in zip(mats[0], mats[1])])
-        kappa = _tg.stiffness_ratio(G, _hertz.effective_modulus(mats[0], mats[1], Ew, nuw))
-    else:
-        raise ValueError(
-            f"tangential={law!r} needs poisson_ratio=..., effective_shear_modulus=... or material=... and wall=..."
-        )
+        return _tg.stiffness_ratio(G, _hertz.effective_modulus(mats[0], mats[1], Ew, nuw))
+    raise ValueError(
+        f"tangential={law!r} needs poisson_ratio=..., effective_shear_modulus=... or material=... and wall=..."
+    )
+
+
+def _arm_law_ratios(vT, nT, wT, d, rho, E, V, Vy, mu, kappa):
+    """``(F, W)`` per particle of LIGGGHTS's ``tangential history`` at a wall, integrated impact by impact.
+
+    LIGGGHTS applies the wall's tangential force and takes the contact point's velocity at the arm
+    ``r - delta/2`` (``src/surface_model_default.h``), so the centre and the rim are moved by
+    different impulses and the outcome depends on ``alpha_m/r`` and on how the slip splits between
+    the centre's velocity and the rim's (:func:`~microimpact.core.wall.slip_split`): no universal
+    table holds it. Each impact is integrated as :func:`microimpact.oblique.oblique_impact` integrates
+    it (:func:`~microimpact.core.tangential_laws.integrate_law`, law ``"liggghts_history"``, its
+    ``steps``), along the slip's initial direction (the codes' force turns with the slip; here the
+    slip keeps its direction, exact where ``v_t`` and ``n x omega`` are parallel, as without spin).
+    About 0.4 ms an impact, a hundred times the table's cost.
+
+    ``F = |J_t|/(mu J_n)`` signed as :func:`~microimpact.core.wall.wall_impact` takes it (the centre's
+    impulse), and ``W`` the rim velocity's change in the same unit (``5/2 F`` for an arm ``r``), both
+    normalised by the seed's ``1 + e`` without adhesion (with adhesion they are scaled by the adhesive
+    ``J_n``, as the tables are); and the unit slip direction's three columns.
+    """
+    from .core import tangential as _tg
+    from .core import tangential_laws as _tl
+    from .impact import elastic_max_approach, restitution_coefficient
+    from .oblique import DEFAULT_STEPS
+
+    vu, wu, sx, sy, sz = evaluate(_wall.slip_split, *vT, *nT, *wT, d, nout=5)
+    active = (V > 0.0) & (mu > 0.0) & ((vu + wu) > 0.0)
+    Vs = np.where(active, V, 1.0)
+    scale = mu * Vs
+    x = np.minimum(Vy / Vs, 1.0)
+    r = 0.5 * d
+    m = evaluate(_wall.sphere_mass, r, rho)[0]
+    eps = np.asarray(elastic_max_approach(Vs, E, r, m), dtype=float) / r
+    v0 = np.where(active, vu / scale, 0.0)
+    w0 = np.where(active, wu / scale, 0.0)
+    code = np.asarray(_tl.law_code("liggghts_history"))
+    vr, wr, rg = evaluate(_tl.integrate_law, code, v0, w0, kappa, x, eps, np.asarray(float(DEFAULT_STEPS)), nout=3)
+    one_e = 1.0 + np.asarray(restitution_coefficient(Vs, Vy), dtype=float)
+    F = np.where(rg == _tg.REGIME_SLIDING, 1.0, (v0 - vr) / one_e)  # sliding throughout: the Coulomb limit
+    W = (w0 - wr) / one_e
+    return np.where(active, F, 0.0), np.where(active, W, 0.0), (sx, sy, sz)
+
+
+def _correct_spin(table, nT, slip_dir, d, mu, F, W):
+    """The spin columns of ``table`` (:data:`~microimpact.core.wall.WALL_FIELDS`) with the rim's own impulse.
+
+    :func:`~microimpact.core.wall.wall_impact` changes the rim velocity ``r n x omega`` by ``5/2`` of the
+    centre's impulse ``-F mu J_n s`` (arm ``r``; ``s`` the unit slip direction); a law with another arm
+    changes it by ``-W mu J_n s``. The difference ``c = (5/2 F - W) mu J_n s`` is added to the rim
+    velocity: ``omega -= (1/r) n x c`` (``r n x (-(1/r) n x c) = c`` for ``c`` in the wall's plane).
+    Stuck particles (zero spin) and particles not approaching are left as they are."""
+    e, V, regime = table[:, 6], table[:, 7], table[:, 8]
+    moved = ((regime == _wall.ROLLING) | (regime == _wall.SLIDING)) & (mu > 0.0)
+    if not np.any(moved):
+        return
+    nx, ny, nz = (np.broadcast_to(c, e.shape) for c in nT)
+    length = np.sqrt(nx * nx + ny * ny + nz * nz)
+    coef = np.where(moved, (2.5 * F - W) * mu * (1.0 + e) * V / (0.5 * d * length), 0.0)
+    sx, sy, sz = slip_dir
+    table[:, 3] -= coef * (ny * sz - nz * sy)
+    table[:, 4] -= coef * (nz * sx - nx * sz)
+    table[:, 5] -= coef * (nx * sy - ny * sx)
+
+
+def _compliant_impulse_ratio(ut_mag, V, Vy, mu, kappa, law):
+    """``|J_t| / (mu J_n)`` of the compliant law per particle, from the universal tables."""
+    from .oblique import universal_table
+
+    n = ut_mag.size
     F = np.zeros(n)
     approaching = V > 0.0
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -476,6 +554,5 @@ def _compliant_impulse_ratio(ut_mag, V, Vy, mu, E, mats, wall_mat, poisson_ratio
     first[1:] = keys[1:] != keys[:-1]
     for kap in keys[first]:
         sel = rounded == kap
-        table_law = "lammps_mindlin" if law == "liggghts_history" else law  # the same spring, arm R
-        F[sel] = universal_table(float(kap), law=table_law)(psi[sel], np.minimum(x[sel], 1.0))
+        F[sel] = universal_table(float(kap), law=law)(psi[sel], np.minimum(x[sel], 1.0))
     return np.where(approaching & (mu > 0.0), F, 0.0)

@@ -186,3 +186,21 @@ def test_a_second_loading_stage_is_located_and_timed(name):
     # below the yield velocity there is no second stage
     low = SILICON.history(0.5 * SILICON.yield_velocity, model=name, method="ode", n=51)
     assert set(np.unique(low.stage)) == {1, 3} and low.plastic_stage_time == 0.0
+
+
+def test_a_phase_that_does_not_end_is_bounded_and_says_so():
+    """An oscillator whose event never comes: the phase stops at its bound of right-hand-side evaluations
+    with a ValueError naming it (the solver would otherwise run until its 60 doublings of the span)."""
+    from microimpact import dynamics
+
+    never = _history._event(lambda t, y: 2.0 - y[0], -1)  # |y| <= 1: never crosses
+
+    calls = []
+
+    def rhs(t, y):
+        calls.append(t)
+        return [y[1], -y[0]]
+
+    with pytest.raises(ValueError, match="bound of 3000 right-hand-side evaluations"):
+        dynamics._integrate_phase(rhs, 0.0, [0.0, 1.0], 2.0, [never], "DOP853", 1e-10, 1e-12, limit=3000)
+    assert len(calls) == 3000

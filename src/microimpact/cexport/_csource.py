@@ -425,10 +425,17 @@ def _mindlin_source(text, kappa, law="mindlin"):
         text = text.replace(old, new)
     if law not in ("mindlin", "lammps_mindlin_rescale_force"):
         old = _MINDLIN_EDITS[0][1].splitlines(keepends=True)[0]
+        arm = (
+            " *               (LIGGGHTS's arm taken as r: LAMMPS mindlin's table; wall_interaction integrates\n"
+            " *               its arm r - delta/2, up to 4e-3 apart in e_t at small angles),\n"
+            if law == "liggghts_history"
+            else ""
+        )
         text = text.replace(
             old,
-            f" *   tangential: the DEM law {law} (microimpact.core.tangential_laws; LIGGGHTS's arm taken as r),\n"
-            " *               loaded along the seed's normal history, of a solid sphere:\n",
+            f" *   tangential: the DEM law {law} (microimpact.core.tangential_laws),\n"
+            + arm
+            + " *               loaded along the seed's normal history, of a solid sphere:\n",
         )
         text = text.replace(
             " *               along the seed's normal history; microimpact.oblique) of a solid sphere:\n", "", 1

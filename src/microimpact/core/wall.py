@@ -31,6 +31,7 @@ __all__ = [
     "contact_slip",
     "unit_normal",
     "approach_and_slip",
+    "slip_split",
     "whole_law_capture_velocity",
     "wall_impact",
     "WALL_FIELDS",
@@ -108,6 +109,24 @@ def approach_and_slip(vx, vy, vz, nx, ny, nz, wx, wy, wz, d, rho, E, p_y):
     vn, tx, ty, tz, sx, sy, sz = contact_slip(vx, vy, vz, ux, uy, uz, wx, wy, wz, r)
     Vy = yield_point(E, r, sphere_mass(r, rho), p_y)[2]
     return (-vn if vn < 0.0 else 0.0), math.sqrt(sx * sx + sy * sy + sz * sz), Vy
+
+
+@jitable
+def slip_split(vx, vy, vz, nx, ny, nz, wx, wy, wz, d):
+    """``(v_u, w_u, s_x, s_y, s_z)``: the centre's tangential velocity ``v_t`` and the rim velocity
+    ``r n x omega`` along the unit slip direction ``s = u_t/|u_t|`` [m/s] (``v_u + w_u = |u_t|``), and
+    ``s``; all 0 where nothing slips.
+
+    A law whose arm is not ``r`` (LIGGGHTS's ``r - delta/2``) moves the centre and the rim by different
+    impulses, so its outcome depends on the two parts of the slip, not only on their sum."""
+    ux, uy, uz = unit_normal(nx, ny, nz)
+    r = 0.5 * d
+    _, tx, ty, tz, sx, sy, sz = contact_slip(vx, vy, vz, ux, uy, uz, wx, wy, wz, r)
+    slip = math.sqrt(sx * sx + sy * sy + sz * sz)
+    if not slip > 0.0:
+        return 0.0, 0.0, 0.0, 0.0, 0.0
+    vu = (tx * sx + ty * sy + tz * sz) / slip
+    return vu, slip - vu, sx / slip, sy / slip, sz / slip
 
 
 @jitable

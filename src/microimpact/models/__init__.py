@@ -41,6 +41,10 @@ __all__ = [
     "face",
     "Face",
     "dem_models",
+    "OutsideValidityWarning",
+    "outside_validity",
+    "validity_codes",
+    "validity_text",
 ]
 
 _CORE_PACKAGE = "microimpact.core.models"
@@ -119,3 +123,81 @@ def face(name: str = DEFAULT) -> Face:
 def dem_models() -> tuple:
     """Names of the models whose face has a calibration of its own (the DEM laws), in :func:`available` order."""
     return tuple(n for n in _core.available() if face(n).own_calibration)
+
+
+# ----------------------------------------------------------------------------- outside validity
+
+
+class OutsideValidityWarning(UserWarning):
+    """Some impact lies outside what its published law can say (the model's ``outside_validity`` hook,
+    :data:`microimpact.core.models.VALIDITY_REASONS`): an unloading that would return more work than
+    the loading stored (``e > 1``; ``e = 1`` is returned) or a contact radius beyond the sphere's.
+    The results are kept as computed and flagged, not refused, as :class:`~microimpact.LargeStrainWarning`'s."""
+
+
+def validity_codes(model, V, E, R, m, p_y, params):
+    """The ``outside_validity`` codes [-] (0: inside; bits of :data:`~microimpact.core.models.VALIDITY_REASONS`)
+    of ``model`` (a :class:`~microimpact.core.models.Model`) at the checked, broadcast speeds ``V``
+    [m/s] and pair floats, as a float ndarray of ``V``'s shape; zeros for a model without the hook."""
+    import numpy as np
+
+    from ..core.arrays import evaluate
+
+    V = np.asarray(V, dtype=float)
+    if model.outside_validity is None:
+        return np.zeros(V.shape)
+    return np.asarray(evaluate(model.outside_validity, V, E, R, m, p_y, params=tuple(params))[0], dtype=float)
+
+
+def validity_text(name, V, codes):
+    """The :class:`OutsideValidityWarning` message of model ``name`` for the speeds ``V`` [m/s] and their
+    codes (:func:`validity_codes`), or None where every impact lies inside."""
+    import numpy as np
+
+    codes = np.atleast_1d(np.asarray(codes, dtype=float))
+    V = np.broadcast_to(np.atleast_1d(np.asarray(V, dtype=float)), codes.shape)
+    out = codes != 0.0
+    if not out.any():
+        return None
+    parts = []
+    for bit, text in _core.VALIDITY_REASONS.items():
+        sel = (codes.astype(np.int64) & bit) != 0
+        if sel.any():
+            lo, hi = float(V[sel].min()), float(V[sel].max())
+            where = f"at {lo:.4g} m/s" if lo == hi else f"between {lo:.4g} and {hi:.4g} m/s"
+            parts.append(f"{where}: {text}")
+    return (
+        f"{int(out.sum())} of {out.size} impacts of {name!r} lie outside what the law can say (results kept as "
+        "computed, flagged in outside_validity): " + "; ".join(parts)
+    )
+
+
+def outside_validity(pair, velocity, *, model, warn=True, **params):
+    """Where impacts of ``pair`` at ``velocity`` [m/s] lie outside what ``model``'s published law can say.
+
+    Returns a bool ndarray of ``velocity``'s shape (the model's ``outside_validity`` hook, nonzero;
+    all False for a model without one) and, with ``warn``, issues an :class:`OutsideValidityWarning`
+    naming the speeds and reasons (:data:`~microimpact.core.models.VALIDITY_REASONS`): Kogut-Etsion +
+    Etsion-Kligerman-Kadin just past ``V_y`` and Jackson-Green + Brake just past 1.9 ``delta_c``, where
+    the published unloading would give ``e > 1`` (``pair.impact`` returns 1), and Jackson-Green where
+    ``a* > R``, where its ``e`` rises with the speed again. The outcome itself is unchanged.
+    """
+    import warnings
+
+    from .._validation import check_velocity
+
+    mod = get(model)
+    p = resolve_params(mod, params)
+    V = check_velocity("velocity", velocity)
+    E, R, m, p_y = (
+        float(pair.effective_modulus),
+        float(pair.effective_radius),
+        float(pair.effective_mass),
+        float(pair.limiting_pressure),
+    )
+    codes = validity_codes(mod, V, E, R, m, p_y, p)
+    if warn:
+        text = validity_text(mod.NAME, V, codes)
+        if text is not None:
+            warnings.warn(text, OutsideValidityWarning, stacklevel=2)
+    return codes != 0.0

@@ -95,11 +95,22 @@ def _to_value(spec, u, values):
     return u
 
 
+def _scan_cost(residuals, u):
+    """Squared residuals at ``u``, inf where the model cannot be evaluated there (an extreme value of the
+    parameter, 1e-13 of its unit: not a start for the search)."""
+    try:
+        return float(np.sum(residuals(np.array([u])) ** 2))
+    except (ArithmeticError, ValueError):
+        return math.inf
+
+
 def calibrate(model, pair_values, velocity, target_restitution, target_contact_time):
     """The default calibration: the parameters of ``model`` without a default, chosen by least
     squares of ``e(V) - e_target`` over the speeds (each mapped into its bounds; start in the
-    middle of them), the others at their defaults. The contact time is not matched (a model that
-    can match it has a calibration of its own); ValueError if the fit does not converge."""
+    middle of them, and for one parameter that misses from there, again from the best point of a scan
+    over its range), the others at their defaults. The contact time is not matched (a model that
+    can match it has a calibration of its own); ValueError if the fit does not converge (a fit that
+    converges away from the target is refused by :func:`microimpact.calibrate.calibrate`)."""
     from scipy.optimize import least_squares
 
     spec = model.PARAMETERS
@@ -120,6 +131,16 @@ def calibrate(model, pair_values, velocity, target_restitution, target_contact_t
     sol = least_squares(residuals, np.zeros(len(free)), xtol=1e-15, ftol=1e-15, gtol=1e-15)
     if not sol.success:
         raise ValueError(f"model {model.NAME!r} could not be calibrated to the target e: {sol.message}")
+    if len(free) == 1 and not np.all(np.abs(sol.fun) <= 1e-9):
+        # The middle of the bounds (u = 0) is a unit of the parameter: 1 Pa for a yield strength, where a
+        # law can be flat (e = 0 whatever the step) and the search stops at its start. One parameter:
+        # start again from the best of a scan over its range (exp(u) from 1e-13 to 1e26 of its unit).
+        grid = np.linspace(-30.0, 60.0, 46)
+        cost = [_scan_cost(residuals, u) for u in grid]
+        best = grid[int(np.argmin(cost))]
+        again = least_squares(residuals, np.array([best]), xtol=1e-15, ftol=1e-15, gtol=1e-15)
+        if again.success and again.cost < sol.cost:
+            sol = again
     return params_of(sol.x)
 
 

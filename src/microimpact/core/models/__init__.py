@@ -125,6 +125,14 @@ as users name it (``model=NAME``). It declares what it is with module-level name
 ``OUTCOME_COST`` [``COST``]
     The same for the whole outcome (a fit's predictions with contact times): ``"slow"`` where the
     contact times take a quadrature though ``e`` is cheap.
+``outside_validity(V, E, R, m, p_y, params)`` [``None``: always inside]
+    Marked ``@jitable``; a code, 0.0 where the impact at ``V`` lies within what the published law can
+    say, else the sum of the reasons of :data:`VALIDITY_REASONS` that hold: 1 where its published
+    unloading would return more work than the loading stored (``e > 1``, energy created; the outcome
+    gives ``e = 1``, the contact retracing its loading), 2 where the contact radius ``a*`` exceeds the
+    sphere's radius (a fit extrapolated past any geometry: its ``e`` can rise with ``V`` there). The
+    outcome is kept as computed (flagged, not refused, not clipped further); the layer above flags and
+    warns (:func:`validity_reasons`), as it does ``large_strain``.
 ``ADHESION_LIMIT`` [``None``: no adhesion]
     ``"JKR"`` or ``"DMT"``: the adhesion limit the law is written for; with
     ``work_of_adhesion(params)`` (the work of adhesion ``G`` [J/m^2] its parameters give),
@@ -165,6 +173,8 @@ __all__ = [
     "declare",
     "deprecated_names",
     "whole_law",
+    "VALIDITY_REASONS",
+    "validity_reasons",
     "checks",
     "bounds",
     "in_bounds",
@@ -345,6 +355,7 @@ class Model:
     restitution_only: Callable | None = None
     restitution_group: Callable | None = None
     restitution_of_group: Callable | None = None
+    outside_validity: Callable | None = None
     ADHESION_LIMIT: str | None = None
     work_of_adhesion: Callable | None = None
     WALL_ADHESION: bool = False
@@ -373,8 +384,24 @@ _HOOKS = (
     "restitution_only",
     "restitution_group",
     "restitution_of_group",
+    "outside_validity",
     "work_of_adhesion",
 )
+
+#: The reasons an impact lies outside what its law can say, by the bit of ``outside_validity``'s code.
+VALIDITY_REASONS = {
+    1: "the published unloading would return more work than the loading stored (e > 1; e = 1 is returned)",
+    2: "the contact radius exceeds the sphere's radius (a* > R: the fit is extrapolated past the geometry)",
+}
+
+
+def validity_reasons(code) -> list:
+    """The texts of :data:`VALIDITY_REASONS` whose bits the ``outside_validity`` ``code`` holds (a float
+    or an integer; NaN or 0: none)."""
+    if not code == code or not code:
+        return []
+    c = int(code)
+    return [text for bit, text in VALIDITY_REASONS.items() if c & bit]
 
 
 def declare(module) -> Model:

@@ -643,6 +643,30 @@ def restitution(law, V, E, R, m, Y, nu, twin):
 
 
 @jitable
+def outside_validity(law, V, E, R, m, Y, nu, twin):
+    """The ``outside_validity`` code of an impact at ``V`` (the contract's hook): 1 where the published
+    unloading from ``alpha*`` returns more work than the loading stored (:func:`restitution` gives
+    ``e = 1`` there, the same calls in the same order), plus 2 where the loading's contact radius ``a*``
+    exceeds the sphere's radius (the law's ``R_l``: ``R*``, or ``2 R*`` for two identical spheres);
+    0 inside, and on Hertz's curve below the switch."""
+    if not V < math.inf:
+        return 0.0
+    a1 = switch_approach(law, E, R, Y, nu, twin)
+    V1 = math.sqrt(0.8 * hertz.force(a1, E, R) * a1 / m)
+    if V <= V1:  # Hertz: reversible, inside
+        return 0.0
+    astar = max_approach(law, V, E, R, m, Y, nu, twin)
+    P, d, Rb, a = unloading(law, astar, E, R, Y, nu, twin)
+    code = 0.0
+    if unloading_work(astar, d, Rb, E) > 0.5 * m * V * V:
+        code += 1.0
+    El, Rl, s = frame(E, R, twin)
+    if a > Rl:
+        code += 2.0
+    return code
+
+
+@jitable
 def impact(law, V, E, R, m, Y, nu, twin, a_limit):
     """The 18-tuple outcome (:data:`~microimpact.core.quantities.OUTCOME_FIELDS`) of an impact at ``V``.
 

@@ -55,7 +55,12 @@ reversible and unloads along its loading curve (``e = 1``, ``plastic_approach = 
 ``unloading_radius`` NaN, ``elastic`` 0), in :func:`outcome` and :func:`force` alike, so that the
 two agree. ``e`` is continuous there (the published unloading gives ``e = 1`` at the band's upper
 end). For ``nu = 0.3`` the band ends 7 % above the speed reaching ``1.9 delta_c`` (the
-maximum approach 5 % past it).
+maximum approach 5 % past it): about 2.23 to 2.38 ``V_y`` for ``E*/S_y`` near 300. That band lies
+outside what the published law can say: :func:`outside_validity` gives it code 1 (the contract's hook;
+:func:`microimpact.models.outside_validity` flags it and warns,
+:class:`~microimpact.models.OutsideValidityWarning`). So does (code 2) a contact radius ``a*`` beyond
+the sphere's radius: eq. 23's ``a`` grows without bound, and ``e`` rises with the speed again there
+(by 0.105 from ``a* = R`` to 10^4 ``V_y`` for the seed's silicon pair at ``S_y`` = 54 MPa).
 
 **Parameters of this model** (``params``, in this order):
 
@@ -140,6 +145,16 @@ def restitution_only(V, E, R, m, p_y, params):
     if not in_bounds(params, BOUNDS):
         return math.nan
     return fl.restitution(fl.JACKSON_GREEN, V, E, R, m, params[0], params[1], params[2])
+
+
+@jitable
+def outside_validity(V, E, R, m, p_y, params):
+    """The contract's validity code of an impact at ``V`` (:func:`~microimpact.core.models._fitted_laws.outside_validity`):
+    1 where the published unloading would give ``e > 1`` (``e = 1`` returned, module docstring), plus 2
+    where ``a*`` exceeds the sphere's radius; 0 inside (and for invalid ``params``)."""
+    if not in_bounds(params, BOUNDS):
+        return 0.0
+    return fl.outside_validity(fl.JACKSON_GREEN, V, E, R, m, params[0], params[1], params[2])
 
 
 @jitable

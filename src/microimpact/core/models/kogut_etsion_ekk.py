@@ -50,7 +50,10 @@ where the published unloading would return more work than the loading stored, th
 as reversible and unloads along its loading curve (``e = 1``, ``plastic_approach = 0``,
 ``unloading_radius`` NaN, ``elastic`` 0), in :func:`outcome` and :func:`force` alike. ``e`` is
 continuous at the band's end, ``x = 1.50`` for every pair (the laws are scale-free), reached at
-1.66 times the speed that reaches ``omega_c``. The later jumps show in ``e(V)``: for steel on steel (``nu = 0.29``)
+1.66 times the speed that reaches ``omega_c``. That band lies outside what the published law can say:
+:func:`outside_validity` gives it code 1 (the contract's hook; :func:`microimpact.models.outside_validity`
+flags it and warns, :class:`~microimpact.models.OutsideValidityWarning`), and code 2 where the contact
+radius would exceed the sphere's. The later jumps show in ``e(V)``: for steel on steel (``nu = 0.29``)
 ``e`` jumps up by 0.008 where ``omega*`` crosses ``6 omega_c`` and by 0.037 at ``110 omega_c``.
 
 **Parameters of this model** (``params``, in this order):
@@ -120,6 +123,16 @@ def restitution_only(V, E, R, m, p_y, params):
     if not in_bounds(params, BOUNDS):
         return math.nan
     return fl.restitution(fl.KOGUT_ETSION, V, E, R, m, params[0], params[1], 0.0)
+
+
+@jitable
+def outside_validity(V, E, R, m, p_y, params):
+    """The contract's validity code of an impact at ``V`` (:func:`~microimpact.core.models._fitted_laws.outside_validity`):
+    1 where the published unloading would give ``e > 1`` (``e = 1`` returned, module docstring), plus 2
+    where ``a*`` exceeds the sphere's radius; 0 inside (and for invalid ``params``)."""
+    if not in_bounds(params, BOUNDS):
+        return 0.0
+    return fl.outside_validity(fl.KOGUT_ETSION, V, E, R, m, params[0], params[1], 0.0)
 
 
 @jitable
