@@ -25,6 +25,7 @@ from . import materials, models
 from ._version import __version__
 from .core.models import available as _available  # noqa: F401  (the registry loads with the package)
 from .materials import MATERIALS, Material, effective_mass, effective_modulus, effective_radius, get_material
+from .models import OutsideValidityWarning
 from .pair import AdhesionRangeWarning, ContactPair, ImpactResult, LargeStrainWarning
 
 # Everything else loads on first use (PEP 562), so that ``import microimpact`` and one impact on
@@ -89,6 +90,7 @@ __all__ = [
     "ContactPair",
     "ImpactResult",
     "LargeStrainWarning",
+    "OutsideValidityWarning",
     "AdhesionRangeWarning",
     "Material",
     "MATERIALS",

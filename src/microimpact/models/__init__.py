@@ -141,7 +141,7 @@ def validity_codes(model, V, E, R, m, p_y, params):
     [m/s] and pair floats, as a float ndarray of ``V``'s shape; zeros for a model without the hook."""
     import numpy as np
 
-    from ..core.arrays import evaluate
+    from ..engine import evaluate
 
     V = np.asarray(V, dtype=float)
     if model.outside_validity is None:

@@ -17,6 +17,7 @@ from ..core.constants import LARGE_STRAIN_RATIO
 from ..core.models import thornton_ning_2016 as _seed
 from ..engine import evaluate as _evaluate
 from ..impact import outcome_arrays, restitution_coefficient
+from ..models import OutsideValidityWarning, validity_codes, validity_text
 from ._adhesion import range_warning_text, tabor_check
 from ._result import FALSE, LARGE, TRUE, AdhesionRangeWarning, LargeStrainWarning, one_result, trusted_result
 
@@ -92,6 +93,12 @@ def impact(values, velocity, model, warn, params):
         res.__dict__["outside_adhesion_range"] = TRUE if outside else FALSE
         if warn and outside and not _ignored(AdhesionRangeWarning):
             warnings.warn(range_warning_text(mod.NAME, limit, mu), AdhesionRangeWarning, stacklevel=3)
+    if mod.outside_validity is not None:  # flagged where the published law cannot say what happens
+        codes = validity_codes(mod, res.velocity, *values, p)
+        res.__dict__["outside_validity"] = scalar_or_array(codes != 0.0)
+        if warn and codes.any() and not _ignored(OutsideValidityWarning):
+            text = validity_text(mod.NAME, res.velocity, codes)
+            warnings.warn(text, OutsideValidityWarning, stacklevel=3)
     return res
 
 

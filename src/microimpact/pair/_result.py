@@ -122,12 +122,20 @@ class ImpactResult:
         True where the model is written for the JKR limit and ``mu < 5``, or for the DMT limit
         and ``mu > 0.1``: the pair is outside the law's range (flagged, not refused; as
         ``large_strain``). False for the other models.
+    outside_validity : ndarray of bool
+        True where the impact lies outside what the model's published law can say (its
+        ``outside_validity`` hook: an unloading that would return more work than the loading
+        stored, where ``e = 1`` is returned, or a contact radius beyond the sphere's); flagged, not
+        refused, with an :class:`~microimpact.models.OutsideValidityWarning`. False for the models
+        without the hook.
     """
 
     #: Set by :meth:`ContactPair.impact` for an adhesive model (not a field of the outcome table).
     tabor_parameter = math.nan
     #: Set by :meth:`ContactPair.impact` for an adhesive model.
     outside_adhesion_range = FALSE
+    #: Set by :meth:`ContactPair.impact` for a model with an ``outside_validity`` hook.
+    outside_validity = FALSE
 
     velocity: np.ndarray
     yield_velocity: np.ndarray
