@@ -85,3 +85,19 @@ def test_models_without_the_hook_are_inside_and_silent():
     assert not flags.any()
     assert mi.models.get("thornton_ning_2016").outside_validity is None
     assert mi.models.validity_text("x", [1.0], [0.0]) is None
+
+
+@pytest.mark.parametrize("model", ["kogut_etsion_ekk", "jackson_green_brake"])
+def test_pair_impact_carries_the_flag_and_its_warning(model):
+    """``pair.impact`` flags the impacts :func:`outside_validity` names and warns, with the outcome
+    unchanged (e = 1 kept); a model without the hook is never flagged."""
+    vy = _yield_velocity(model, Y300)
+    V = vy * np.linspace(0.5, 3.0, 51)
+    expected = mi.models.outside_validity(PAIR, V, model=model, yield_strength=Y300, warn=False)
+    assert expected.any()
+    with pytest.warns(mi.OutsideValidityWarning):
+        res = PAIR.impact(V, model=model, yield_strength=Y300)
+    assert np.array_equal(res.outside_validity, expected)
+    quiet = PAIR.impact(V, model=model, yield_strength=Y300, warn=False)
+    assert np.array_equal(quiet.restitution, res.restitution) and np.all(res.restitution[expected] == 1.0)
+    assert not np.any(PAIR.impact(V, warn=False).outside_validity)

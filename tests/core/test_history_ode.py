@@ -193,7 +193,7 @@ def test_a_phase_that_does_not_end_is_bounded_and_says_so():
     with a ValueError naming it (the solver would otherwise run until its 60 doublings of the span)."""
     from microimpact import dynamics
 
-    never = _history._event(lambda t, y: 2.0 - y[0], -1)  # |y| <= 1: never crosses
+    never = dynamics._event(lambda t, y: 2.0 - y[0], -1)  # |y| <= 1: never crosses
 
     calls = []
 
