@@ -110,8 +110,8 @@ def run(args) -> int:
     module = models.get(name)
     params = parse_model_params(args.param, [name]).get(name, {})
     models.resolve_params(module, params)  # every input checked before anything is written
-    if args.method == "closed" and module.NAME != models.DEFAULT:
-        raise ValueError(f"--method closed is the seed's model only; {module.NAME} is integrated (--method ode)")
+    if args.method == "closed" and models.face(module.NAME).closed_form_history is None:
+        raise ValueError(f"--method closed: {module.NAME} has no closed-form history; it is integrated (--method ode)")
     if args.hertz and not args.plot:
         raise ValueError("--hertz draws into the plot: give --plot FILE.png with it")
     out = None if args.out == "-" else args.out
@@ -137,7 +137,7 @@ def run(args) -> int:
         history.to_csv(sys.stdout, progress=progress)
     else:
         history.to_csv(out, progress=progress)
-        method = args.method or ("closed" if module.NAME == models.DEFAULT else "ode")
+        method = history.method
         print(
             f"wrote {len(history)} points ({method}, {module.NAME}) to {args.out}: "
             f"t_c = {history.contact_time * 1e9:.5g} ns, "

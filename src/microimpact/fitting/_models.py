@@ -60,8 +60,7 @@ def _arrays():
 
 def available_models() -> list[str]:
     """Names accepted as ``model=``: the models of :func:`microimpact.models.available`, the seed first."""
-    names = [n for n in _zoo().available() if n != SEED_MODEL]
-    return [SEED_MODEL, *names]
+    return list(dict.fromkeys((SEED_MODEL, *_zoo().available())))  # the default first, each name once
 
 
 _MODULES: dict = {}

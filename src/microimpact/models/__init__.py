@@ -41,6 +41,7 @@ __all__ = [
     "face",
     "Face",
     "dem_models",
+    "closed_form_histories",
 ]
 
 _CORE_PACKAGE = "microimpact.core.models"
@@ -65,6 +66,7 @@ class Face:
     lammps: Any
     liggghts: Any
     restitution_of_yield_velocity: Any
+    closed_form_history: Any
     module: Any
 
 
@@ -111,6 +113,7 @@ def face(name: str = DEFAULT) -> Face:
         lammps=ns.get("lammps", _base.lammps),
         liggghts=ns.get("liggghts", _base.liggghts),
         restitution_of_yield_velocity=ns.get("restitution_of_yield_velocity", _base.restitution_of_yield_velocity),
+        closed_form_history=ns.get("closed_form_history", _base.closed_form_history),
         module=module,
     )
     return found
@@ -119,3 +122,8 @@ def face(name: str = DEFAULT) -> Face:
 def dem_models() -> tuple:
     """Names of the models whose face has a calibration of its own (the DEM laws), in :func:`available` order."""
     return tuple(n for n in _core.available() if face(n).own_calibration)
+
+
+def closed_form_histories() -> tuple:
+    """Names of the models whose face declares a ``closed_form_history``, in :func:`available` order."""
+    return tuple(n for n in _core.available() if face(n).closed_form_history is not None)

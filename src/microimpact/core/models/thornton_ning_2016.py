@@ -36,6 +36,9 @@ __getattr__ = deprecated_names(
 )  # released DEFAULTS and signed_force: one release, with a warning
 #: History stages (seed eqs. 2, 8, 10).
 STAGES = {1: "Hertz loading (eq. 2)", 2: "plastic loading (eq. 8)", 3: "elastic unloading (eq. 10)"}
+CITATION = "Aerosol Sci. Tech. 50(4):321-330 (2016); Thornton & Ning, Powder Technol. 99:154-162 (1998)"
+#: The generated C source writes this law's e_p(V/V_y) (microimpact.cexport): its fits can be exported.
+C_EXPORT = True
 
 
 @jitable
