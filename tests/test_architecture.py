@@ -5,8 +5,9 @@ Layers, bottom up: ``core`` (the physics, one scalar source per formula and mode
 hold) -> ``applications`` -> ``cli``. A module imports only from its own layer or below (imports
 inside functions count too); no module imports a private name (``_x``) of another module; the core
 imports nothing of microimpact outside the core. A model's name is written only in its two files
-(its physics, ``core/models/NAME.py``, and its face, ``models/NAME.py``); no module reads another
-module's private attributes; the CLI calls the public API, not the core; the application modules
+(its physics, ``core/models/NAME.py``, and its face, ``models/NAME.py``), and no other module
+branches on a model's identity (the seed's included: what is special about a model is declared);
+no module reads another module's private attributes; the CLI calls the public API, not the core; the application modules
 keep an order among themselves (:data:`APPLICATION_ORDER`). Each rule is one test that lists every
 violation at once. No two modules import each other, directly or round a longer circle (imports
 inside functions count); no module is longer than :data:`MAX_LINES`; the one import that may go

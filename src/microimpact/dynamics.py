@@ -76,8 +76,14 @@ __all__ = [
     "ImpactHistory",
     "integrate_impact",
     "integrate_model",
-    "CLOSED_FORM_HISTORY",  # noqa: F822 (module __getattr__: read from the declarations at each access)
+    "CLOSED_FORM_HISTORY",
 ]
+
+#: Names of the models whose time history exists in closed form: those whose face declares
+#: ``closed_form_history`` (:mod:`microimpact.models._base`; the seed's is :func:`impact_history`).
+#: The others are integrated numerically (:func:`integrate_model`). Read from the declarations at each
+#: access (the module's ``__getattr__``), so that a model added by ``register_path`` counts.
+CLOSED_FORM_HISTORY: tuple
 
 
 #: Stage codes of a history.
@@ -95,10 +101,7 @@ def stage_names(model=None) -> dict:
 
 
 def __getattr__(name):
-    if name == "CLOSED_FORM_HISTORY":
-        # Models whose time history exists in closed form (their face declares closed_form_history,
-        # microimpact.models._base); the others are integrated numerically (integrate_model). Read
-        # from the declarations at each access, so that a model added by register_path counts.
+    if name == "CLOSED_FORM_HISTORY":  # declared above; the faces are read on access
         from .models import closed_form_histories
 
         return closed_form_histories()

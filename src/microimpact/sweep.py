@@ -523,10 +523,10 @@ def _models_and_params(model, model_params):
 
 
 def _model_text(name) -> str:
-    """``"name: title (citation)"`` of a model for the attributes, from its declaration (``TITLE``,
-    ``CITATION``: :mod:`microimpact.core.models`)."""
+    """``"name: title. Source: citation"`` of a model for the attributes, from its declaration
+    (``TITLE``, ``CITATION``: :mod:`microimpact.core.models`)."""
     mod = models.get(name)
-    return f"{name}: {mod.TITLE}" + (f" ({mod.CITATION})" if mod.CITATION else "")
+    return f"{name}: {mod.TITLE}" + (f". Source: {mod.CITATION}" if mod.CITATION else "")
 
 
 def _params_text(names, params) -> str:

@@ -56,7 +56,8 @@ def band_pairs(fit) -> list[dict]:
     writable = [n for n in models.available() if models.get(n).C_EXPORT]  # the law the C source writes
     if fit.model not in writable:
         raise ValueError(
-            f"fit: the export writes the model declaring C_EXPORT ({', '.join(writable)}); this fit is of {fit.model!r}"
+            f"fit: the export writes the seed's e_p(V/V_y), the law declaring C_EXPORT ({', '.join(writable)}); "
+            f"this fit is of {fit.model!r}"
         )
     if len(fit.params) != 1:
         raise ValueError(f"fit: the band's ends need exactly one free parameter, this fit has {len(fit.params)}")

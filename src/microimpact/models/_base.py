@@ -25,8 +25,8 @@ in it; :func:`microimpact.models.face` fills in the default of each name it lack
 ``liggghts(calibration, poisson, wall)`` [refuse]
     LIGGGHTS-PUBLIC input lines after ``units si``.
 ``restitution_of_yield_velocity(velocity, yield_velocity)`` [``None``]
-    ``e`` of the speeds and ``V_y`` alone, for a model whose one dimensionless group (the core
-    contract's ``restitution_group``) is ``V/V_y``: fitting's grid search over ``V_y`` uses it.
+    ``e`` of the speeds and ``V_y`` alone, for a model whose declared group (the core contract's
+    ``restitution_group``) is ``V/V_y``, the same bits: fitting's grid search over ``V_y`` uses it.
 ``closed_form_history(velocity, pair_values, params, n, times)`` [``None``: integrated]
     The time history of one impact in closed form, for a model that has one: the dict of
     :func:`microimpact.dynamics.integrate_model` (approach, velocity, force and stage at the times of

@@ -89,18 +89,19 @@ as users name it (``model=NAME``). It declares what it is with module-level name
     (:meth:`ContactPair.sticking_velocity <microimpact.pair.ContactPair.sticking_velocity>`).
 
 *What is evaluated at many speeds* (fitting and ranking compare only ``e``; the stick/bounce maps
-read ``V_y``). Each is the outcome's own field, bit for bit (``V_y``: to rounding), computed by the
-model's own functions that :func:`outcome` calls, never a second copy of a formula, for a law whose
-outcome costs more than that field (a contact time by quadrature, an integration):
+read ``V_y``), without what only the outcome's other fields need (a contact time by quadrature, an
+integration). Each is the outcome's own field, bit for bit (``V_y``: to rounding), computed by the
+model's own functions that :func:`outcome` calls, never a second copy of a formula:
 
 ``restitution_group(V, E, R, m, p_y, params)`` and ``restitution_of_group(g, params)`` [``None``]
     Both ``@jitable``, declared together: the one declaration that ``e`` depends on the speed and
     the pair through one dimensionless group ``g`` alone (with the model's ``params``). ``g`` at
     speed ``V > 0`` exactly as :func:`outcome` computes it, and ``e`` at ``g``. Fitting evaluates
     ``e`` once per distinct ``g`` of its data (:mod:`microimpact.fitting`): Hertz-Tsuji's ``g`` is
-    its damping ratio up to rounding, a handful of distinct values for any set of speeds. (Where
-    ``g = V/V_y``, the face's ``restitution_of_yield_velocity`` gives ``e`` of ``V`` and ``V_y``
-    alone, :mod:`microimpact.models._base`.)
+    its damping ratio up to rounding, a handful of distinct values for any set of speeds. The
+    seed's is ``V/V_y`` (eq. 27), so its face also gives ``e`` of ``V`` and ``V_y`` alone
+    (``restitution_of_yield_velocity``, :mod:`microimpact.models._base`), which fitting's grid
+    search over ``V_y`` uses.
 ``restitution_only(V, E, R, m, p_y, params)`` [``None``: field ``restitution`` of ``outcome``]
     Marked ``@jitable``; ``e`` [-] alone at any speed, with the arguments of :func:`outcome`
     (:func:`microimpact.impact.restitution_arrays`). (Not ``restitution``: the seed's module has a

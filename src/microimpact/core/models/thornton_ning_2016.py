@@ -171,6 +171,19 @@ def normalized_velocity(V, V_y):
 
 
 @jitable
+def restitution_group(V, E, R, m, p_y, params):
+    """``v = V/V_y`` [-] at speed ``V`` [m/s], as :func:`outcome` computes it: ``e`` is one function of
+    it (eq. 27), the contract's group hook (``params``: the law's empty tuple)."""
+    return normalized_velocity(V, yield_point(E, R, m, p_y)[2])
+
+
+@jitable
+def restitution_of_group(v, params):
+    """``e`` [-] at ``v = V/V_y`` (:func:`restitution`, eq. 27): the field ``restitution`` of :func:`outcome`."""
+    return restitution(v)
+
+
+@jitable
 def elastic_stage_time(V, E, R, m, alpha_y, V_y):
     """Stage 1, Hertz loading to yield or to rest: ``t1 = (2/5)(alpha_m/V) B(u; 2/5, 1/2)`` [s] (eq. 20).
 
