@@ -691,7 +691,8 @@ def test_no_branch_on_a_models_identity_outside_its_two_rooms():
     """The seed is a model like the others: outside a model's two rooms (its physics,
     ``core/models/NAME.py``, and its face, ``models/NAME.py``) no code asks "is this that model?"
     (``model == DEFAULT``, ``name != SEED_MODEL``, ``mod.NAME in CLOSED_FORM_HISTORY``,
-    ``_seed.NAME == ...``). What is special about a model is a declaration of the model contract
+    ``_seed.NAME == ...``), nor does a model's room ask it of another model. What is special about
+    a model is a declaration of the model contract
     (:mod:`microimpact.core.models`: ``CITATION``, ``C_EXPORT``, ``WALL_ADHESION``; the face's
     ``closed_form_history``), read by the generic machinery; the default model is only a default
     argument. No exceptions."""
@@ -701,10 +702,10 @@ def test_no_branch_on_a_models_identity_outside_its_two_rooms():
     violations = []
     for path, tree in _trees().items():
         rel = path.relative_to(SRC)
-        if rel.parts[0] in ("core", "models") and rel.stem in names and rel.parts[-2] == "models":
-            continue  # the model's own two rooms
+        own = rel.parts[0] in ("core", "models") and rel.stem in names and rel.parts[-2] == "models"
+        others = names - {rel.stem} if own else names  # in a model's own rooms, another model's identity
         violations += [
-            f"{rel}:{line} branches on a model's identity: {text}" for line, text in _identity_branches(tree, names)
+            f"{rel}:{line} branches on a model's identity: {text}" for line, text in _identity_branches(tree, others)
         ]
     _report("branches on a model's identity outside its two rooms", violations)
 

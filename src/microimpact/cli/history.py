@@ -29,8 +29,8 @@ def register(sub) -> None:
         "history",
         help="time history of one impact (approach, velocity, force, stage) as CSV, optionally plotted",
         description="Approach, approach velocity, contact force and stage from first contact to separation "
-        "for one impact, evaluated in closed form (or by integrating Newton's equation with --method ode; "
-        "other models than the seed's, --model, are always integrated with their own force law). "
+        "for one impact, evaluated in closed form where the model has one, as the seed's (or by integrating "
+        "Newton's equation with --method ode; the other models, --model, are integrated with their own force law). "
         "Writes CSV with units in the header; --plot draws velocity, force and approach against time "
         "(seed Fig. 10).",
     )
@@ -54,8 +54,8 @@ def register(sub) -> None:
         "--method",
         choices=["closed", "ode"],
         default=None,
-        help="closed form (the default for the seed's model) or numerical integration of Newton's equation "
-        "(a cross-check; the only way for the other models)",
+        help="closed form (the default where the model has one: the seed's) or numerical integration of "
+        "Newton's equation (a cross-check; the only way for the other models)",
     )
     add_model_arguments(p, many=False)
     p.add_argument(
