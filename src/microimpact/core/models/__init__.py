@@ -102,10 +102,11 @@ model's own functions that :func:`outcome` calls, never a second copy of a formu
     seed's is ``V/V_y`` (eq. 27), so its face also gives ``e`` of ``V`` and ``V_y`` alone
     (``restitution_of_yield_velocity``, :mod:`microimpact.models._base`), which fitting's grid
     search over ``V_y`` uses.
-``restitution_only(V, E, R, m, p_y, params)`` [``None``: field ``restitution`` of ``outcome``]
+``restitution_only(V, E, R, m, p_y, params)`` [``None``: from the group where declared, else the outcome's field]
     Marked ``@jitable``; ``e`` [-] alone at any speed, with the arguments of :func:`outcome`
-    (:func:`microimpact.impact.restitution_arrays`). (Not ``restitution``: the seed's module has a
-    function of that name, ``e`` of ``V/V_y``.)
+    (:func:`microimpact.impact.restitution_arrays`, which derives ``e`` from the group of a model
+    that declares one and not this hook, at positive speeds). (Not ``restitution``: the seed's
+    module has a function of that name, ``e`` of ``V/V_y``.)
 ``yield_velocity_of(E, R, m, p_y, params)`` [``None``: the field ``yield_velocity`` of ``outcome``]
     Marked ``@jitable``; ``V_y`` [m/s] alone (0 where the contact yields at any speed), which
     :mod:`microimpact.stick` maps over particle sizes.
