@@ -6,8 +6,9 @@ Layers, bottom up: ``core`` (the physics, one scalar source per formula and mode
 hold) -> ``applications`` -> ``cli``. A module imports only from its own layer or below (imports
 inside functions count too); no module imports a private name (``_x``) of another module; the core
 imports nothing of microimpact outside the core. A model's name is written only in its two files
-(its physics, ``core/models/NAME.py``, and its face, ``models/NAME.py``); no module reads another
-module's private attributes; the CLI calls the public API, not the core; the application modules
+(its physics, ``core/models/NAME.py``, and its face, ``models/NAME.py``), and no other module
+branches on a model's identity (the seed's included: what is special about a model is declared);
+no module reads another module's private attributes; the CLI calls the public API, not the core; the application modules
 keep an order among themselves (:data:`APPLICATION_ORDER`). Each rule is one test that lists every
 violation at once. No two modules import each other, directly or round a longer circle (imports
 inside functions count); no module is longer than :data:`MAX_LINES`; the one import that may go
@@ -648,3 +649,92 @@ def test_the_label_scan_sees_hand_typed_labels():
     patterns = _label_patterns()
     assert ("col", "velocity_m_s") in patterns and ("sub", "$V$ (m/s)") in patterns and ("sub", "t_c [ns]") in patterns
     assert ("sub", r"$d$ ($\mu$m)") in patterns and ("sub", "$d$ (\u00b5m)") in patterns  # both spellings of um
+
+
+# ----------------------------------------------------------------------------- the seed is a model like the others
+#: Names that stand for a model's identity: the default model and the released tuple of the models that
+#: declare a closed-form history (a branch on either asks "is this that model?").
+_IDENTITY_NAMES = {"DEFAULT", "SEED_MODEL", "CLOSED_FORM_HISTORY", "_DEFAULT_MODEL"}
+_IDENTITY_OPS = (ast.Eq, ast.NotEq, ast.In, ast.NotIn)
+
+
+def _model_module_aliases(tree, names) -> set:
+    """Local names bound to a model module by an import (``from .core.models import thornton_ning_2016 as _seed``)."""
+    aliases = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            for a in node.names:
+                if a.name in names:
+                    aliases.add(a.asname or a.name)
+        elif isinstance(node, ast.Import):
+            for a in node.names:
+                if a.name.rsplit(".", 1)[-1] in names and a.asname:
+                    aliases.add(a.asname)
+    return aliases
+
+
+def _identity_branches(tree, names) -> list:
+    """``(line, text)`` of each comparison ``==``/``!=``/``in``/``not in`` of which one side is a model's
+    identity: a model name written out, ``DEFAULT``, ``SEED_MODEL``, ``CLOSED_FORM_HISTORY`` (bare or
+    as an attribute), or ``X.NAME`` of a model module ``X``."""
+    aliases = _model_module_aliases(tree, names)
+
+    def identity(node) -> bool:
+        if isinstance(node, ast.Constant):
+            return isinstance(node.value, str) and node.value in names
+        if isinstance(node, ast.Name):
+            return node.id in _IDENTITY_NAMES
+        if isinstance(node, ast.Attribute):
+            if node.attr in _IDENTITY_NAMES:
+                return True
+            return node.attr == "NAME" and isinstance(node.value, ast.Name) and node.value.id in aliases
+        if isinstance(node, (ast.Tuple, ast.List, ast.Set)):
+            return any(identity(e) for e in node.elts)
+        return False
+
+    found = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Compare) and any(isinstance(op, _IDENTITY_OPS) for op in node.ops):
+            if any(identity(side) for side in (node.left, *node.comparators)):
+                found.append((node.lineno, ast.unparse(node)))
+    return found
+
+
+def test_no_branch_on_a_models_identity_outside_its_two_rooms():
+    """The seed is a model like the others: outside a model's two rooms (its physics,
+    ``core/models/NAME.py``, and its face, ``models/NAME.py``) no code asks "is this that model?"
+    (``model == DEFAULT``, ``name != SEED_MODEL``, ``mod.NAME in CLOSED_FORM_HISTORY``,
+    ``_seed.NAME == ...``), nor does a model's room ask it of another model. What is special about
+    a model is a declaration of the model contract
+    (:mod:`microimpact.core.models`: ``CITATION``, ``C_EXPORT``, ``WALL_ADHESION``; the face's
+    ``closed_form_history``), read by the generic machinery; the default model is only a default
+    argument. No exceptions."""
+    from microimpact.core import models
+
+    names = set(models.available())
+    violations = []
+    for path, tree in _trees().items():
+        rel = path.relative_to(SRC)
+        own = rel.parts[0] in ("core", "models") and rel.stem in names and rel.parts[-2] == "models"
+        others = names - {rel.stem} if own else names  # in a model's own rooms, another model's identity
+        violations += [
+            f"{rel}:{line} branches on a model's identity: {text}" for line, text in _identity_branches(tree, others)
+        ]
+    _report("branches on a model's identity outside its two rooms", violations)
+
+
+def test_the_identity_scan_sees_a_branch():
+    """The scan above finds each kind of branch it looks for (and not a plain use of the default)."""
+    names = {"thornton_ning_2016", "hertz_tsuji"}
+    code = (
+        "from .core.models import thornton_ning_2016 as _seed\n"
+        "a = model == 'hertz_tsuji'\n"
+        "b = name != models.DEFAULT\n"
+        "c = mod.NAME in dynamics.CLOSED_FORM_HISTORY\n"
+        "d = _seed.NAME == model\n"
+        "e = fit.model not in (SEED_MODEL,)\n"
+        "f = models.get(models.DEFAULT)\n"
+        "g = mod.NAME == other.NAME\n"
+    )
+    lines = [line for line, _ in _identity_branches(ast.parse(code), names)]
+    assert lines == [2, 3, 4, 5, 6]

@@ -262,11 +262,19 @@ def restitution_arrays(model, V, E, R, m, p_y, params) -> np.ndarray:
 
     Through the model's ``restitution_only`` hook where it declares one (a compiled, or for small
     arrays Python, loop over that scalar function, as for the outcome), which skips what only
-    the other fields need (a contact time's quadrature); else the outcome's field.
+    the other fields need (a contact time's quadrature); else, where the model declares its
+    group (``restitution_group``, ``restitution_of_group``) and every speed is finite and positive,
+    ``e`` once per distinct group; else the outcome's field.
     """
-    if model.restitution_only is None:
-        return outcome_arrays(model, V, E, R, m, p_y, params)["restitution"]
-    return evaluate(model.restitution_only, V, E, R, m, p_y, params=tuple(params))[0]
+    params = tuple(params)
+    if model.restitution_only is not None:
+        return evaluate(model.restitution_only, V, E, R, m, p_y, params=params)[0]
+    speeds = np.asarray(V, dtype=float)
+    if model.restitution_group is not None and speeds.size and np.all(np.isfinite(speeds) & (speeds > 0.0)):
+        g = evaluate(model.restitution_group, V, E, R, m, p_y, params=params)[0]
+        distinct, where = np.unique(g.ravel(), return_inverse=True)
+        return evaluate(model.restitution_of_group, distinct, params=params)[0][where].reshape(g.shape)
+    return outcome_arrays(model, V, E, R, m, p_y, params)["restitution"]
 
 
 # ----------------------------------------------------------------------------- a history on a time grid

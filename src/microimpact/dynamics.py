@@ -79,9 +79,11 @@ __all__ = [
     "CLOSED_FORM_HISTORY",
 ]
 
-#: Models whose time history exists in closed form (:func:`impact_history`); the others are
-#: integrated numerically (:func:`integrate_model`).
-CLOSED_FORM_HISTORY = (_seed.NAME,)
+#: Names of the models whose time history exists in closed form: those whose face declares
+#: ``closed_form_history`` (:mod:`microimpact.models._base`; the seed's is :func:`impact_history`).
+#: The others are integrated numerically (:func:`integrate_model`). Read from the declarations at each
+#: access (the module's ``__getattr__``), so that a model added by ``register_path`` counts.
+CLOSED_FORM_HISTORY: tuple
 
 
 #: Stage codes of a history.
@@ -95,10 +97,14 @@ def stage_names(model=None) -> dict:
     contact, and the model's own ``STAGES`` (:mod:`microimpact.core.models`)."""
     from .core import models as _models
 
-    return {0: STAGE_NAMES[0], **_models.get(_seed.NAME if model is None else model).STAGES}
+    return {0: STAGE_NAMES[0], **_models.get(_models.DEFAULT if model is None else model).STAGES}
 
 
 def __getattr__(name):
+    if name == "CLOSED_FORM_HISTORY":  # declared above; the faces are read on access
+        from .models import closed_form_histories
+
+        return closed_form_histories()
     if name == "SEED_STAGE_MODELS":  # deprecated: each model declares its STAGES
         import warnings
 
@@ -201,7 +207,7 @@ class ImpactHistory:
     effective_mass: float
     limiting_pressure: float
     method: str = "closed"
-    model: str = _seed.NAME
+    model: str = _models.DEFAULT
 
     def __post_init__(self):
         for name in HISTORY_COLUMNS:
@@ -215,7 +221,9 @@ class ImpactHistory:
     def from_dict(cls, data: dict, method: str = "closed") -> ImpactHistory:
         """Build from the dict of :func:`impact_history` or :func:`integrate_impact` (extra keys ignored)."""
         keys = [f.name for f in fields(cls) if f.name not in ("method", "model")]
-        return cls(**{k: data[k] for k in keys}, method=data.get("method", method), model=data.get("model", _seed.NAME))
+        return cls(
+            **{k: data[k] for k in keys}, method=data.get("method", method), model=data.get("model", _models.DEFAULT)
+        )
 
     def __len__(self):
         return int(self.time.size)
@@ -242,13 +250,10 @@ class ImpactHistory:
         """
         from .io import write_csv
 
-        if self.model == _seed.NAME:
-            comments = [f"microimpact impact history ({self.method}; seed eqs. 17-26)"]
-        else:
-            comments = [
-                f"microimpact impact history ({self.method}; model {self.model}; each quantity as this model "
-                "defines it, nan where it defines none; equation numbers are the seed's)"
-            ]
+        comments = [
+            f"microimpact impact history ({self.method}; model {self.model}; each quantity as this model "
+            "defines it, nan where it defines none; equation numbers are the seed's)"
+        ]
         for name, (unit, desc) in HISTORY_SCALARS.items():
             comments.append(f"{name} = {getattr(self, name):.17g} {unit}  ({desc})")
         stages = stage_names(self.model)
@@ -676,7 +681,7 @@ def integrate_impact(
     """
     V, E, R, m, p_y = scalar_pair(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure)
     out = _integrate(
-        _models.get(_seed.NAME), (), V, E, R, m, p_y, rtol=rtol, atol=atol, method=method, n=n, times=times
+        _models.get(_models.DEFAULT), (), V, E, R, m, p_y, rtol=rtol, atol=atol, method=method, n=n, times=times
     )
     del out["model"]  # the seed's: this function's result has always been the seed's alone
     return out

@@ -413,10 +413,7 @@ def sweep(
     check_pair(*pair.effective_values(**{k: g.ravel() for k, g in zip(ends, mesh)}))
     attrs = {
         "title": "microimpact parameter sweep",
-        "model": "elastic-plastic impact of a sphere on a flat, Aerosol Sci. Tech. 50(4):321-330 (2016), "
-        "closed forms (eqs. 5-33)"
-        if name == models.DEFAULT
-        else f"{name}: {models.get(name).TITLE}",
+        "model": _model_text(name),
         "model_parameters": _params_text(names, params),
         "base_pair": pair.label or "unnamed",
         "base_effective_modulus": pair.effective_modulus,
@@ -525,6 +522,13 @@ def _models_and_params(model, model_params):
     return names, out
 
 
+def _model_text(name) -> str:
+    """``"name: title. Source: citation"`` of a model for the attributes, from its declaration
+    (``TITLE``, ``CITATION``: :mod:`microimpact.core.models`)."""
+    mod = models.get(name)
+    return f"{name}: {mod.TITLE}" + (f". Source: {mod.CITATION}" if mod.CITATION else "")
+
+
 def _params_text(names, params) -> str:
     """``"name: p = v, ...; name2: ..."`` for the attributes (models without parameters left out)."""
     parts = []
@@ -553,13 +557,10 @@ def _sweep_models(names, params, kwargs):
         for f in _IMPACT_FIELDS:  # the other variables do not depend on the model
             ds[f] = ds[f].expand_dims(model=[n])
         parts.append(ds)
-    titles = [p_.attrs["model"] for p_ in parts]
     out = xr.concat(parts, dim="model", data_vars="minimal", coords="minimal", compat="override", join="override")
     out = out.transpose("model", ...)
     out["model"].attrs["long_name"] = MODEL_COORDINATE
-    out.attrs["model"] = "; ".join(
-        f"{n}: {models.get(n).TITLE}" if n == models.DEFAULT else t for n, t in zip(names, titles)
-    )
+    out.attrs["model"] = " | ".join(_model_text(n) for n in names)
     out.attrs["model_parameters"] = _params_text(names, params)
     return out
 

@@ -258,3 +258,102 @@ def test_the_seeds_released_signed_force_warns():
     with pytest.warns(DeprecationWarning, match=r"thornton_ning_2016\.signed_force is deprecated"):
         fn = seed.signed_force
     assert fn is seed.force is models.get(models.DEFAULT).signed_force
+
+
+# ----------------------------------------------------------------------------- what is special is declared
+GROUPED = [n for n in models.available() if models.get(n).restitution_group is not None]
+
+
+def test_the_group_hooks_come_in_pairs_and_include_the_seed():
+    """``restitution_group`` and ``restitution_of_group`` are one declaration (``e`` of one
+    dimensionless group): a model declares both or neither; the seed declares its ``V/V_y``."""
+    for name in models.available():
+        mod = models.get(name)
+        assert (mod.restitution_group is None) == (mod.restitution_of_group is None), name
+    assert models.DEFAULT in GROUPED and "hertz_tsuji" in GROUPED
+
+
+@pytest.mark.parametrize("name", GROUPED)
+def test_e_of_the_group_is_the_outcomes_field_bit_for_bit(name):
+    """``e`` at the group a model computes at each speed is its outcome's ``e``, the same bits (the
+    seed's from below to far above ``V_y``, adhesive-free pairs with a finite and an infinite ``p_y``)."""
+    mod = models.get(name)
+    params = tuple(0.3 if math.isnan(d) else d for d in mod.DEFAULTS)
+    if name == "hertz_viscoelastic":
+        params = (3e-7, *params[1:])
+    E, R, m = 1.31e9, 2.45e-6, 4.0 / 3.0 * math.pi * 2.45e-6**3 * 1350.0
+    for p_y in (156e6, 1e8, math.inf):
+        for V in (1e-3, 0.37, 1.0, 7.52, 30.0, 50.0, 120.0, 1e3):
+            e = mod.outcome(V, E, R, m, p_y, params)[OUTCOME_FIELDS.index("restitution")]
+            g = mod.restitution_group(V, E, R, m, p_y, params)
+            assert mod.restitution_of_group(g, params) == e or (math.isnan(e) and math.isnan(g)), (name, V, p_y)
+
+
+def test_the_seeds_yield_velocity_form_is_its_group():
+    """The seed's face gives ``e`` of ``V`` and ``V_y`` alone (fitting's grid search over ``V_y``):
+    the same bits as ``e`` of its declared group ``V/V_y``."""
+    from microimpact.models import face
+
+    seed = models.get(models.DEFAULT)
+    V = np.concatenate([np.geomspace(1e-3, 1e3, 41), [7.52, 7.52 * (1 + 2**-52)]])
+    E, R, m, p_y = 1.31e9, 2.45e-6, 4.0 / 3.0 * math.pi * 2.45e-6**3 * 1350.0, 156e6
+    Vy = seed.module.yield_point(E, R, m, p_y)[2]
+    by_group = np.array([seed.restitution_of_group(seed.restitution_group(v, E, R, m, p_y, ()), ()) for v in V])
+    assert face(models.DEFAULT).restitution_of_yield_velocity(V, Vy).tobytes() == by_group.tobytes()
+
+
+def test_what_is_special_about_a_model_is_declared():
+    """The seed is found by its declarations, like any model: the closed-form history is the face's
+    hook (``dynamics.CLOSED_FORM_HISTORY``, a released name, lists the models declaring it), the C
+    export's law declares ``C_EXPORT`` (one model), and every model cites its source."""
+    import microimpact.dynamics as dyn
+    from microimpact.models import closed_form_histories, face
+
+    assert dyn.CLOSED_FORM_HISTORY == closed_form_histories() == (models.DEFAULT,)
+    assert all(face(n).closed_form_history is None for n in models.available()[1:])
+    assert [n for n in models.available() if models.get(n).C_EXPORT] == [models.DEFAULT]
+    for name in models.available():
+        citation = models.get(name).CITATION
+        assert isinstance(citation, str) and citation.strip(), name
+    assert "50(4):321-330 (2016)" in models.get(models.DEFAULT).CITATION
+
+
+def test_a_model_declaring_a_closed_form_history_is_taken_by_its_declaration(tmp_path, monkeypatch):
+    """A model added with ``register_path`` whose face declares ``closed_form_history`` has its history
+    taken from it (method ``"closed"`` by default, listed in ``CLOSED_FORM_HISTORY``): no room knows
+    the seed's name. Its face here borrows the seed's closed form, so the numbers are the seed's."""
+    import sys
+
+    import microimpact.dynamics as dyn
+    from microimpact import ContactPair
+
+    pkg = tmp_path / "closedpkg"
+    (pkg / "faces").mkdir(parents=True)
+    (pkg / "__init__.py").write_text("")
+    (pkg / "faces" / "__init__.py").write_text("")
+    (pkg / "closed_law.py").write_text(
+        "from microimpact.core.models import get\n"
+        "_seed = get()\n"
+        "NAME = 'closed_law'\n"
+        "TITLE = 'The seed under another name'\n"
+        "outcome, force, STAGES = _seed.outcome, _seed.force, _seed.STAGES\n"
+    )
+    (pkg / "faces" / "closed_law.py").write_text(
+        "from microimpact.models import face\n\n"
+        "def closed_form_history(velocity, pair_values, params, n=1001, times=None):\n"
+        "    return face().closed_form_history(velocity, pair_values, params, n=n, times=times)\n"
+    )
+    monkeypatch.syspath_prepend(str(tmp_path))
+    models.register_path("closedpkg")
+    try:
+        assert dyn.CLOSED_FORM_HISTORY == (models.DEFAULT, "closed_law")
+        pair = ContactPair.paper_case("silicon")
+        h = pair.history(50.0, n=11, model="closed_law")
+        seed = pair.history(50.0, n=11)
+        assert h.method == "closed" and h.model == "closed_law" and seed.model == models.DEFAULT
+        assert h.force.tobytes() == seed.force.tobytes() and h.contact_time == seed.contact_time
+    finally:
+        models.unregister_path("closedpkg")
+        for key in [k for k in sys.modules if k.startswith("closedpkg")]:
+            del sys.modules[key]
+    assert dyn.CLOSED_FORM_HISTORY == (models.DEFAULT,)

@@ -5,7 +5,8 @@ where the model declares it, to skip what only the other fields need (a contact 
 quadrature). A hook that drifted from its outcome would fit a different law than the one
 ``pair.impact`` reports: hypothesis over a box of speeds and pairs (elastic, plastic, huge speeds,
 ``p_y = inf``) holds the two equal bit for bit, and the Python loop, the compiled serial and the
-compiled multi-threaded loop of the hook equal its scalar calls bit for bit.
+compiled multi-threaded loop of the hook equal its scalar calls bit for bit. A model that declares
+only its group (``restitution_group``, ``restitution_of_group``) has ``e`` alone derived from it.
 """
 
 from __future__ import annotations
@@ -134,3 +135,32 @@ def test_fitting_evaluates_a_hooked_model_without_its_outcome(monkeypatch):
     monkeypatch.setattr(fitting._models, "outcome_arrays", refuse)
     got = fitting._models.restitution_of("liggghts_thornton_ning", pair, (), V)
     assert _same(got, want).all()
+
+
+GROUPED = [name for name in zoo.available() if zoo.get(name).restitution_group is not None]
+UNHOOKED_GROUPS = [name for name in GROUPED if zoo.get(name).restitution_only is None]
+
+
+def test_a_model_declaring_its_group_needs_no_restitution_hook():
+    """The seed and Hertz-Tsuji declare only their group: ``e`` alone is derived from it."""
+    assert {zoo.DEFAULT, "hertz_tsuji"} <= set(UNHOOKED_GROUPS)
+
+
+@pytest.mark.parametrize("backend", ["python", "numba"])
+@pytest.mark.parametrize("name", UNHOOKED_GROUPS)
+def test_e_alone_from_the_group_is_the_outcomes_field_bit_for_bit(name, backend, monkeypatch):
+    """Where a model declares its group but no ``restitution_only``, the generic array function
+    derives ``e`` from the group (once per distinct group) at positive finite speeds, the outcome's
+    field bit for bit on either engine; with a speed of 0 it takes the outcome's field."""
+    monkeypatch.setenv("MICROIMPACT_BACKEND", backend)
+    mod = zoo.get(name)
+    p = tuple(0.3 if math.isnan(d) else d for d in mod.DEFAULTS)
+    V = np.concatenate([np.geomspace(1e-3, 1e3, 61), [7.52, 7.52, 50.0]])
+    for p_y in (156e6, 1e8, math.inf):
+        args = [np.asarray(x) for x in (1.31e9, 2.45e-6, 4.0 / 3.0 * math.pi * 2.45e-6**3 * 1350.0, p_y)]
+        want = outcome_arrays(mod, V, *args, p)["restitution"]
+        assert _same(restitution_arrays(mod, V, *args, p), want).all(), p_y
+        with_zero = np.concatenate([[0.0], V])
+        assert _same(
+            restitution_arrays(mod, with_zero, *args, p), outcome_arrays(mod, with_zero, *args, p)["restitution"]
+        ).all()

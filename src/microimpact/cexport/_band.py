@@ -43,16 +43,22 @@ def band_pairs(fit) -> list[dict]:
     Raises
     ------
     ValueError
-        Another model than the seed's (the export writes the seed's model), not one free
+        A model that does not declare ``C_EXPORT`` (the export writes the seed's ``e_p(V/V_y)``,
+        :mod:`microimpact.core.models`), not one free
         parameter, or an interval open at one end (the data do not bound it; no table can
         stand for that end).
     """
-    from ..fitting import FREE_PARAMETERS, SEED_MODEL, FitResult
+    from ..core import models
+    from ..fitting import FREE_PARAMETERS, FitResult
 
     if not isinstance(fit, FitResult):
         raise ValueError(f"fit must be a FitResult (from fit_restitution), got {type(fit).__name__}")
-    if fit.model != SEED_MODEL:
-        raise ValueError(f"fit: the export writes the seed's model ({SEED_MODEL}); this fit is of {fit.model!r}")
+    writable = [n for n in models.available() if models.get(n).C_EXPORT]  # the law the C source writes
+    if fit.model not in writable:
+        raise ValueError(
+            f"fit: the export writes the seed's e_p(V/V_y), the law declaring C_EXPORT ({', '.join(writable)}); "
+            f"this fit is of {fit.model!r}"
+        )
     if len(fit.params) != 1:
         raise ValueError(f"fit: the band's ends need exactly one free parameter, this fit has {len(fit.params)}")
     name = fit.free[0]

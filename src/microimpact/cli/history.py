@@ -29,8 +29,8 @@ def register(sub) -> None:
         "history",
         help="time history of one impact (approach, velocity, force, stage) as CSV, optionally plotted",
         description="Approach, approach velocity, contact force and stage from first contact to separation "
-        "for one impact, evaluated in closed form (or by integrating Newton's equation with --method ode; "
-        "other models than the seed's, --model, are always integrated with their own force law). "
+        "for one impact, evaluated in closed form where the model has one, as the seed's (or by integrating "
+        "Newton's equation with --method ode; the other models, --model, are integrated with their own force law). "
         "Writes CSV with units in the header; --plot draws velocity, force and approach against time "
         "(seed Fig. 10).",
     )
@@ -54,8 +54,8 @@ def register(sub) -> None:
         "--method",
         choices=["closed", "ode"],
         default=None,
-        help="closed form (the default for the seed's model) or numerical integration of Newton's equation "
-        "(a cross-check; the only way for the other models)",
+        help="closed form (the default where the model has one: the seed's) or numerical integration of "
+        "Newton's equation (a cross-check; the only way for the other models)",
     )
     add_model_arguments(p, many=False)
     p.add_argument(
@@ -110,8 +110,8 @@ def run(args) -> int:
     module = models.get(name)
     params = parse_model_params(args.param, [name]).get(name, {})
     models.resolve_params(module, params)  # every input checked before anything is written
-    if args.method == "closed" and module.NAME != models.DEFAULT:
-        raise ValueError(f"--method closed is the seed's model only; {module.NAME} is integrated (--method ode)")
+    if args.method == "closed" and models.face(module.NAME).closed_form_history is None:
+        raise ValueError(f"--method closed: {module.NAME} has no closed-form history; it is integrated (--method ode)")
     if args.hertz and not args.plot:
         raise ValueError("--hertz draws into the plot: give --plot FILE.png with it")
     out = None if args.out == "-" else args.out
@@ -137,7 +137,7 @@ def run(args) -> int:
         history.to_csv(sys.stdout, progress=progress)
     else:
         history.to_csv(out, progress=progress)
-        method = args.method or ("closed" if module.NAME == models.DEFAULT else "ode")
+        method = history.method
         print(
             f"wrote {len(history)} points ({method}, {module.NAME}) to {args.out}: "
             f"t_c = {history.contact_time * 1e9:.5g} ns, "

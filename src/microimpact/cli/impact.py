@@ -42,7 +42,7 @@ def register(sub) -> None:
     add_pair_arguments(p)
     p.add_argument(
         "--model",
-        default=models.DEFAULT,
+        default=None,
         metavar="NAME",
         help=f"impact model (default {models.DEFAULT}); `microimpact impact --model list 1` lists them",
     )
@@ -105,7 +105,8 @@ def run(args) -> int:
                 shown = quantities.unit_text(unit)
                 print(f"    {pname} [{shown}]: {desc}" + ("" if math.isnan(default) else f" (default {default:g})"))
         return 0
-    module = models.get(args.model)  # ValueError naming the models when unknown
+    name = models.DEFAULT if args.model is None else args.model  # omitted: the default, no "model:" line
+    module = models.get(name)  # ValueError naming the models when unknown
     params = parse_params(args.param)
     models.resolve_params(module, params)  # every input checked before anything is computed
     V = parse_values(args.velocities, "velocity", bytes_per_value=BYTES_PER_SPEED)
@@ -113,7 +114,7 @@ def run(args) -> int:
     pair = pair_from_args(args)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", LargeStrainWarning)
-        result = pair.impact(V, model=args.model, **params)
+        result = pair.impact(V, model=name, **params)
     flagged = np.atleast_1d(result.large_strain)
     if args.json:
         data = {k: np.atleast_1d(v).tolist() for k, v in result.to_dict().items()}
@@ -127,15 +128,15 @@ def run(args) -> int:
                 "density": pair.density,
                 "yield_velocity": pair.yield_velocity,
             },
-            "model": {"name": args.model, "params": params},
+            "model": {"name": name, "params": params},
             "units": {k: u for k, (u, _) in RESULT_FIELDS.items()},
             "results": data,
         }
         write_json(doc)  # NaN/inf -> null: always valid JSON
     else:
         print(pair.describe())
-        if args.model != models.DEFAULT:
-            print(f"model: {args.model}" + "".join(f", {k} = {v:g}" for k, v in params.items()))
+        if args.model is not None:
+            print(f"model: {name}" + "".join(f", {k} = {v:g}" for k, v in params.items()))
         print()
         print(format_table(result))
     if flagged.any():

@@ -60,8 +60,7 @@ def _arrays():
 
 def available_models() -> list[str]:
     """Names accepted as ``model=``: the models of :func:`microimpact.models.available`, the seed first."""
-    names = [n for n in _zoo().available() if n != SEED_MODEL]
-    return [SEED_MODEL, *names]
+    return list(dict.fromkeys((SEED_MODEL, *_zoo().available())))  # the default first, each name once
 
 
 _MODULES: dict = {}
@@ -90,8 +89,8 @@ def model_module(name):
 
 
 def fast_restitution(name):
-    """The face's ``e(V, V_y)`` of a model whose ``e`` depends on the pair only through ``V_y`` (the
-    seed's eq. 27), else None (:func:`microimpact.models.face`)."""
+    """The face's ``e(V, V_y)`` (``restitution_of_yield_velocity``) of a model whose declared group is
+    ``V/V_y``, else None (:func:`microimpact.models.face`)."""
     if name in _rules():
         return None
     from ..models import face
@@ -145,8 +144,8 @@ def restitution_of_values(module, V, E, R, m, p_y, params):
 
 
 def _group_hooks(module):
-    """``(restitution_group, restitution_of_group)`` of a model whose ``e`` is one function of one
-    dimensionless number (the model contract), else None."""
+    """``(restitution_group, restitution_of_group)`` of a model that declares its group (the model
+    contract, :mod:`microimpact.core.models`), else None."""
     if module.restitution_group is None or module.restitution_of_group is None:
         return None
     return module.restitution_group, module.restitution_of_group

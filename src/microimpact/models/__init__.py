@@ -45,6 +45,7 @@ __all__ = [
     "outside_validity",
     "validity_codes",
     "validity_text",
+    "closed_form_histories",
 ]
 
 _CORE_PACKAGE = "microimpact.core.models"
@@ -69,6 +70,7 @@ class Face:
     lammps: Any
     liggghts: Any
     restitution_of_yield_velocity: Any
+    closed_form_history: Any
     module: Any
 
 
@@ -115,6 +117,7 @@ def face(name: str = DEFAULT) -> Face:
         lammps=ns.get("lammps", _base.lammps),
         liggghts=ns.get("liggghts", _base.liggghts),
         restitution_of_yield_velocity=ns.get("restitution_of_yield_velocity", _base.restitution_of_yield_velocity),
+        closed_form_history=ns.get("closed_form_history", _base.closed_form_history),
         module=module,
     )
     return found
@@ -201,3 +204,8 @@ def outside_validity(pair, velocity, *, model, warn=True, **params):
         if text is not None:
             warnings.warn(text, OutsideValidityWarning, stacklevel=2)
     return codes != 0.0
+
+
+def closed_form_histories() -> tuple:
+    """Names of the models whose face declares a ``closed_form_history``, in :func:`available` order."""
+    return tuple(n for n in _core.available() if face(n).closed_form_history is not None)

@@ -25,8 +25,17 @@ in it; :func:`microimpact.models.face` fills in the default of each name it lack
 ``liggghts(calibration, poisson, wall)`` [refuse]
     LIGGGHTS-PUBLIC input lines after ``units si``.
 ``restitution_of_yield_velocity(velocity, yield_velocity)`` [``None``]
-    A fast ``e(V)`` for a model whose ``e`` depends on the pair only through ``V_y`` (fitting's
-    grid search uses it); ``None`` for other models.
+    ``e`` of the speeds and ``V_y`` alone, for a model whose declared group (the core contract's
+    ``restitution_group``) is ``V/V_y``, the same bits: fitting's grid search over ``V_y`` uses it.
+``closed_form_history(velocity, pair_values, params, n, times)`` [``None``: integrated]
+    The time history of one impact in closed form, for a model that has one: the dict of
+    :func:`microimpact.dynamics.integrate_model` (approach, velocity, force and stage at the times of
+    ``n`` or ``times``, the scalars of :data:`~microimpact.dynamics.HISTORY_SCALARS`) at the speed
+    ``velocity`` [m/s] with ``pair_values = (E*, R*, m*, p_y)`` and the checked ``params``.
+    :meth:`ContactPair.history <microimpact.pair.ContactPair.history>` takes it as its method
+    ``"closed"`` (its default where the face declares it); every model has the integration of
+    its force law (method ``"ode"``). :data:`microimpact.dynamics.CLOSED_FORM_HISTORY` lists the
+    models that declare it.
 """
 
 from __future__ import annotations
@@ -49,6 +58,7 @@ __all__ = [
     "I_RESTITUTION",
     "I_CONTACT_TIME",
     "restitution_of_yield_velocity",
+    "closed_form_history",
 ]
 
 #: Position of ``restitution`` in an outcome tuple.
@@ -62,6 +72,7 @@ LAMMPS_TANGENTIAL = "tangential linear_nohistory 0.0 0.0"
 STYLE: dict = {}
 COMPARE_OPTIONS: dict = {}
 restitution_of_yield_velocity = None
+closed_form_history = None
 
 
 def run(model, velocity, pair_values, params):

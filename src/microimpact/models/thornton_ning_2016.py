@@ -29,7 +29,7 @@ from ..engine import evaluate
 #: The face's own names (its contract, :mod:`microimpact.models._base`); the array functions below are
 #: public, and documented, as the names of :mod:`microimpact.contact`, :mod:`microimpact.impact` and
 #: :mod:`microimpact.dynamics`.
-__all__ = ["STYLE", "restitution_of_yield_velocity"]
+__all__ = ["STYLE", "restitution_of_yield_velocity", "closed_form_history"]
 
 #: Matplotlib keywords of the model's line in comparison figures (Okabe-Ito colours).
 STYLE = {"color": "#000000", "linestyle": "-", "linewidth": 1.6}
@@ -929,6 +929,12 @@ def impact_history(
         "effective_mass": m,
         "limiting_pressure": p_y,
     }
+
+
+def closed_form_history(velocity, pair_values, params, n=1001, times=None):
+    """The face's closed-form history (its contract, :mod:`microimpact.models._base`): :func:`impact_history`
+    at ``velocity`` [m/s] for ``pair_values = (E*, R*, m*, p_y)``; ``params`` is the law's empty tuple."""
+    return impact_history(velocity, *pair_values, n=n, times=times)
 
 
 def hertz_force_along(history, loading_only=True):

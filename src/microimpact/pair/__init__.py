@@ -573,11 +573,13 @@ class ContactPair:
             Times [s] since first contact instead; outside the contact the
             bodies fly apart (stage 0, force 0).
         method : {"closed", "ode"}, optional
-            Closed form (:func:`~microimpact.dynamics.impact_history`; the seed's model only) or
-            numerical integration of Newton's equation with the model's own force law
-            (:func:`~microimpact.dynamics.integrate_impact` for the seed's model, its three-stage
-            cross-check; :func:`~microimpact.dynamics.integrate_model` for the others). Default:
-            ``"closed"`` where the model has a closed-form history, ``"ode"`` otherwise.
+            Closed form, where the model's face declares one (``closed_form_history``,
+            :mod:`microimpact.models._base`: the seed's is :func:`~microimpact.dynamics.impact_history`;
+            :data:`~microimpact.dynamics.CLOSED_FORM_HISTORY`), or numerical integration of
+            Newton's equation with the model's own force law
+            (:func:`~microimpact.dynamics.integrate_model`, for the seed its three-stage
+            cross-check). Default: ``"closed"`` where the model has a closed-form history, ``"ode"``
+            otherwise.
         model : str, optional
             Name of the impact model (:func:`microimpact.models.available`); default the seed's.
         **params : float

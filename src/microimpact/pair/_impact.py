@@ -137,21 +137,23 @@ def history(values, velocity, n, times, method, model, params):
     values ``(E*, R*, m*, p_y)``."""
     mod = models.get(model)
     from .. import dynamics  # imported here: one impact (and the CLI) need no history machinery
+    from ..models import face
 
-    closed = mod.NAME in dynamics.CLOSED_FORM_HISTORY
+    closed_form = face(mod.NAME).closed_form_history  # the face's declaration (None: integrated only)
     if method is None:
-        method = "closed" if closed else "ode"
+        method = "ode" if closed_form is None else "closed"
     if method not in ("closed", "ode"):
         raise ValueError(f"method must be 'closed' or 'ode', got {method!r}")
-    if method == "closed" and not closed:
+    if method == "closed" and closed_form is None:
         raise ValueError(
             f"model {mod.NAME!r} has no closed-form history (method 'closed'); use method='ode', "
             "the integration of its force law"
         )
-    if mod.NAME == models.DEFAULT:
-        models.resolve_params(mod, params)  # the seed's takes none: refuse any
-        fn = dynamics.impact_history if method == "closed" else dynamics.integrate_impact
-        data = fn(velocity, *values, n=n, times=times)
+    if method == "closed":
+        data = {
+            **closed_form(velocity, values, models.resolve_params(mod, params), n=n, times=times),
+            "model": mod.NAME,
+        }
     else:
         data = dynamics.integrate_model(mod.NAME, velocity, *values, params, n=n, times=times)
     return dynamics.ImpactHistory.from_dict(data, method=method)

@@ -61,6 +61,9 @@ as users name it (``model=NAME``). It declares what it is with module-level name
     contact, is everyone's).
 ``LABEL`` [``NAME``]
     Short name for legends and tables.
+``CITATION`` [``None``: the source ``TITLE`` names]
+    The published source of the law, as a reference (journal, volume, pages, year): what a data
+    set computed with the model cites (the ``model`` attribute of a sweep, :func:`microimpact.sweep.sweep`).
 ``signed_force`` [``None``: ``force``]
     The force law before clipping at zero (negative: attractive), where the contact may end at zero force.
 ``ends_at_zero_force(params)`` [``None``: never]
@@ -81,27 +84,33 @@ as users name it (``model=NAME``). It declares what it is with module-level name
     Approach [m] at which loading passes from stage 1 to stage 2 of ``STAGES`` (the seed: its
     yield approach, eq. 5; ``inf``: never), for a law whose loading changes there; a history's
     integration then locates it and times both stages.
-``restitution_only(V, E, R, m, p_y, params)`` [``None``: field ``restitution`` of ``outcome``]
-    Marked ``@jitable``; the restitution coefficient ``e`` [-] alone, bit for bit the field
-    ``restitution`` of :func:`outcome` (same arguments), for a law whose ``e`` does not need what
-    costs most in its outcome (a contact time by quadrature). Fitting and ranking compare only
-    ``e`` and call this (:func:`microimpact.impact.restitution_arrays`). Written from the model's
-    own functions that :func:`outcome` calls, never a second copy of a formula. (Not
-    ``restitution``: the seed's module has a function of that name, ``e`` of ``V/V_y``.)
-``restitution_group(V, E, R, m, p_y, params)`` and ``restitution_of_group(g, params)`` [``None``]
-    Both ``@jitable``, declared together by a law whose ``e`` is one function of one dimensionless
-    number ``g`` (with its ``params``) that costs most to evaluate (an integration of the equation
-    of motion): ``g`` at speed ``V > 0`` exactly as :func:`outcome` computes it, and ``e`` at ``g``,
-    bit for bit the field ``restitution`` of :func:`outcome` at any speed with that ``g``. Fitting
-    evaluates ``e`` once per distinct ``g`` of its data (:mod:`microimpact.fitting`): Hertz-Tsuji's
-    ``g`` is its damping ratio up to rounding: a handful of distinct values for any set of speeds.
 ``sticking_velocity(E, R, m, p_y, params)`` [``None``: none known]
     The speed [m/s] at and below which the particle sticks (``e = 0``), for a law with ``STICKS``
     (:meth:`ContactPair.sticking_velocity <microimpact.pair.ContactPair.sticking_velocity>`).
+
+*What is evaluated at many speeds* (fitting and ranking compare only ``e``; the stick/bounce maps
+read ``V_y``), without what only the outcome's other fields need (a contact time by quadrature, an
+integration). Each is the outcome's own field, bit for bit (``V_y``: to rounding), computed by the
+model's own functions that :func:`outcome` calls, never a second copy of a formula:
+
+``restitution_group(V, E, R, m, p_y, params)`` and ``restitution_of_group(g, params)`` [``None``]
+    Both ``@jitable``, declared together: the one declaration that ``e`` depends on the speed and
+    the pair through one dimensionless group ``g`` alone (with the model's ``params``). ``g`` at
+    speed ``V > 0`` exactly as :func:`outcome` computes it, and ``e`` at ``g``. Fitting evaluates
+    ``e`` once per distinct ``g`` of its data (:mod:`microimpact.fitting`): Hertz-Tsuji's ``g`` is
+    its damping ratio up to rounding, a handful of distinct values for any set of speeds. The
+    seed's is ``V/V_y`` (eq. 27), so its face also gives ``e`` of ``V`` and ``V_y`` alone
+    (``restitution_of_yield_velocity``, :mod:`microimpact.models._base`), which fitting's grid
+    search over ``V_y`` uses.
+``restitution_only(V, E, R, m, p_y, params)`` [``None``: from the group where declared, else the outcome's field]
+    Marked ``@jitable``; ``e`` [-] alone at any speed, with the arguments of :func:`outcome`
+    (:func:`microimpact.impact.restitution_arrays`, which derives ``e`` from the group of a model
+    that declares one and not this hook, at positive speeds). (Not ``restitution``: the seed's
+    module has a function of that name, ``e`` of ``V/V_y``.)
 ``yield_velocity_of(E, R, m, p_y, params)`` [``None``: the field ``yield_velocity`` of ``outcome``]
-    Marked ``@jitable``; the yield velocity ``V_y`` [m/s] alone (0 where the contact yields at any
-    speed), the field ``yield_velocity`` of :func:`outcome` (to rounding), for a law whose outcome
-    costs a quadrature (:mod:`microimpact.stick` maps it over particle sizes).
+    Marked ``@jitable``; ``V_y`` [m/s] alone (0 where the contact yields at any speed), which
+    :mod:`microimpact.stick` maps over particle sizes.
+
 ``WALL_ADHESION`` [``False``]
     True for the adhesive law the wall interaction can take as its normal law: ``adhesion=NAME`` of
     :func:`~microimpact.wall.wall_interaction`, of the C export and of its tables (the rules
@@ -115,6 +124,10 @@ as users name it (``model=NAME``). It declares what it is with module-level name
 ``WALL_REFUSAL`` [``None``]
     Why the law cannot be the wall's adhesion law, for a law a user may expect there (one clause:
     :func:`microimpact.adhesion.check_adhesion_rule` gives it after refusing the name).
+``C_EXPORT`` [``False``]
+    True for the law whose restitution the generated C source writes (``e_p(V/V_y)``,
+    :mod:`microimpact.cexport`): a fit of that law can be exported with its confidence band
+    (:func:`microimpact.cexport.write_band`); a fit of any other is refused, naming it. One model.
 ``COST`` [``"cheap"``]
     The cost class of the model's ``e`` over a data set in Python loops (what fitting evaluates):
     ``"cheap"``, closed forms or a short root search, microseconds a point; ``"slow"``, an
@@ -140,9 +153,13 @@ as users name it (``model=NAME``). It declares what it is with module-level name
     Tabor's parameter (:func:`microimpact.core.adhesion.tabor_parameter`).
 
 :func:`get` returns the :class:`Model` declaration of a name: the module's names with these
-defaults filled in. The generic machinery (arrays, histories, fitting, calibration, sweeps) asks
-the declaration and never a model's name; everything else a user touches about a model (its
-calibration, DEM input lines, plot style) is its face, :mod:`microimpact.models`.
+defaults filled in. The generic machinery (arrays, histories, fitting, calibration, sweeps, the C
+export) asks the declaration and never a model's name: no room outside a model's own two asks "is
+this that model?" (``tests/test_architecture.py`` lists any such branch), and the default model,
+:data:`DEFAULT`, is only the model used when none is named. Everything else a user touches about a
+model (its calibration, DEM input lines, plot style, a history in closed form,
+``closed_form_history``) is its face, :mod:`microimpact.models`, whose contract
+(:mod:`microimpact.models._base`) declares those hooks with their defaults the same way.
 """
 
 from __future__ import annotations
@@ -360,6 +377,8 @@ class Model:
     work_of_adhesion: Callable | None = None
     WALL_ADHESION: bool = False
     WALL_REFUSAL: str | None = None
+    CITATION: str | None = None
+    C_EXPORT: bool = False
     COST: str = "cheap"
     OUTCOME_COST: str = "cheap"
     module: Any = None
@@ -443,6 +462,8 @@ def declare(module) -> Model:
         ZERO_FORCE_ORDER=float(ns.get("ZERO_FORCE_ORDER", 1.5)),
         WALL_ADHESION=bool(ns.get("WALL_ADHESION", False)),
         WALL_REFUSAL=ns.get("WALL_REFUSAL"),
+        CITATION=ns.get("CITATION"),
+        C_EXPORT=bool(ns.get("C_EXPORT", False)),
         COST=cost,
         OUTCOME_COST=outcome_cost,
         module=module,
@@ -534,7 +555,7 @@ def available() -> list[str]:
         for package in _PACKAGES:
             for name in _scan(package):
                 _WHERE.setdefault(name, package)
-        _NAMES.extend(sorted(_WHERE, key=lambda n: (n != DEFAULT, n)))
+        _NAMES.extend([DEFAULT, *sorted(set(_WHERE) - {DEFAULT})])  # the default first: an order, not a behaviour
     return list(_NAMES)
 
 

@@ -57,6 +57,7 @@ from ._jkr import GW, GX
 
 NAME = "dmt_elastic_adhesive"
 TITLE = "DMT elastic adhesion: Hertz minus 4 pi gamma R while in contact (LAMMPS granular dmt)"
+CITATION = "Derjaguin, Muller & Toporov, J. Colloid Interface Sci. 53:314 (1975); LAMMPS pair_style granular dmt"
 LABEL = "DMT adhesive"
 #: The particle never sticks (the law is conservative: ``e = 1``).
 STICKS = False

@@ -58,6 +58,7 @@ from .hertz_viscoelastic import scaled_damped_hertz, scaled_restitution
 
 NAME = "hertz_tsuji"
 TITLE = "Hertz with Tsuji's nonlinear damping (LAMMPS damping tsuji/coeff_restitution, LIGGGHTS hertz)"
+CITATION = "Tsuji, Tanaka & Ishida, Powder Technol. 71:239 (1992); LAMMPS pair_style granular, LIGGGHTS-PUBLIC hertz"
 LABEL = "Hertz-Tsuji damping"
 PARAMETERS = (
     Parameter.of("damping_ratio", "alpha_T >= 0, Tsuji's coefficient: eta_n = alpha_T (m* 4/3 E* a)^(1/2)", low=0.0),

@@ -63,6 +63,7 @@ from ._common import dem_outcome, in_bounds, nan_outcome
 
 NAME = "hertz_viscoelastic"
 TITLE = "Hertz with viscoelastic damping (Brilliantov et al. 1996; LAMMPS damping viscoelastic)"
+CITATION = "Brilliantov, Spahn, Hertzsch & Poschel, Phys. Rev. E 53:5382 (1996)"
 LABEL = "Hertz viscoelastic"
 PARAMETERS = (
     Parameter("dissipative_constant", "s", "A >= 0, viscoelastic dissipative constant of Brilliantov et al.", low=0.0),

@@ -96,6 +96,7 @@ from ._common import in_bounds, nan_outcome
 
 NAME = "jackson_green_brake"
 TITLE = "Jackson-Green loading (Ghaednia et al. 2019 eqs. 5-29) with Brake's (2015) unloading"
+CITATION = "Jackson & Green, J. Tribol. 127:343 (2005); Ghaednia et al., J. Tribol. (2019); Brake, IJSS (2015)"
 LABEL = "Jackson-Green/Brake"
 PARAMETERS = (
     Parameter.of("yield_strength", "S_y > 0, yield strength of the sphere", low=0.0, low_open=True),

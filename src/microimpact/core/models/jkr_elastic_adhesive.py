@@ -55,6 +55,7 @@ from ._common import in_bounds
 
 NAME = "jkr_elastic_adhesive"
 TITLE = "JKR elastic adhesion, contact at zero approach, pull-off at -3 pi gamma R (LAMMPS granular jkr)"
+CITATION = "Johnson, Kendall & Roberts, Proc. R. Soc. Lond. A 324:301 (1971); LAMMPS pair_style granular jkr"
 LABEL = "JKR adhesive"
 STICKS = True
 PARAMETERS = (Parameter.of("surface_energy", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)", low=0.0),)

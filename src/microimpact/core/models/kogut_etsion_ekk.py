@@ -85,6 +85,7 @@ from ._common import in_bounds, nan_outcome
 
 NAME = "kogut_etsion_ekk"
 TITLE = "Kogut-Etsion (2002) loading fits with Etsion-Kligerman-Kadin (2005) unloading"
+CITATION = "Kogut & Etsion, J. Appl. Mech. 69:657 (2002); Etsion, Kligerman & Kadin, IJSS (2005)"
 LABEL = "Kogut-Etsion/EKK"
 PARAMETERS = (
     Parameter.of("yield_strength", "Y > 0, yield strength of the sphere (hardness H = 2.8 Y)", low=0.0, low_open=True),

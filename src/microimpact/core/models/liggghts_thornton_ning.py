@@ -130,6 +130,7 @@ NAME = "liggghts_thornton_ning"
 TITLE = (
     "LIGGGHTS-PUBLIC 3.8 thornton_ning without adhesion: the seed's loading, incremental Hertz unloading of radius R*"
 )
+CITATION = "LIGGGHTS-PUBLIC 3.8, src/normal_model_thornton_ning.h (CFDEMproject, commit 84ba3d76)"
 LABEL = "LIGGGHTS thornton_ning"
 PARAMETERS = ()
 BOUNDS, validate = checks(NAME, PARAMETERS)

@@ -66,6 +66,7 @@ from ._common import dem_outcome, in_bounds, nan_outcome
 
 NAME = "linear_spring_dashpot"
 TITLE = "Linear spring-dashpot, constant e (LAMMPS/LIGGGHTS hooke with coefficient of restitution)"
+CITATION = "LAMMPS pair_style granular hooke, damping coeff_restitution; LIGGGHTS-PUBLIC normal_model_hooke.h"
 LABEL = "linear spring-dashpot"
 PARAMETERS = (
     Parameter("stiffness", "N/m", "spring constant k", low=0.0, low_open=True),

@@ -70,6 +70,7 @@ from ._common import dem_outcome, in_bounds, nan_outcome
 
 NAME = "luding_adhesive"
 TITLE = "Adhesive elasto-plastic linear law, k1 loading / k2 unloading / kc adhesion (Luding 2008; LIGGGHTS)"
+CITATION = "Luding, Granular Matter 10:235 (2008); LIGGGHTS-PUBLIC normal_model_hooke_hysteresis.h"
 LABEL = "Luding adhesive"
 STICKS = True
 PARAMETERS = (

@@ -62,6 +62,7 @@ from ._common import dem_outcome, in_bounds, nan_outcome
 
 NAME = "luding_hysteretic"
 TITLE = "Linear hysteretic spring, k1 loading / k2 unloading (Walton & Braun 1986; Luding 2008)"
+CITATION = "Walton & Braun, J. Rheol. 30:949 (1986); Luding, Granular Matter 10:235 (2008)"
 LABEL = "Luding hysteretic"
 PARAMETERS = (
     Parameter.of("loading_stiffness", "k1, stiffness of the loading branch", low=0.0, low_open=True),

@@ -105,6 +105,7 @@ from ._jkr import work_difference as _wd
 
 NAME = "thornton_ning_1998_adhesive_plastic"
 TITLE = "Adhesive elastic-plastic spheres: JKR loading, yield, JKR unloading on R_p (Thornton & Ning 1998)"
+CITATION = "Thornton & Ning, Powder Technol. 99:154 (1998)"
 LABEL = "Thornton-Ning 1998 adhesive-plastic"
 #: The particle can stick (``e = 0`` below the sticking velocity).
 STICKS = True

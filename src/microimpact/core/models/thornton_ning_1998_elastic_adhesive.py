@@ -79,6 +79,7 @@ from ._jkr import work_integral as _G
 
 NAME = "thornton_ning_1998_elastic_adhesive"
 TITLE = "Elastic adhesive spheres, JKR from first touch to snap-off (Thornton & Ning 1998)"
+CITATION = "Thornton & Ning, Powder Technol. 99:154 (1998)"
 LABEL = "Thornton-Ning 1998 adhesive"
 STICKS = True
 PARAMETERS = (Parameter.of("work_of_adhesion", "G >= 0, interface energy (LIGGGHTS' surfaceEnergy)", low=0.0),)

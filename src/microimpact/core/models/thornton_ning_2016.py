@@ -36,6 +36,9 @@ __getattr__ = deprecated_names(
 )  # released DEFAULTS and signed_force: one release, with a warning
 #: History stages (seed eqs. 2, 8, 10).
 STAGES = {1: "Hertz loading (eq. 2)", 2: "plastic loading (eq. 8)", 3: "elastic unloading (eq. 10)"}
+CITATION = "Aerosol Sci. Tech. 50(4):321-330 (2016); Thornton & Ning, Powder Technol. 99:154-162 (1998)"
+#: The generated C source writes this law's e_p(V/V_y) (microimpact.cexport): its fits can be exported.
+C_EXPORT = True
 
 
 @jitable
@@ -165,6 +168,19 @@ def normalized_velocity(V, V_y):
     """``v = V/V_y``; 0 where ``V_y = inf`` (``p_y = inf``: every impact elastic, even ``V = inf``)."""
     r = V / V_y  # computed first, then selected: no branch in the compiled loop
     return 0.0 if V_y == math.inf else r
+
+
+@jitable
+def restitution_group(V, E, R, m, p_y, params):
+    """``v = V/V_y`` [-] at speed ``V`` [m/s], as :func:`outcome` computes it: ``e`` is one function of
+    it (eq. 27), the contract's group hook (``params``: the law's empty tuple)."""
+    return normalized_velocity(V, yield_point(E, R, m, p_y)[2])
+
+
+@jitable
+def restitution_of_group(v, params):
+    """``e`` [-] at ``v = V/V_y`` (:func:`restitution`, eq. 27): the field ``restitution`` of :func:`outcome`."""
+    return restitution(v)
 
 
 @jitable
