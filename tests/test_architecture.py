@@ -25,7 +25,6 @@ LAYERS = {
     "_optional": 1,
     "materials": 1,
     "io": 1,
-    "_signals": 1,
     "_version": 1,
     "_face": 2,
     "_history": 2,
