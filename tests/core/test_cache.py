@@ -239,28 +239,3 @@ def _umask():
     old = os.umask(0)
     os.umask(old)
     return old
-
-
-def test_no_command_path_imports_tempfile_or_openssl():
-    """A warm command's writes (atomic files, an owned folder and its manifest) load neither
-    :mod:`tempfile` (7 ms with shutil, random, bz2, lzma) nor OpenSSL's hashes (5 ms): issue 25."""
-    code = """
-import sys
-import numpy as np
-from microimpact import io
-out = sys.argv[1]
-with io.owned_directory(out, "test") as stage:
-    with io.atomic_write(stage / "a.csv") as fh:
-        fh.write("1\\n")
-with io.owned_directory(out, "test") as stage:  # again: the manifest read, the old files replaced
-    with io.atomic_write(stage / "a.csv") as fh:
-        fh.write("2\\n")
-print(sorted(m for m in ("tempfile", "shutil", "_hashlib", "random") if m in sys.modules))
-"""
-    import tempfile
-
-    with tempfile.TemporaryDirectory() as tmp:
-        out = os.path.join(tmp, "out")
-        res = subprocess.run([sys.executable, "-c", code, out], check=True, capture_output=True, text=True)
-        assert res.stdout.split() == ["[]"]
-        assert Path(out, "a.csv").read_text() == "2\n"
