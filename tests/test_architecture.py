@@ -30,7 +30,6 @@ LAYERS = {
     "_optional": 1,
     "materials": 1,
     "io": 1,
-    "_signals": 1,
     "_version": 1,
     "_face": 2,
     "contact": 2,

@@ -14,12 +14,7 @@ time histories.
 36.24
 """
 
-from . import _signals
-
-if _signals.running_as_command():  # the microimpact command: a signal from now on ends it with one line
-    _signals.install_early()
-
-import importlib as _importlib  # noqa: E402
+import importlib as _importlib
 
 from . import materials, models
 from ._version import __version__

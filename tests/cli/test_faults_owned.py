@@ -238,3 +238,110 @@ def test_export_to_a_device_is_refused(work):
         env=_env(),
     )
     assert_one_line(proc.returncode, proc.stderr, "/dev/null")
+
+
+# ----------------------------------------------------------------------------- 3. a folder is committed all or nothing
+def _contents(folder):
+    return {p.name: (p.read_bytes() if p.is_file() else "dir") for p in folder.iterdir()}
+
+
+def test_a_rename_that_fails_leaves_the_earlier_output_and_its_manifest(tmp_path):
+    out = tmp_path / "out"
+    with mio.owned_directory(out, "test") as stage:
+        (stage / "a.txt").write_text("old a")
+        (stage / "b.txt").write_text("old b")
+    before = _contents(out)
+    with pytest.raises(IsADirectoryError) as exc:
+        with mio.owned_directory(out, "test") as stage:
+            for name in ("a.txt", "b.txt", "c.txt"):
+                (stage / name).write_text("new " + name)
+            (out / "c.txt").mkdir()  # a directory in the way of the last file, made while the run wrote
+    # the error names the user's file, not a staging path; the earlier files and manifest are back
+    assert exc.value.filename == os.path.join(str(out), "c.txt") and exc.value.filename2 is None
+    assert ".microimpact-" not in str(exc.value)
+    assert _contents(out) == {**before, "c.txt": "dir"} and no_temp_files(out) == []
+    (out / "c.txt").rmdir()
+    with mio.owned_directory(out, "test") as stage:  # the folder is still this command's: a later run replaces it
+        (stage / "c.txt").write_text("new c")
+    assert listing(out) == [mio.MANIFEST, "c.txt"] and no_temp_files(out) == []
+
+
+def test_an_export_whose_commit_fails_can_run_again(work, capsys, monkeypatch):
+    import errno
+
+    assert run(["export", "--out", "d", "--no-c"], capsys)[0] == 0
+    before = _contents(work / "d")
+    rename = os.rename
+
+    def failing(src, dst, *args, **kw):  # the disk fails on the second file put in place
+        if ".microimpact-staging." in os.fspath(src) and os.fspath(dst).endswith("restitution_vs_v_over_vy.csv"):
+            raise OSError(errno.EIO, "Input/output error", os.fspath(src), None, os.fspath(dst))
+        return rename(src, dst, *args, **kw)
+
+    monkeypatch.setattr(os, "rename", failing)
+    rc, out, err = run(["export", "--out", "d", "--no-c", "--diameters", "3e-6"], capsys)
+    assert_one_line(rc, err, os.path.join("d", "restitution_vs_v_over_vy.csv"), "input/output error")
+    assert "staging" not in err and ".tmp" not in err
+    assert _contents(work / "d") == before and no_temp_files(work / "d") == []
+    monkeypatch.setattr(os, "rename", rename)
+    rc, out, err = run(["export", "--out", "d", "--no-c", "--diameters", "3e-6"], capsys)
+    assert rc == 0, err
+    assert listing(work / "d") == [mio.MANIFEST, "restitution_d3um.csv", "restitution_vs_v_over_vy.csv"]
+
+
+def test_an_interrupt_during_the_commit_undoes_it(tmp_path, monkeypatch):
+    out = tmp_path / "out"
+    with mio.owned_directory(out, "test") as stage:
+        (stage / "a.txt").write_text("old a")
+    before = _contents(out)
+    rename = os.rename
+    calls = []
+
+    def interrupted(src, dst, *args, **kw):  # Ctrl-C after the first new file is in place
+        rename(src, dst, *args, **kw)
+        calls.append(dst)
+        if ".microimpact-staging." in os.fspath(src):
+            raise KeyboardInterrupt
+
+    monkeypatch.setattr(os, "rename", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        with mio.owned_directory(out, "test") as stage:
+            (stage / "a.txt").write_text("new a")
+            (stage / "b.txt").write_text("new b")
+    monkeypatch.setattr(os, "rename", rename)
+    assert calls and _contents(out) == before and no_temp_files(out) == []
+
+
+# ----------------------------------------------------------------------------- 4. the manifest read back
+def test_a_manifest_that_is_a_link_is_not_followed(work, capsys):
+    assert run(["export", "--out", "d", "--no-c"], capsys)[0] == 0
+    elsewhere = work / "elsewhere.json"
+    os.replace(work / "d" / mio.MANIFEST, elsewhere)
+    (work / "d" / mio.MANIFEST).symlink_to(elsewhere)
+    kept = elsewhere.read_bytes()
+    with pytest.raises(ValueError, match="symbolic link"):
+        with mio.owned_directory(work / "d", "export"):
+            pass
+    rc, out, err = run(["export", "--out", "d", "--no-c"], capsys)
+    assert_one_line(rc, err, mio.MANIFEST, "symbolic link")
+    assert elsewhere.read_bytes() == kept and (work / "d" / mio.MANIFEST).is_symlink()
+
+
+@pytest.mark.parametrize("kind", ["fifo", "too large"])
+def test_a_manifest_that_is_no_small_regular_file_is_refused(tmp_path, kind):
+    out = tmp_path / "out"
+    with mio.owned_directory(out, "test") as stage:
+        (stage / "a.txt").write_text("a")
+    (out / mio.MANIFEST).unlink()
+    if kind == "fifo":
+        os.mkfifo(out / mio.MANIFEST)  # reading it would block for ever
+        match = "not a regular file"
+    else:
+        with open(out / mio.MANIFEST, "wb") as fh:
+            fh.truncate(mio.MANIFEST_MAX_BYTES + 1)
+        match = "larger than"
+    with pytest.raises(ValueError, match=match) as exc:
+        with mio.owned_directory(out, "test"):
+            pass
+    assert len(str(exc.value).splitlines()) == 1 and str(out) in str(exc.value)
+    assert listing(out) == [mio.MANIFEST, "a.txt"]

@@ -13,10 +13,12 @@ option or the file, never a traceback --
 * operating-system errors of any kind (:class:`OSError`: a missing or read-only
   directory, a full disk, a file where a directory is expected): exit 2, the
   message naming the file;
-* an interrupt: Ctrl-C (SIGINT) and SIGTERM both raise :class:`KeyboardInterrupt`
-  inside the command, so every temporary file is removed and the previous
-  output is left intact; one line ``interrupted``, exit ``128 + signal``
-  (130 for SIGINT, 143 for SIGTERM).
+* an interrupt: Ctrl-C (SIGINT) and SIGTERM both raise :class:`Interrupted` (a
+  :class:`KeyboardInterrupt`) inside the command, so every temporary file is
+  removed and the previous output is left intact; one line ``interrupted``, exit
+  ``128 + signal`` (130 for SIGINT, 143 for SIGTERM). The handlers are the
+  command's (:mod:`microimpact.cli._interrupt`), installed by :func:`main` for
+  its run only: ``import microimpact`` changes nothing of the process.
 
 Any other exception is a bug: its traceback is printed, so it stays visible.
 """
@@ -31,10 +33,10 @@ import signal
 import sys
 import warnings
 
-from .. import _signals
 from .._optional import MissingExtraError
-from .._signals import Interrupted  # noqa: F401  (re-exported: the exception a signal raises)
+from . import _interrupt
 from ._argv import NumberValuesParser
+from ._interrupt import Interrupted  # noqa: F401  (re-exported: the exception a signal raises)
 
 #: Subcommand modules, in the order ``--help`` lists them.
 COMMANDS = [
@@ -142,29 +144,26 @@ class _NamedStdout:
 
 def main(argv=None, *, _exiting=False) -> int:
     """Entry point of the ``microimpact`` command; returns the exit status."""
-    _signals.install()  # from the start: a signal while parsing is an interrupt too (microimpact._signals)
-    interrupted = False
     try:
+        _interrupt.install()  # from the start: a signal while parsing is an interrupt too
         return _main(argv)
     except BaseException as exc:
         # an interrupt, or what a library made of one (a C extension's import turns it into
         # "ImportError: initialization failed"): one line and 128 + signal, never a traceback
-        signum = getattr(exc, "signum", None) or _signals.pending()
+        signum = getattr(exc, "signum", None) or _interrupt.pending()
         if signum is None and isinstance(exc, KeyboardInterrupt):
             signum = signal.SIGINT
         if signum is None:
             raise
-        interrupted = True
-        _signals.cleanup()
-        print(_signals.message(signum), file=sys.stderr)
+        print(_interrupt.message(signum), file=sys.stderr)
         return 128 + int(signum)
     finally:
-        _signals.restore(exiting=_exiting and interrupted)
+        _interrupt.restore(exiting=_exiting)
 
 
 def _main(argv):
     argv = sys.argv[1:] if argv is None else list(argv)
-    _signals.set_prefix("microimpact")
+    _interrupt.set_prefix("microimpact")
     # Import only the command being run: a command's dependencies cost more than its work.
     parser = build_parser(only=argv[0] if argv and argv[0] in COMMANDS else None)
     try:
@@ -176,7 +175,7 @@ def _main(argv):
         return 2
     warnings.formatwarning = _short_warning
     prefix = f"microimpact {args.command}"
-    _signals.set_prefix(prefix)
+    _interrupt.set_prefix(prefix)
     stdout = sys.stdout
     if stdout is None:  # started with standard output closed (microimpact impact 50 >&-): before any work
         print(
@@ -190,16 +189,15 @@ def _main(argv):
             sys.stdout.flush()
         finally:
             sys.stdout = stdout
-        if not _signals.late():  # a signal after the output was put in place: the run is complete
-            _signals.check()  # an interrupt whose exception was swallowed on the way (in a __del__, a callback)
+        _interrupt.check()  # an interrupt whose exception was swallowed on the way (in a __del__, a callback)
     except KeyboardInterrupt:
         raise
     except BrokenPipeError:  # e.g. piped into head: stop quietly
         _silence_stdout()
         return 0
     except (ValueError, MissingExtraError, OSError, MemoryError) as exc:
-        if _signals.pending() is not None:  # what a library made of an interrupt
-            raise _signals.Interrupted(_signals.pending()) from None
+        if _interrupt.pending() is not None:  # what a library made of an interrupt
+            raise Interrupted(_interrupt.pending()) from None
         if isinstance(exc, MemoryError):
             msg = "out of memory (see MICROIMPACT_MAX_MEMORY and give smaller sizes)"
         else:

@@ -1,0 +1,393 @@
+"""The formats microimpact writes: the project's CSV layout, JSON that is always valid, NetCDF, figures.
+
+Every file is written whole or not at all (:func:`microimpact.io.atomic_write`); CSV and JSON also
+go to an open file such as standard output.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import os
+import stat
+import sys
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ._files import atomic_write, check_output_path, name_the_target, naming_errors, resolve_link, umask_mode
+from ._memory import progress_bar
+
+if TYPE_CHECKING:
+    from pathlib import Path
+
+__all__ = [
+    "check_figure_path",
+    "csv_header",
+    "csv_rows",
+    "json_safe",
+    "save_figure",
+    "write_csv",
+    "write_json",
+    "write_netcdf",
+    "write_table",
+]
+
+
+# ----------------------------------------------------------------------------- CSV
+def _check_text(kind: str, text: str) -> str:
+    text = str(text)
+    bad = [c for c in text if c in "\r\n\x00" or (ord(c) < 32 and c != "\t")]
+    if bad:
+        raise ValueError(f"{kind} must be one line of text without control characters, got {text!r}")
+    return text
+
+
+def csv_header(columns) -> str:
+    """The header line ``name [unit],...`` of the project's CSV layout.
+
+    Parameters
+    ----------
+    columns : sequence of (str, str)
+        ``(name, unit)`` pairs; ``unit`` ``"1"`` for dimensionless.
+
+    Raises
+    ------
+    ValueError
+        If a name or unit holds a comma, a quote, a bracket or a line break
+        (they would change the meaning of the header).
+    """
+    parts = []
+    for name, unit in columns:
+        for kind, text in (("column name", name), ("unit", unit)):
+            _check_text(kind, text)
+            if any(c in str(text) for c in ',"[]'):
+                raise ValueError(f"{kind} must not contain a comma, quote or bracket, got {text!r}")
+        parts.append(f"{name} [{unit}]" if unit != "" else str(name))
+    return ",".join(parts)
+
+
+def _fmt_cell(x) -> str:
+    if isinstance(x, (bool, np.bool_)):
+        return "1" if x else "0"
+    if isinstance(x, (int, np.integer)):
+        return str(int(x))
+    if isinstance(x, (float, np.floating)):
+        x = float(x)
+        if math.isnan(x):
+            return "nan"
+        if math.isinf(x):
+            return "inf" if x > 0 else "-inf"
+        return repr(x)  # shortest exact round trip
+    s = str(x)
+    if "\n" in s or "\r" in s:
+        s = s.replace("\r", " ").replace("\n", " ")
+    return '"' + s.replace('"', '""') + '"' if ("," in s or '"' in s) else s
+
+
+def csv_rows(arrays):
+    """The rows of the project's CSV layout, one string each (no line end), from columns of equal length.
+
+    Floats in their shortest exact form (Python's ``repr``: they read back bit for bit), ``nan``,
+    ``inf`` and ``-inf`` as such, booleans 0/1, integers as written; text quoted when it holds a
+    comma or a quote. The rows of :func:`write_csv` and of :func:`microimpact.sweep.sweep_to_csv`.
+
+    Parameters
+    ----------
+    arrays : sequence of array_like
+        The columns, 1-D, all of one length.
+
+    Yields
+    ------
+    str
+        One row.
+    """
+    cols = [np.atleast_1d(np.asarray(c)) for c in arrays]
+    if all(c.dtype.kind in "biuf" for c in cols):
+        # numbers only: Python floats' repr is the shortest exact form ("nan", "inf" as _fmt_cell writes them)
+        lists = [(c.astype(np.int64) if c.dtype.kind == "b" else c).tolist() for c in cols]
+        for row in zip(*lists):
+            yield ",".join(map(repr, row))
+        return
+    n = len(cols[0]) if cols else 0
+    for i in range(n):
+        yield ",".join(_fmt_cell(c[i].item() if hasattr(c[i], "item") else c[i]) for c in cols)
+
+
+def _csv_rows(columns, n):
+    return csv_rows([c for _, _, c in columns])
+
+
+def write_csv(path, columns, comments=(), *, progress=False):
+    """Write columns as CSV in the project's layout (header with units, ``#`` lines, rows).
+
+    Parameters
+    ----------
+    path : str, os.PathLike or file object
+        File to write (atomically, :func:`atomic_write`), or an open text file
+        (e.g. :data:`sys.stdout`), written to directly.
+    columns : sequence of (str, str, array_like)
+        ``(name, unit, values)``; all of equal length. Bools are written 0/1,
+        floats in their shortest exact form, text quoted when it holds a comma.
+    comments : sequence of str, optional
+        Lines written after the header, each prefixed by ``#`` and a space (one line each;
+        a line break inside is refused).
+    progress : bool, optional
+        Show a progress bar (:func:`progress_bar`) while writing the rows.
+
+    Returns
+    -------
+    pathlib.Path or None
+        The file written (None for a file object).
+    """
+    from pathlib import Path
+
+    columns = list(columns)
+    header = csv_header([(name, unit) for name, unit, _ in columns])
+    comments = [_check_text("comment", c) for c in comments]
+    n = len(np.atleast_1d(columns[0][2])) if columns else 0
+    for name, _, c in columns:
+        if len(np.atleast_1d(c)) != n:
+            raise ValueError(f"column {name!r} has {len(np.atleast_1d(c))} values, the first has {n}")
+
+    def emit(fh):
+        fh.write(header + "\n")
+        for c in comments:
+            fh.write(f"# {c}\n" if c else "#\n")
+        step = 65536
+        with progress_bar(n, "writing CSV", unit="rows", disable=not progress) as bar:
+            for start in range(0, n, step):
+                sub = [(a, b, np.atleast_1d(np.asarray(c))[start : start + step]) for a, b, c in columns]
+                block = "\n".join(_csv_rows(sub, min(step, n - start)))
+                fh.write(block + "\n")
+                bar.update(min(step, n - start))
+
+    if hasattr(path, "write"):
+        with naming_errors(path):
+            emit(path)
+        return None
+    with atomic_write(path) as fh:
+        emit(fh)
+    return Path(path)
+
+
+# ----------------------------------------------------------------------------- JSON
+def json_safe(obj):
+    """``obj`` with every non-finite float replaced by ``None`` (JSON ``null``) and numpy types as Python ones.
+
+    JSON has no NaN or infinity (RFC 8259, section 6); writing them as ``null``
+    keeps every document valid JSON. Arrays become lists, numpy scalars Python
+    numbers, paths strings.
+    """
+    if isinstance(obj, dict):
+        return {str(k): json_safe(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [json_safe(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return json_safe(obj.tolist())
+    if isinstance(obj, (bool, np.bool_)):
+        return bool(obj)
+    if isinstance(obj, (int, np.integer)):
+        return int(obj)
+    if isinstance(obj, (float, np.floating)):
+        x = float(obj)
+        return x if math.isfinite(x) else None
+    if isinstance(obj, os.PathLike):
+        return os.fspath(obj)
+    return obj
+
+
+def write_json(obj, path=None, *, indent: int = 2):
+    """Write ``obj`` as valid JSON: to ``path`` (atomically), to an open file, or to stdout.
+
+    NaN and infinities, which JSON cannot represent, are written as ``null``
+    (:func:`json_safe`); ``allow_nan=False`` guarantees no ``NaN``/``Infinity``
+    token is ever produced.
+
+    Parameters
+    ----------
+    obj : dict, list, ...
+        JSON-able data (numpy arrays and scalars allowed).
+    path : str, os.PathLike, file object or None
+        Destination; ``None`` or ``"-"``: :data:`sys.stdout`.
+    indent : int, optional
+        Indentation (default 2).
+    """
+    import json
+    from pathlib import Path
+
+    text = json.dumps(json_safe(obj), indent=indent, allow_nan=False) + "\n"
+    if path is None or (isinstance(path, str) and path == "-"):
+        with naming_errors(sys.stdout):
+            sys.stdout.write(text)
+            sys.stdout.flush()
+        return None
+    if hasattr(path, "write"):
+        with naming_errors(path):
+            path.write(text)
+        return None
+    with atomic_write(path) as fh:
+        fh.write(text)
+    return Path(path)
+
+
+# ----------------------------------------------------------------------------- NetCDF and figures
+def write_netcdf(ds, path, *, engine=None, progress=False):
+    """Write an :class:`xarray.Dataset` to NetCDF through a temporary file beside ``path``.
+
+    A dask-backed dataset is computed and written block by block (bounded
+    memory); with ``progress=True`` under :class:`dask.diagnostics.ProgressBar`.
+    The temporary file is renamed to ``path`` only when the write completed.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+    path : str or os.PathLike
+    engine : str, optional
+        xarray's back end (``"netcdf4"``, ``"scipy"``).
+    progress : bool, optional
+        Progress bar on stderr while a lazy dataset is written.
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    import tempfile
+    from pathlib import Path
+
+    check_output_path(path)
+    target = resolve_link(Path(path))
+    fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
+    os.close(fd)
+    try:
+        try:
+            perm = stat.S_IMODE(os.stat(target).st_mode)
+        except OSError:
+            perm = umask_mode()
+        if not ds.chunks:
+            ds.to_netcdf(tmp, engine=engine)
+        else:
+            delayed = ds.to_netcdf(tmp, engine=engine, compute=False)
+            if progress:
+                from .._optional import require
+
+                diagnostics = require("dask.diagnostics", "progress bars")
+                with diagnostics.ProgressBar(out=sys.stderr):
+                    delayed.compute()
+            else:
+                delayed.compute()
+        with open(tmp, "rb+") as fh:
+            os.fsync(fh.fileno())
+        os.chmod(tmp, perm)
+        os.replace(tmp, target)
+    except BaseException as exc:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        name_the_target(exc, tmp, target)
+        raise
+    return Path(path)
+
+
+def save_figure(fig, path, **kwargs):
+    """``fig.savefig(path, **kwargs)`` through a temporary file beside ``path`` (format from the suffix).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+    path : str or os.PathLike
+        The image file; its suffix names the format unless ``format=`` is given.
+    **kwargs
+        Passed to :meth:`~matplotlib.figure.Figure.savefig`.
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    from pathlib import Path
+
+    target = Path(path)
+    fmt = kwargs.pop("format", None) or target.suffix.lstrip(".").lower() or None
+    if fmt is None:
+        raise ValueError(f"figure file needs a suffix naming its format (.png, .pdf, .svg), got {os.fspath(path)!r}")
+    supported = fig.canvas.get_supported_filetypes()
+    if fmt not in supported:
+        raise ValueError(
+            f"cannot write a figure as {fmt!r} ({os.fspath(path)}): use one of {', '.join(sorted(supported))}"
+        )
+    with atomic_write(target, "wb") as fh:
+        fig.savefig(fh, format=fmt, **kwargs)
+    return target
+
+
+def check_figure_path(path) -> Path:
+    """Check before computing that a figure can be written to ``path`` (its format and its directory)."""
+    target = check_output_path(path)
+    fmt = target.suffix.lstrip(".").lower()
+    known = ("png", "pdf", "svg", "svgz", "eps", "ps", "jpg", "jpeg", "tif", "tiff", "webp", "pgf", "raw", "rgba")
+    if fmt not in known:
+        raise ValueError(f"figure file must end in .png, .pdf or .svg (or {', '.join(known[4:])}), got {str(path)!r}")
+    return target
+
+
+def write_table(path, table: dict, title: str = "", columns: dict | None = None, source: str = "") -> Path:
+    """Write a dict of columns as CSV in the project's layout (see :func:`csv_header`).
+
+    The first line is the header, each column named with its unit
+    (``velocity_m_s [m/s]``; text columns bare); then ``#`` lines: the title,
+    the provenance (``microimpact <version>``, then ``source``) and one line per
+    column with its unit and description; then the rows. Floats are written with
+    Python's shortest exact representation, so reading the file back
+    (:func:`read_table`) gives the same numbers bit for bit. The file is written
+    atomically (:func:`write_csv`).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        File to write (overwritten).
+    table : dict of str to array_like
+        Columns of equal length, by name; bools are written as 0/1.
+    title : str, optional
+        First comment line of the file (one line).
+    columns : dict of str to (str, str), optional
+        Column name -> (unit, description) for the header and the ``#`` lines
+        (e.g. :data:`microimpact.figures.paper.COLUMNS`), units spelled as the
+        quantities table spells them (``"1"`` dimensionless, ``""`` text); ``"unit"``
+        marks a column in the unit of another column (and ``"-"``, read as before,
+        one without a unit of its own). Columns not named have no unit.
+    source : str, optional
+        Appended to the provenance line (``"; "`` between).
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from microimpact.io import read_table
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     cols = {"velocity_m_s": ("m/s", "impact speed V"), "restitution": ("1", "e")}
+    ...     path = write_table(Path(tmp) / "e.csv", {"velocity_m_s": [5.0, 20.0], "restitution": [1.0, 0.8836]}, columns=cols)
+    ...     back = read_table(path)
+    >>> back["velocity_m_s"].tolist(), back["restitution"].tolist()
+    ([5.0, 20.0], [1.0, 0.8836])
+    """
+    from .._version import __version__
+
+    columns = {} if columns is None else columns
+    keys = list(table)
+    comments = []
+    if title:
+        comments.append(str(title))
+    comments.append(f"microimpact {__version__}" + (f"; {source}" if source else ""))
+    comments.append("columns (SI units; a suffix names the unit, no suffix: dimensionless or text):")
+    for k in keys:
+        unit, desc = columns.get(k, ("", ""))
+        comments.append(f"  {k} [{unit}]: {desc}")
+    cols = []
+    for k in keys:
+        unit = columns.get(k, ("", ""))[0]
+        cols.append((k, "" if unit in ("-", "unit") else unit, np.atleast_1d(np.asarray(table[k]))))
+    return write_csv(path, cols, comments)
