@@ -31,6 +31,8 @@ xarray is needed for :func:`deposition_report` (``pip install 'microimpact[sweep
 from __future__ import annotations
 
 import math
+import os
+import stat
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -61,7 +63,7 @@ class PatchHits:
         Its density [kg/m^3].
     n_particle : ndarray (N,)
         Particles the parcel stands for [-].
-    orig_id, orig_proc : ndarray of int (N,)
+    orig_id, orig_proc : ndarray of int64 (N,)
         The parcel's identity: its number on the processor that injected it, and that processor.
     age : ndarray (N,)
         Time since its injection [s] (NaN where not recorded).
@@ -88,18 +90,86 @@ def _columns(header: str) -> list[str]:
     return header.lstrip("#").replace("(", " ").replace(")", " ").split()
 
 
+#: The largest record read [bytes]. A hit is a line of about 300 characters, so this is some
+#: 3.5 million hits per file; its floats take a few times the text in memory, which is why the
+#: text is not read without a bound (a device such as ``/dev/zero`` never ends).
+MAX_RECORD_BYTES = 1 << 30
+
+#: Columns holding labels (OpenFOAM's integers): read as integers, never through a float that
+#: could round them or overflow the int64 they are stored in.
+_LABELS = ("origId", "origProc")
+_INT64 = np.iinfo(np.int64)
+
+
+def _read_text(path: Path) -> str:
+    """The text of a regular file, read with the bound :data:`MAX_RECORD_BYTES`.
+
+    A FIFO would block the read until a writer comes and a device or a growing file need not end,
+    so the file's kind and size are checked with ``os.stat`` before opening and again on the open
+    descriptor (opened non-blocking, so a FIFO put in its place between the two cannot hang), and
+    the read itself stops one byte past the bound.
+    """
+    try:
+        st = os.stat(path)
+    except OSError as exc:
+        raise ValueError(f"{path}: cannot be read ({exc.strerror})") from None
+    if not stat.S_ISREG(st.st_mode):
+        raise ValueError(f"{path}: not a regular file (a directory, FIFO or device named like a record?)")
+    if st.st_size > MAX_RECORD_BYTES:
+        raise ValueError(f"{path}: {st.st_size} bytes, more than the {MAX_RECORD_BYTES} a record is read up to")
+    try:
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    except OSError as exc:
+        raise ValueError(f"{path}: cannot be read ({exc.strerror})") from None
+    with os.fdopen(fd, "rb") as fh:
+        if not stat.S_ISREG(os.fstat(fh.fileno()).st_mode):
+            raise ValueError(f"{path}: not a regular file (it changed while being opened)")
+        data = fh.read(MAX_RECORD_BYTES + 1)
+    if len(data) > MAX_RECORD_BYTES:
+        raise ValueError(f"{path}: more than the {MAX_RECORD_BYTES} bytes a record is read up to")
+    try:
+        return data.decode()
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{path}: not text (byte {exc.start} is not UTF-8)") from None
+
+
+def _label(token: str, path: Path, line: int, name: str) -> int:
+    """An integer column's value: an integer literal, or a float that is one exactly, within int64."""
+    try:
+        value = int(token)
+    except ValueError:
+        try:
+            x = float(token)
+        except ValueError:
+            raise ValueError(f"{path}, line {line}: {name} {token!r} is not a number") from None
+        # beyond 2**53 a float no longer tells neighbouring integers apart: not an exact label
+        if not (math.isfinite(x) and x == math.floor(x) and abs(x) <= 2.0**53):
+            raise ValueError(f"{path}, line {line}: {name} {token!r} is not an integer label") from None
+        value = int(x)
+    if not _INT64.min <= value <= _INT64.max:
+        raise ValueError(f"{path}, line {line}: {name} {token!r} is outside the int64 range of labels")
+    return value
+
+
 def _read_one(path: Path):
-    text = path.read_text()
+    text = _read_text(path)
     lines = text.splitlines()
-    head = next((ln for ln in lines if ln.startswith("#")), None)
-    if head is None:
+    at = next((k for k, ln in enumerate(lines) if ln.startswith("#")), None)
+    if at is None:
         raise ValueError(f"{path}: no '#' header naming the columns (not a patchPostProcessing file?)")
-    names = _columns(head)
+    names = _columns(lines[at])
+    seen = set()
+    for n in names:
+        if n in seen:  # the later column would silently take the earlier one's place in the table
+            raise ValueError(f"{path}, line {at + 1}: column {n!r} named twice in the header")
+        seen.add(n)
     need = ["Time", "position0", "position1", "position2", "U0", "U1", "U2", "d", "rho", "nParticle", "origId"]
     missing = [n for n in need if n not in names]
     if missing:
         raise ValueError(f"{path}: column {missing[0]!r} missing from the header (found: {' '.join(names[:12])} ...)")
-    rows = []
+    labels = [(i, n) for i, n in enumerate(names) if n in _LABELS]
+    i_np = names.index("nParticle")
+    rows, ids = [], []
     for k, ln in enumerate(lines):
         if not ln.strip() or ln.startswith("#"):
             continue
@@ -107,11 +177,19 @@ def _read_one(path: Path):
         if len(parts) != len(names):
             raise ValueError(f"{path}, line {k + 1}: {len(parts)} values for {len(names)} columns")
         try:
-            rows.append([float(x) for x in parts])
+            row = [float(x) for x in parts]
         except ValueError:
             raise ValueError(f"{path}, line {k + 1}: not a number in {ln[:80]!r}") from None
+        # a parcel stands for nParticle particles, the weight of its hit in every count: fractional
+        # where OpenFOAM sizes parcels by mass, but never negative, infinite or NaN
+        if not (math.isfinite(row[i_np]) and row[i_np] >= 0.0):
+            raise ValueError(f"{path}, line {k + 1}: nParticle {parts[i_np]!r} is not a finite count >= 0")
+        rows.append(row)
+        ids.append([_label(parts[i], path, k + 1, n) for i, n in labels])
     arr = np.array(rows, dtype=float).reshape(-1, len(names))
     col = {n: arr[:, i] for i, n in enumerate(names)}
+    lab = np.array(ids, dtype=np.int64).reshape(-1, len(labels))
+    col.update({n: lab[:, j] for j, (_, n) in enumerate(labels)})
     return col, path.stem
 
 
@@ -132,16 +210,23 @@ def read_patch_hits(path) -> PatchHits:
     Raises
     ------
     ValueError
-        No such file or no ``.post`` file below the directory, or a file that is not a
-        ``patchPostProcessing`` record (the message names the file and line).
+        An empty path (it would mean the working directory), no such file or no ``.post`` file
+        below the directory, a ``.post`` that is not a regular file (a FIFO would block, a device
+        need not end) or is larger than :data:`MAX_RECORD_BYTES`, or a file that is not a
+        ``patchPostProcessing`` record: no header, a column named twice, a row of the wrong
+        length or with a non-number, an ``origId``/``origProc`` that is not an integer within
+        int64, an ``nParticle`` that is not a finite count >= 0 (the message names the file and
+        line).
     """
+    if os.fspath(path) == "":  # Path("") is the working directory: never read it by accident
+        raise ValueError("path must name a .post file or a directory holding them, got ''")
     p = Path(path)
     if p.is_dir():
         files = sorted(p.rglob("*.post"))
         if not files:
             raise ValueError(f"path {str(path)!r} holds no patchPostProcessing '*.post' file")
-    elif p.is_file():
-        files = [p]
+    elif p.exists():
+        files = [p]  # _read_text refuses what is not a regular file
     else:
         raise ValueError(f"path {str(path)!r} does not exist")
     cols, patches = [], []
@@ -154,7 +239,7 @@ def read_patch_hits(path) -> PatchHits:
         return np.concatenate([c[key] if key in c else np.full(c["Time"].size, default) for c in cols])
 
     t = cat("Time")
-    order = np.lexsort((cat("origId"), cat("origProc", 0.0), t))
+    order = np.lexsort((cat("origId"), cat("origProc", 0), t))
     pos = np.column_stack([cat("position0"), cat("position1"), cat("position2")])
     vel = np.column_stack([cat("U0"), cat("U1"), cat("U2")])
     return PatchHits(
@@ -164,8 +249,8 @@ def read_patch_hits(path) -> PatchHits:
         diameter=cat("d")[order],
         density=cat("rho")[order],
         n_particle=cat("nParticle")[order],
-        orig_id=cat("origId")[order].astype(int),
-        orig_proc=cat("origProc", 0.0)[order].astype(int),
+        orig_id=cat("origId")[order],
+        orig_proc=cat("origProc", 0)[order],
         age=cat("age")[order],
         patch=np.concatenate(patches)[order],
     )
@@ -292,14 +377,21 @@ def deposition_report(hits: PatchHits, decision: dict, injected, *, speed_bins=2
         [m/s]; ``speed_count`` (``diameter`` x ``speed``, bin centres [m/s]) and ``angle_count``
         (``diameter`` x ``angle``, bin centres [deg]): impacts per bin, and ``speed_stuck`` /
         ``angle_stuck``, the stuck ones.
+
+    Raises
+    ------
+    ValueError
+        No diameter, an injected count that is not positive and finite, a hit diameter not among
+        the injected ones, or more particles hitting than were injected for a diameter (impact
+        fraction above 1: short counts, or repeated hits of rebounding parcels in the record).
     """
     xr = require("xarray", "deposition reports")
     d_all = np.asarray(sorted(float(d) for d in injected))
     if d_all.size == 0:
         raise ValueError("injected must name at least one diameter")
     counts = np.array([float(injected[d]) for d in sorted(injected)])
-    if not np.all(counts > 0):
-        raise ValueError(f"injected counts must be positive, got {injected!r}")
+    if not np.all((counts > 0) & np.isfinite(counts)):
+        raise ValueError(f"injected counts must be positive and finite, got {injected!r}")
     w = hits.n_particle
     vn, ang, stuck = decision["normal_speed"], decision["angle"], decision["stuck"]
     which = np.array([int(np.argmin(np.abs(d_all - d))) for d in hits.diameter], dtype=int)
@@ -308,6 +400,18 @@ def deposition_report(hits: PatchHits, decision: dict, injected, *, speed_bins=2
         raise ValueError(f"hit diameter {hits.diameter[unmatched][0]!r} m is not among the injected diameters")
     D = d_all.size
     imp = np.bincount(which, weights=w, minlength=D)
+    # A one-way hand-off counts first impacts, one per parcel: no more particles can hit than were
+    # injected. More means the injected counts are short or the record holds repeated hits of
+    # parcels the case let rebound, and either way the fractions would be wrong, so refuse. The
+    # tolerance covers the rounding of summing fractional nParticle.
+    over = imp > counts * (1.0 + 1e-9)
+    if np.any(over):
+        k = int(np.flatnonzero(over)[0])
+        raise ValueError(
+            f"injected: {float(imp[k])!r} particles of diameter {float(d_all[k])!r} m hit the wall but "
+            f"{float(counts[k])!r} were injected (impact fraction {float(imp[k] / counts[k])!r} > 1): injected counts too small, "
+            "or the record holds repeated hits of rebounding parcels (a one-way hand-off needs the patch to let them escape)"
+        )
     dep = np.bincount(which, weights=w * stuck, minlength=D)
     with np.errstate(invalid="ignore"):
         mean_v = np.bincount(which, weights=w * vn, minlength=D) / imp
