@@ -5,8 +5,9 @@ export folder, the paper, an impact table on standard output) over and over, eac
 folder holding an earlier output, and sends SIGINT or SIGTERM (chosen at random) at a random
 moment of the run. Every run must end within 5 s of the signal with exit status 130/143 and one
 line on stderr naming the interrupt (or, when the signal came after the command finished, exit
-0 with a complete new output), leave the earlier output byte for byte as it was, and leave no
-temporary file. The moment is drawn uniformly over most (``SPAN``) of the command's duration on this
+0 with a complete new output), leave the earlier output byte for byte as it was or, where the
+signal came just after the new output was renamed into place, the complete new output (never a
+part of either), and leave no temporary file. The moment is drawn uniformly over most (``SPAN``) of the command's duration on this
 machine, measured first as the faster of two uninterrupted runs of each command (a fixed number of seconds
 would let a faster machine finish most runs before their signal; a first run may meet a cold cache),
 counted from
@@ -115,6 +116,28 @@ def _old_intact(folder: Path, name: str) -> bool:
     return True
 
 
+def _new_whole(folder: Path, name: str) -> bool:
+    """The run's complete new output is in place (a signal that came after it was renamed into place:
+    the command is interrupted, but what it replaced was replaced whole, never cut)."""
+    import hashlib
+    import json
+
+    argv, out, kind, _ = CASES[name]
+    if kind == "file":
+        data = (folder / out).read_bytes()
+        return bool(data) and data != OLD.encode() and (not out.endswith(".csv") or data.endswith(b"\n"))
+    if kind == "dir":
+        d = folder / out
+        try:
+            files = json.loads((d / ".microimpact-manifest.json").read_text())["files"]
+        except (OSError, ValueError, KeyError):
+            return False
+        if "old.txt" in files or sorted(p.name for p in d.iterdir()) != sorted([*files, ".microimpact-manifest.json"]):
+            return False
+        return all(hashlib.sha256((d / n).read_bytes()).hexdigest() == f["sha256"] for n, f in files.items())
+    return True
+
+
 def _temporaries(folder: Path):
     found = []
     for p in folder.rglob("*"):
@@ -211,7 +234,7 @@ def one_run(name: str, seed: int, from_exec: bool = False, typical: float | None
                 "status": rc == 128 + sig,
                 "one line": len(lines) == 1 and "interrupted" in lines[0] and "Traceback" not in err,
                 "in time": took <= LIMIT,
-                "old output": _old_intact(folder, name),
+                "old output, or the whole new one": _old_intact(folder, name) or _new_whole(folder, name),
                 "no temporary": not _temporaries(folder),
                 "nothing else": sorted(p.name for p in folder.iterdir()) == before,
             }
