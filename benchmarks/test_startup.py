@@ -27,11 +27,11 @@ BASELINES = {
 }
 #: Goals: subject -> (baseline, largest ratio).
 GOALS = {
-    "microimpact impact 50": ("import numpy", 1.5),
+    "microimpact impact 50": ("import numpy", 2.0),
     "microimpact history 50": ("import numpy", 2.0),
     "microimpact export (one diameter, tables)": ("import numpy", 2.0),
-    "microimpact sweep (50 speeds, .nc)": ("import xarray", 1.5),
-    "microimpact compare (24 speeds)": ("import xarray", 1.5),
+    "microimpact sweep (50 speeds, .nc)": ("import xarray", 2.0),
+    "microimpact compare (24 speeds)": ("import xarray", 2.0),
     # numba loads a cached loop only after building its target context (every implementation it has)
     "first compiled call, 1e6 speeds (whole process)": ("import numba", 2.5),
 }
