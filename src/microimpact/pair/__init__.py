@@ -20,7 +20,7 @@ from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
 from .. import contact
-from .._validation import TINY_LIMITING_PRESSURE, check_pair_scales, check_positive, check_yield_velocity
+from .._validation import TINY_LIMITING_PRESSURE, TINY_NORMAL, check_pair_scales, check_positive, check_yield_velocity
 from ..core import models
 from ..core.models import thornton_ning_2016 as _seed
 from ..materials import Material
@@ -101,8 +101,14 @@ class ContactPair:
                 self.effective_modulus, self.effective_radius, self.effective_mass, self.limiting_pressure
             )
         # every model divides by V_y (V/V_y, eqs. 22-27): a pair whose V_y is no normal float
-        # (E* = 1e308 Pa: alpha_y underflows) is refused here, naming the input, not divided by later
-        check_pair_scales(self.effective_modulus, self.effective_radius, self.effective_mass, self.limiting_pressure)
+        # (E* = 1e308 Pa: alpha_y underflows) is refused here, naming the input, not divided by later.
+        # The pair's own yield point (computed once, kept) decides; the array check names the input.
+        try:
+            V_y = self._yield_point[2]
+        except (ZeroDivisionError, OverflowError):
+            V_y = math.nan
+        if not V_y >= TINY_NORMAL:
+            check_pair_scales(*self._args)
         if self.density is not None:
             object.__setattr__(self, "density", check_positive("density", self.density, scalar=True))
 
