@@ -30,6 +30,7 @@ __all__ = [
     "naming_errors",
     "oserror",
     "owned_directory",
+    "replacing",
     "resolve_link",
     "umask_mode",
 ]
@@ -206,24 +207,34 @@ def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newli
     ------
     file object
     """
-    import tempfile
     from pathlib import Path
 
     if mode not in ("w", "wb"):
         raise ValueError(f"mode must be 'w' or 'wb', got {mode!r}")
     kw = {} if "b" in mode else {"encoding": encoding, "newline": newline}
     check_output_path(path)
-    target = resolve_link(Path(path))
+    with replacing(resolve_link(Path(path))) as (fd, _tmp):
+        with os.fdopen(fd, mode, **kw) as fh:
+            yield fh
+            fh.flush()
+            os.fsync(fh.fileno())
+
+
+@contextlib.contextmanager
+def replacing(target):
+    """``(fd, tmp)``: a new temporary file beside ``target`` (created exclusively, its descriptor open);
+    on a clean exit it takes ``target``'s place with ``target``'s mode (else the umask's), so the file
+    appears whole or not at all; on any exception, an interrupt too, it is removed and an OSError names
+    ``target``. The caller writes the file and makes it durable (``fsync``) inside the block."""
+    import tempfile
+
     try:
         perm = stat.S_IMODE(os.stat(target).st_mode)
     except OSError:
         perm = umask_mode()
     fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
     try:
-        with os.fdopen(fd, mode, **kw) as fh:
-            yield fh
-            fh.flush()
-            os.fsync(fh.fileno())
+        yield fd, tmp
         os.chmod(tmp, perm)
         os.replace(tmp, target)
     except BaseException as exc:

@@ -6,16 +6,14 @@ go to an open file such as standard output.
 
 from __future__ import annotations
 
-import contextlib
 import math
 import os
-import stat
 import sys
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ._files import atomic_write, check_output_path, name_the_target, naming_errors, resolve_link, umask_mode
+from ._files import atomic_write, check_output_path, naming_errors, replacing, resolve_link
 from ._memory import progress_bar
 
 if TYPE_CHECKING:
@@ -252,18 +250,11 @@ def write_netcdf(ds, path, *, engine=None, progress=False):
     -------
     pathlib.Path
     """
-    import tempfile
     from pathlib import Path
 
     check_output_path(path)
-    target = resolve_link(Path(path))
-    fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
-    os.close(fd)
-    try:
-        try:
-            perm = stat.S_IMODE(os.stat(target).st_mode)
-        except OSError:
-            perm = umask_mode()
+    with replacing(resolve_link(Path(path))) as (fd, tmp):
+        os.close(fd)  # the NetCDF library writes the file by its name
         if not ds.chunks:
             ds.to_netcdf(tmp, engine=engine)
         else:
@@ -278,13 +269,6 @@ def write_netcdf(ds, path, *, engine=None, progress=False):
                 delayed.compute()
         with open(tmp, "rb+") as fh:
             os.fsync(fh.fileno())
-        os.chmod(tmp, perm)
-        os.replace(tmp, target)
-    except BaseException as exc:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        name_the_target(exc, tmp, target)
-        raise
     return Path(path)
 
 
