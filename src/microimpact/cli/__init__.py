@@ -182,10 +182,13 @@ def _main(argv):
             f"{prefix}: error: <standard output>: closed (redirect it instead: > FILE or > /dev/null)", file=sys.stderr
         )
         return 2
+    from ..io import commit_check
+
     try:
         sys.stdout = _NamedStdout(stdout)
         try:
-            rc = args.func(args)
+            with commit_check(_interrupt.check):  # a swallowed interrupt stops the command before its outputs appear
+                rc = args.func(args)
             sys.stdout.flush()
         finally:
             sys.stdout = stdout

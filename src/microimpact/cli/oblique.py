@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import sys
 
 import numpy as np
@@ -13,6 +12,7 @@ from ..quantities import column
 from ._common import (
     PAIR_OPTIONS,
     add_pair_arguments,
+    check_outputs,
     pair_from_args,
     parse_float,
     parse_tangential,
@@ -112,6 +112,7 @@ def run(args) -> int:
     angles = parse_values(args.angles, "angles")
     spin = parse_float(args.spin, "spin")
     models = parse_tangential(args.tangential, ob.TANGENTIAL_MODELS)
+    check_outputs(figures=[args.plot])
     k_lin = None
     if args.tangential_stiffness is not None:
         if "lammps_linear_history" not in models:
@@ -164,10 +165,9 @@ def run(args) -> int:
         table = oblique_data(None if args.alumina else pair, velocity=V, friction=mu, poisson_ratio=nu, models=models)
         axes = plot_oblique(None if args.alumina else pair, table=table, measured=args.alumina)
         fig = axes[0].figure
-        root, ext = os.path.splitext(args.plot)
-        tmp = f"{root}.tmp{os.getpid()}{ext}"
-        fig.savefig(tmp, dpi=300)
-        os.replace(tmp, args.plot)
+        from ..io import save_figure
+
+        save_figure(fig, args.plot, dpi=300)
         import matplotlib.pyplot as plt
 
         plt.close(fig)

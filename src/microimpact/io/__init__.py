@@ -55,6 +55,7 @@ from ._files import (
     atomic_write,
     check_input_file,
     check_output_path,
+    commit_check,
     owned_directory,
 )
 from ._formats import (
@@ -78,6 +79,7 @@ __all__ = [
     "atomic_directory",
     "check_output_path",
     "check_input_file",
+    "commit_check",
     "csv_header",
     "csv_rows",
     "write_csv",

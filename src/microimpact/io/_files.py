@@ -10,6 +10,7 @@ those blocks run on Ctrl-C as on any error. Nothing here touches the process's s
 from __future__ import annotations
 
 import contextlib
+import contextvars
 import errno
 import os
 import stat
@@ -26,6 +27,7 @@ __all__ = [
     "atomic_write",
     "check_input_file",
     "check_output_path",
+    "commit_check",
     "name_the_target",
     "naming_errors",
     "oserror",
@@ -34,6 +36,34 @@ __all__ = [
     "resolve_link",
     "umask_mode",
 ]
+
+
+# ----------------------------------------------------------------------------- commits
+# The caller's last word before an output takes its place (None: none). A context variable, set only
+# inside :func:`commit_check`: nothing of the process changes, and a thread started meanwhile has none.
+_COMMIT_CHECK = contextvars.ContextVar("microimpact_commit_check", default=None)
+
+
+@contextlib.contextmanager
+def commit_check(check):
+    """Call ``check()`` just before each output of the block is put in place (a file renamed over its
+    target, a folder committed); an exception it raises leaves the output as it was.
+
+    The command line passes a check that raises an interrupt whose exception a library swallowed (one
+    raised inside a ``__del__`` or a weakref callback is printed and dropped by Python): the command
+    then stops before its outputs appear, instead of finishing them and reporting the interrupt after.
+    """
+    token = _COMMIT_CHECK.set(check)
+    try:
+        yield
+    finally:
+        _COMMIT_CHECK.reset(token)
+
+
+def _before_commit() -> None:
+    check = _COMMIT_CHECK.get()
+    if check is not None:
+        check()
 
 
 # ----------------------------------------------------------------------------- paths
@@ -236,6 +266,7 @@ def replacing(target):
     try:
         yield fd, tmp
         os.chmod(tmp, perm)
+        _before_commit()
         os.replace(tmp, target)
     except BaseException as exc:
         with contextlib.suppress(OSError):
@@ -557,6 +588,7 @@ def owned_directory(path, command: str, *, inputs=()):
         if bad:
             raise ValueError(f"an output folder holds files only, not {bad[0]!r}")
         _write_manifest(stage, command, names)
+        _before_commit()
         if old is None:
             stage.chmod(0o777 & ~_umask())
             _fsync_dir(stage)
