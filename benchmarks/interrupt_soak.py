@@ -76,6 +76,7 @@ def _env():
     # child through these variables, which slows it and can add lines to its stderr
     for key in [k for k in env if k.startswith("COV_CORE_") or k == "COVERAGE_PROCESS_START"]:
         env.pop(key)
+    env["PYTHONFAULTHANDLER"] = "1"  # a run that does not end is sent SIGABRT: every thread's stack on stderr
     return env
 
 
@@ -215,8 +216,12 @@ def one_run(name: str, seed: int, from_exec: bool = False, typical: float | None
         try:
             stdout, err = proc.communicate(timeout=LIMIT + 25.0)
         except subprocess.TimeoutExpired:
-            proc.kill()
-            stdout, err = proc.communicate()
+            proc.send_signal(signal.SIGABRT)  # the stacks of a run that did not end (faulthandler)
+            try:
+                stdout, err = proc.communicate(timeout=5.0)
+            except subprocess.TimeoutExpired:
+                proc.kill()
+                stdout, err = proc.communicate()
         took = time.monotonic() - sent
         err = err.decode("utf-8", "replace")
         lines = [ln for ln in err.strip().splitlines() if not ln.startswith(("sweep:", "warning:"))]
@@ -241,7 +246,7 @@ def one_run(name: str, seed: int, from_exec: bool = False, typical: float | None
             res["ok"] = all(checks.values())
             if not res["ok"]:
                 res["failed"] = [k for k, v in checks.items() if not v]
-                res["stderr"] = err[-600:]
+                res["stderr"] = err[-600:] if took <= LIMIT else err[-6000:]
                 res["temporaries"] = _temporaries(folder)
         return res
     finally:

@@ -239,3 +239,41 @@ def test_rank_the_additive_rule_against_the_whole_law_on_data_with_stuck_points(
     assert fit.params["work_of_adhesion"] == pytest.approx(1.0, rel=1e-6)
     assert fit.params["limiting_pressure"] == pytest.approx(PY, rel=1e-6)
     assert np.allclose(fit.predict(V), additive, atol=1e-9)
+
+
+# ----------------------------------------------------------------------------- every law that captures
+@pytest.mark.parametrize("law", [n for n in stick.adhesion_laws() if n != stick.ADDITIVE_RULE])
+def test_every_adhesive_law_maps_its_capture_velocity(law):
+    """Each capturing model: its adhesion input set from G by its face; the map's capture velocity is
+    the pair's sticking velocity with that input, and the particle bounces just above it and sticks
+    just below, by the model's own restitution."""
+    from microimpact.models import face
+
+    pair = mi.ContactPair.paper_case("silicon")
+    G, d = 0.2, np.array([0.3e-6, 3e-6])
+    model = mi.models.get(law)
+    res = stick.capture_velocities(pair, d, G, [law])
+    for k, dd in enumerate(d):
+        p = pair.resized(radius=0.5 * dd)
+        values = (p.effective_modulus, p.effective_radius, p.effective_mass, p.limiting_pressure)
+        mapped = face(law).params_for_work_of_adhesion(G, values, tuple(model.DEFAULTS))
+        assert mapped is not None, f"{law} has no work-of-adhesion input: give it one or a face hook"
+        named = dict(zip([q.name for q in model.PARAMETERS], mapped))
+        Vs = res[law]["capture_velocity"][k]
+        assert Vs == pytest.approx(p.sticking_velocity(model=law, **named), rel=1e-14)  # the same size to rounding
+        assert 0.0 < Vs < math.inf
+        e = p.impact([0.98 * Vs, 1.02 * Vs], model=law, **named).restitution
+        assert e[0] == 0.0 and e[1] > 0.0
+    grid = stick.stick_map(pair, G, d, [0.05, 500.0], [law])
+    assert np.all(grid[law]["restitution"][0] == 0.0)  # 5 cm/s: captured at both sizes
+    assert np.all(grid[law]["restitution"][1] > 0.0)
+
+
+def test_a_law_without_a_work_of_adhesion_input_takes_its_parameters():
+    pair = mi.ContactPair.paper_case("silicon")
+    with pytest.raises(ValueError, match="has no parameter 'nonsense'"):
+        stick.capture_velocities(pair, [1e-6], 0.2, ["jkr_elastic_adhesive"], {"jkr_elastic_adhesive": {"nonsense": 1}})
+    with pytest.raises(ValueError, match="not one of the laws"):
+        stick.capture_velocities(pair, [1e-6], 0.2, params={"hertz_tsuji": {}})
+    with pytest.raises(ValueError, match="law must be one of"):
+        stick.capture_velocities(pair, [1e-6], 0.2, ["hertz_tsuji"])

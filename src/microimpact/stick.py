@@ -12,6 +12,12 @@ A particle sticks when its restitution coefficient is 0. Two adhesive laws of Th
     the adhesion-reduced limiting pressure and unloading on the flattened radius ``R_p`` with its
     enhanced pull-off force.
 
+Every other law that can capture a particle (a model declaring ``STICKS`` and its
+``sticking_velocity``; :func:`adhesion_laws` lists them: JKR, DMT, the DEM codes' adhesive laws) is
+mapped the same way: its adhesion input is set from the work of adhesion by its face
+(``params_for_work_of_adhesion``, :mod:`microimpact.models._base`), its other parameters taken from
+``params`` or their defaults.
+
 The pair's ``E*``, ``p_y`` and density are kept and its particle resized (a sphere on a flat).
 """
 
@@ -21,6 +27,7 @@ import math
 
 import numpy as np
 
+from ._face import restitution_arrays
 from ._validation import TINY_NORMAL, check_nonnegative, check_pair_scales, check_positive
 from .adhesion import ADDITIVE_RULE
 from .core import adhesion as _adh
@@ -28,7 +35,7 @@ from .core import models as _models
 from .core.models import thornton_ning_2016 as _seed
 from .engine import evaluate
 
-__all__ = ["ADHESION_LAWS", "FULL_LAW", "capture_velocities", "parting_diameter", "stick_map"]
+__all__ = ["ADHESION_LAWS", "FULL_LAW", "adhesion_laws", "capture_velocities", "parting_diameter", "stick_map"]
 
 #: The full law's model name (:mod:`~microimpact.core.models.thornton_ning_1998_adhesive_plastic`):
 #: the model that declares ``WALL_ADHESION`` (:func:`microimpact.core.models.whole_law`), whose
@@ -38,10 +45,35 @@ FULL_LAW = _models.whole_law()
 ADHESION_LAWS = (ADDITIVE_RULE, FULL_LAW)
 
 
+def adhesion_laws() -> tuple:
+    """Every law a stick/bounce map can take: the additive rule, then each model that captures a
+    particle (``STICKS`` with a ``sticking_velocity``), in :func:`microimpact.models.available` order."""
+    found = [n for n in _models.available() if _models.get(n).STICKS and _models.get(n).sticking_velocity is not None]
+    return (ADDITIVE_RULE, *found)
+
+
 def _law(name):
-    if name not in ADHESION_LAWS:
-        raise ValueError(f"law must be one of {', '.join(ADHESION_LAWS)}; got {name!r}")
+    known = adhesion_laws()
+    if name not in known:
+        raise ValueError(f"law must be one of {', '.join(known)}; got {name!r}")
     return name
+
+
+def _law_params(law, G, pair_values, given):
+    """The parameter tuple of model ``law`` for the work of adhesion ``G`` at ``pair_values``: its
+    adhesion input from its face, the others from ``given`` (name -> value) or their defaults."""
+    from .models import face
+
+    model = _models.get(law)
+    names = [p.name for p in model.PARAMETERS]
+    unknown = sorted(set(given) - set(names))
+    if unknown:
+        raise ValueError(f"law {law!r} has no parameter {unknown[0]!r}; its parameters: {', '.join(names) or 'none'}")
+    start = tuple(float(given.get(n, d)) for n, d in zip(names, model.DEFAULTS))
+    mapped = face(law).params_for_work_of_adhesion(G, pair_values, start)
+    if mapped is None:
+        mapped = start  # no adhesion input of its own: the given parameters set it
+    return _models.resolve_params(model, dict(zip(names, mapped)))
 
 
 def _check_pair(pair):
@@ -55,16 +87,18 @@ def _sizes(pair, diameter):
     return R, 4.0 / 3.0 * math.pi * R**3 * pair.density
 
 
-def _one(law, E, R, m, p_y, G):
+def _one(law, E, R, m, p_y, G, given=None):
     """``(capture velocity, yield velocity)`` [m/s] of one size."""
     if law == ADDITIVE_RULE:
         Vy = _seed.yield_point(E, R, m, p_y)[2]
         return _adh.capture_velocity(Vy, _adh.sticking_velocity(G, E, R, m)), Vy
-    full = _models.get(law)
-    return full.sticking_velocity(E, R, m, p_y, (G,)), full.yield_velocity_of(E, R, m, p_y, (G,))
+    model = _models.get(law)
+    p = _law_params(law, G, (E, R, m, p_y), given or {})
+    Vy = model.yield_velocity_of(E, R, m, p_y, p) if model.yield_velocity_of is not None else math.nan
+    return model.sticking_velocity(E, R, m, p_y, p), Vy
 
 
-def capture_velocities(pair, diameter, work_of_adhesion, laws=ADHESION_LAWS) -> dict:
+def capture_velocities(pair, diameter, work_of_adhesion, laws=ADHESION_LAWS, params=None) -> dict:
     """Capture (sticking) velocity and yield velocity of each law over particle diameters.
 
     Parameters
@@ -76,7 +110,10 @@ def capture_velocities(pair, diameter, work_of_adhesion, laws=ADHESION_LAWS) -> 
     work_of_adhesion : float
         ``G`` [J/m^2], >= 0.
     laws : sequence of str
-        Names from :data:`ADHESION_LAWS`.
+        Names from :func:`adhesion_laws` (default :data:`ADHESION_LAWS`).
+    params : dict, optional
+        ``{law: {parameter: value}}``: a law's parameters other than its adhesion input (which the work
+        of adhesion sets), or all of them for a law without one.
 
     Returns
     -------
@@ -103,7 +140,8 @@ def capture_velocities(pair, diameter, work_of_adhesion, laws=ADHESION_LAWS) -> 
             raise ValueError(f"diameter {float(dd)!r} m: {exc}") from None
     out = {"diameter": d}
     for law in laws:
-        pairs = [_one(law, E, float(r), float(mm), p_y, G) for r, mm in zip(R, m)]
+        given = _given(params, law)
+        pairs = [_one(law, E, float(r), float(mm), p_y, G, given) for r, mm in zip(R, m)]
         out[law] = {
             "capture_velocity": np.array([p[0] for p in pairs]),
             "yield_velocity": np.array([p[1] for p in pairs]),
@@ -140,7 +178,21 @@ def parting_diameter(pair, work_of_adhesion, ratio=1.1, *, lo=1e-9, hi=1e-3) -> 
     return math.exp(a)
 
 
-def stick_map(pair, work_of_adhesion, diameter, velocity, laws=ADHESION_LAWS) -> dict:
+def _given(params, law) -> dict:
+    """The parameters given for ``law`` in ``params`` (``{law: {name: value}}``), checked."""
+    if params is None:
+        return {}
+    if not isinstance(params, dict):
+        raise ValueError(f"params must be a dict of law -> {{parameter: value}}, got {params!r}")
+    for name in params:
+        if name not in adhesion_laws():
+            raise ValueError(f"params names {name!r}, which is not one of the laws: {', '.join(adhesion_laws())}")
+    if law == ADDITIVE_RULE and params.get(law):
+        raise ValueError("the additive rule takes no parameters beyond the work of adhesion")
+    return dict(params.get(law) or {})
+
+
+def stick_map(pair, work_of_adhesion, diameter, velocity, laws=ADHESION_LAWS, params=None) -> dict:
     """Restitution over a grid of particle diameters and impact speeds, for each law.
 
     Parameters
@@ -152,7 +204,9 @@ def stick_map(pair, work_of_adhesion, diameter, velocity, laws=ADHESION_LAWS) ->
     diameter, velocity : array_like
         1-D grids [m] and [m/s], positive and finite.
     laws : sequence of str
-        Names from :data:`ADHESION_LAWS`.
+        Names from :func:`adhesion_laws` (default :data:`ADHESION_LAWS`).
+    params : dict, optional
+        ``{law: {parameter: value}}``, as for :func:`capture_velocities`.
 
     Returns
     -------
@@ -165,7 +219,7 @@ def stick_map(pair, work_of_adhesion, diameter, velocity, laws=ADHESION_LAWS) ->
     V = np.atleast_1d(check_positive("velocity", velocity)).ravel()
     G = float(check_nonnegative("work_of_adhesion", work_of_adhesion))
     laws = [_law(n) for n in laws]
-    caps = capture_velocities(pair, d, G, laws)
+    caps = capture_velocities(pair, d, G, laws, params)
     R, m = _sizes(pair, d)
     RR, VV = np.meshgrid(R, V)
     MM = np.meshgrid(m, V)[0]
@@ -178,6 +232,16 @@ def stick_map(pair, work_of_adhesion, diameter, velocity, laws=ADHESION_LAWS) ->
             Vs = evaluate(_adh.sticking_velocity, np.full_like(VV, G), E, RR, MM)[0]
             e = evaluate(_adh.restitution, VV, Vy, Vs, nout=2)[0]
         else:
-            e = evaluate(_models.get(law).restitution_only, VV, E, RR, MM, P, params=(G,))[0]
+            model, given = _models.get(law), _given(params, law)
+            each = [
+                _law_params(law, G, (pair.effective_modulus, float(r), float(mm), pair.limiting_pressure), given)
+                for r, mm in zip(R, m)
+            ]
+            if all(p == each[0] for p in each):  # one parameter set: the grid at once
+                e = restitution_arrays(model, VV, E, RR, MM, P, each[0])
+            else:  # an input that depends on the size (a code's cohesion energy density): column by column
+                e = np.empty(VV.shape)
+                for j, p in enumerate(each):
+                    e[:, j] = restitution_arrays(model, VV[:, j], E[:, j], RR[:, j], MM[:, j], P[:, j], p)
         out[law] = {"restitution": np.asarray(e, dtype=float).reshape(VV.shape), **caps[law]}
     return out

@@ -48,7 +48,7 @@ def test_json_and_csv(capsys, tmp_path):
     [
         (["stick", "1e-7"], "the following arguments are required: --work-of-adhesion"),
         (["stick", "-G", "-1"], "--work-of-adhesion must be non-negative and finite, got -1.0"),
-        (["stick", "-G", "1", "--law", "jkr"], "--law must name additive and/or thornton_ning_1998_adhesive_plastic"),
+        (["stick", "-G", "1", "--law", "jkr"], "--law must name laws among additive, "),
         (["stick", "-G", "1", "0"], "diameter must be positive and finite, got 0.0"),
         (["stick", "-G", "1", "--out", "x.txt"], "--out must end in .csv"),
     ],
@@ -59,3 +59,18 @@ def test_errors_are_one_line(argv, message, capsys, tmp_path, monkeypatch):
     err = capsys.readouterr().err
     assert message in err and len(err.strip().splitlines()) == 1
     assert not list(tmp_path.iterdir())  # nothing written
+
+
+def test_any_capturing_law_with_its_parameters(capsys, tmp_path, monkeypatch):
+    """``--law`` takes every law that captures a particle; ``--param`` sets a law's other inputs."""
+    monkeypatch.chdir(tmp_path)
+    assert main(["stick", "-G", "0.2", "--law", "jkr_elastic_adhesive", "--json", "1e-6"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert (
+        set(doc["laws"]) == {"jkr_elastic_adhesive"} and doc["laws"]["jkr_elastic_adhesive"]["capture_velocity"][0] > 0
+    )
+    argv = ["stick", "-G", "0.2", "--law", "jkr_elastic_adhesive", "--param", "jkr_elastic_adhesive:nothing=1", "1e-6"]
+    assert main(argv) == 2
+    assert "has no parameter 'nothing'" in capsys.readouterr().err
+    assert main(["stick", "-G", "0.2", "--param", "additive:x=1", "1e-6"]) == 2
+    assert "additive rule takes no parameters" in capsys.readouterr().err

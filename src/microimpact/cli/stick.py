@@ -17,6 +17,7 @@ from ._common import (
     check_outputs,
     pair_from_args,
     parse_float,
+    parse_model_params,
     parse_names,
     parse_values,
 )
@@ -28,7 +29,7 @@ DEFAULT_DIAMETERS = "5e-8,1e-7,2e-7,5e-7,1e-6,2e-6,5e-6,1e-5,2e-5"
 
 
 def register(sub) -> None:
-    from ..stick import ADHESION_LAWS, FULL_LAW
+    from ..stick import ADHESION_LAWS, FULL_LAW, adhesion_laws
 
     p = sub.add_parser(
         "stick",
@@ -51,7 +52,15 @@ def register(sub) -> None:
         "--law",
         default=",".join(ADHESION_LAWS),
         metavar="NAME[,NAME]",
-        help=f"{' and/or '.join(ADHESION_LAWS)} (default: both)",
+        help=f"the laws, comma-separated, among {', '.join(adhesion_laws())} (default: {','.join(ADHESION_LAWS)})",
+    )
+    p.add_argument(
+        "--param",
+        action="append",
+        default=[],
+        metavar="LAW:NAME=VALUE",
+        help="a parameter of a law other than its adhesion input, which -G sets (repeat for more; LAW: may be "
+        "left out when one law is named)",
     )
     add_pair_arguments(p)
     o = p.add_argument_group("output")
@@ -62,12 +71,12 @@ def register(sub) -> None:
 
 
 def _laws(text):
-    from ..stick import ADHESION_LAWS
+    from ..stick import adhesion_laws
 
     names = parse_names(text, "--law")
     for n in names:
-        if n not in ADHESION_LAWS:
-            raise ValueError(f"--law must name {' and/or '.join(ADHESION_LAWS)}; got {n!r}")
+        if n not in adhesion_laws():
+            raise ValueError(f"--law must name laws among {', '.join(adhesion_laws())}; got {n!r}")
     if len(set(names)) != len(names):
         raise ValueError(f"--law names a law more than once: {text!r}")
     return names
@@ -80,8 +89,10 @@ def _f(x, fmt="{:.5g}"):
 def format_table(res, laws) -> str:
     """The capture velocities as an aligned text table, one row per diameter."""
     header = [heading("diameter")]
+    from ..stick import FULL_LAW
+
     for law in laws:
-        short = "additive" if law == "additive" else "whole law"
+        short = {"additive": "additive", FULL_LAW: "whole law"}.get(law, law)
         header += [f"V_s {short} [m/s]", f"V_y {short} [m/s]"]
     rows = [header]
     for i, d in enumerate(res["diameter"]):
@@ -103,6 +114,11 @@ def run(args) -> int:
     if not (G >= 0.0 and math.isfinite(G)):
         raise ValueError(f"--work-of-adhesion must be non-negative and finite, got {G!r}")
     laws = _laws(args.law)
+    from ..stick import ADDITIVE_RULE, ADHESION_LAWS
+
+    if any(t.split("=")[0].strip().rpartition(":")[0].strip() == ADDITIVE_RULE for t in args.param):
+        raise ValueError("--param: the additive rule takes no parameters beyond --work-of-adhesion")
+    params = parse_model_params(args.param, [n for n in laws if n != ADDITIVE_RULE]) if args.param else None
     check_outputs(files=[args.out], figures=[args.plot])
     check_distinct_paths(outputs=[("--out", args.out), ("--plot", args.plot)])
     if args.out is not None and not str(args.out).lower().endswith(".csv"):
@@ -115,8 +131,9 @@ def run(args) -> int:
         raise ValueError("stick needs a sphere-on-flat pair with a particle density")
     from ..stick import capture_velocities, parting_diameter
 
-    res = capture_velocities(pair, d, G, laws)
-    part = parting_diameter(pair, G, 1.1, lo=1e-9, hi=1e-3) if len(laws) == 2 else math.nan
+    res = capture_velocities(pair, d, G, laws, params)
+    both = sorted(laws) == sorted(ADHESION_LAWS)  # the comparison the parting diameter is made for
+    part = parting_diameter(pair, G, 1.1, lo=1e-9, hi=1e-3) if both else math.nan
     if args.plot:
         from ..figures.stick import plot_stick_map
         from ..io import save_figure
@@ -124,7 +141,7 @@ def run(args) -> int:
         lo, hi = float(d.min()), float(d.max())
         if hi <= lo:
             lo, hi = lo / 3.0, hi * 3.0
-        axes = plot_stick_map(pair, G, diameter=np.geomspace(lo, hi, 120))
+        axes = plot_stick_map(pair, G, diameter=np.geomspace(lo, hi, 120), laws=laws, params=params)
         import matplotlib.pyplot as plt
 
         try:
@@ -167,7 +184,7 @@ def run(args) -> int:
         print("the particle sticks at and below V_s (V_y = 0: the contact yields at any speed)")
         print()
         print(format_table(res, laws))
-        if len(laws) == 2:
+        if both:
             print()
             print(
                 "the capture velocities part by more than 10 % below d = "

@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 
+from ..core import models as _models
 from ..quantities import axis_label
 from ..stick import FULL_LAW
 from . import style as _style
@@ -25,8 +26,11 @@ LAW_LABELS = {
 }
 
 
-def plot_stick_map(pair=None, work_of_adhesion=1.0, diameter=None, velocity=None, ax=None, *, data=None):
-    """Stick/bounce map of ``pair`` for the additive rule and Thornton & Ning's whole law, side by side.
+def plot_stick_map(
+    pair=None, work_of_adhesion=1.0, diameter=None, velocity=None, ax=None, *, data=None, laws=None, params=None
+):
+    """Stick/bounce map of ``pair``, one panel per adhesive law side by side: by default the additive
+    rule and Thornton & Ning's whole law (:data:`microimpact.stick.ADHESION_LAWS`).
 
     Parameters
     ----------
@@ -36,16 +40,20 @@ def plot_stick_map(pair=None, work_of_adhesion=1.0, diameter=None, velocity=None
         ``G`` [J/m^2].
     diameter, velocity : array_like, optional
         Grids [m], [m/s]; default 0.05-20 um and 0.1-1000 m/s, 120 points each, log-spaced.
-    ax : two matplotlib Axes, optional
-        Default a new double-column figure.
+    ax : matplotlib Axes, optional
+        One per law; default a new figure (double-column for two laws, three panels a row).
     data : dict, optional
         A result of :func:`microimpact.stick.stick_map` to draw instead of computing one.
+    laws : sequence of str, optional
+        Laws of :func:`microimpact.stick.adhesion_laws`, one panel each.
+    params : dict, optional
+        ``{law: {parameter: value}}`` (:func:`microimpact.stick.stick_map`).
 
     Returns
     -------
-    ndarray of two matplotlib Axes
-        With the figure's title stating the diameter below which the two laws' capture velocities
-        part by more than 10 % (:func:`microimpact.stick.parting_diameter`).
+    ndarray of matplotlib Axes
+        One per law. For the two default laws the figure's title states the diameter below which
+        their capture velocities part by more than 10 % (:func:`microimpact.stick.parting_diameter`).
     """
     from .. import stick
     from ..pair import ContactPair
@@ -55,22 +63,34 @@ def plot_stick_map(pair=None, work_of_adhesion=1.0, diameter=None, velocity=None
     if data is None:
         d = np.geomspace(0.05e-6, 20e-6, 120) if diameter is None else diameter
         V = np.geomspace(0.1, 1000.0, 120) if velocity is None else velocity
-        data = stick.stick_map(pair, work_of_adhesion, d, V)
+        data = stick.stick_map(pair, work_of_adhesion, d, V, stick.ADHESION_LAWS if laws is None else laws, params)
     d_um = data["diameter"] * 1e6
     V = data["velocity"]
-    laws = [n for n in stick.ADHESION_LAWS if n in data]
-    d_part = stick.parting_diameter(
-        pair, work_of_adhesion, 1.1, lo=float(data["diameter"].min()), hi=float(data["diameter"].max())
+    laws = [n for n in (stick.ADHESION_LAWS if laws is None else laws) if n in data]
+    both = sorted(laws) == sorted(stick.ADHESION_LAWS)  # the comparison the parting diameter is made for
+    d_part = (
+        stick.parting_diameter(
+            pair, work_of_adhesion, 1.1, lo=float(data["diameter"].min()), hi=float(data["diameter"].max())
+        )
+        if both
+        else math.nan
     )
     with _style.style() as plt:
         from matplotlib.colors import Normalize
 
         if ax is None:
-            fig, axes = plt.subplots(1, 2, figsize=(7.2, 3.1), sharey=True, layout="constrained")
+            cols = min(len(laws), 3)
+            rows = -(-len(laws) // cols)
+            fig, grid = plt.subplots(
+                rows, cols, figsize=(3.6 * cols, 3.1 * rows), sharey=True, squeeze=False, layout="constrained"
+            )
+            for extra in grid.ravel()[len(laws) :]:
+                extra.set_visible(False)
+            axes = grid.ravel()[: len(laws)]
         else:
             axes = np.asarray(ax, dtype=object).ravel()
-            if axes.size != 2:
-                raise ValueError(f"ax must be two Axes, got {axes.size}")
+            if axes.size != len(laws):
+                raise ValueError(f"ax must be {len(laws)} Axes (one per law), got {axes.size}")
             fig = axes[0].figure
         cmap = plt.get_cmap("viridis").with_extremes(under="white")
         norm = Normalize(vmin=1e-9, vmax=1.0)
@@ -84,7 +104,7 @@ def plot_stick_map(pair=None, work_of_adhesion=1.0, diameter=None, velocity=None
             vy = np.where(vy > 0.0, vy, np.nan)
             a.plot(d_um, vy, color="#D55E00", linewidth=1.2, linestyle="--", label="yield velocity $V_y$")
             other = [n for n in laws if n != law]
-            if other:
+            if len(laws) == 2:
                 a.plot(
                     d_um,
                     data[other[0]]["capture_velocity"],
@@ -98,7 +118,7 @@ def plot_stick_map(pair=None, work_of_adhesion=1.0, diameter=None, velocity=None
             a.set_xlim(d_um.min(), d_um.max())
             a.set_ylim(V.min(), V.max())
             a.set_xlabel(axis_label("diameter", "Particle diameter"))
-            a.set_title(LAW_LABELS.get(law, law), fontsize=8)
+            a.set_title(LAW_LABELS.get(law) or _models.get(law).LABEL, fontsize=8)
             # the stick region always holds the lower left corner (V_s falls with d): clear of the curves
             a.text(0.03, 0.04, "stick", transform=a.transAxes, fontsize=8, color="0.2", ha="left", va="bottom")
             if np.any(np.asarray(data[law]["yield_velocity"]) == 0.0):
@@ -117,18 +137,20 @@ def plot_stick_map(pair=None, work_of_adhesion=1.0, diameter=None, velocity=None
             a.text(0.96, 0.93, "bounce", transform=a.transAxes, fontsize=8, color="white", ha="right", va="top")
             if math.isfinite(d_part) and d_um.min() < d_part * 1e6 < d_um.max():
                 a.axvline(d_part * 1e6, color="0.35", linewidth=0.6, linestyle="-.", zorder=3)
-        axes[0].set_ylabel(axis_label("velocity", "Impact velocity"))
+        for k, a in enumerate(axes):
+            if k % min(len(laws), 3) == 0:  # the first panel of each row
+                a.set_ylabel(axis_label("velocity", "Impact velocity"))
         axes[0].legend(loc="upper left", fontsize=6.5, framealpha=0.9)  # the lower left is the stick label's
         if mesh is not None:
             fig.colorbar(mesh, ax=list(axes), label=r"Coefficient of restitution, $e$", shrink=0.95, pad=0.01)
         part = (
-            f"capture velocities part by > 10 % below d = {d_part * 1e6:.3g} $\\mu$m"
+            f"; capture velocities part by > 10 % below d = {d_part * 1e6:.3g} $\\mu$m"
             if math.isfinite(d_part)
-            else "capture velocities within 10 % over the whole range"
+            else ("; capture velocities within 10 % over the whole range" if both else "")
         )
         fig.suptitle(
             f"{pair.label or 'pair'}: $G$ = {work_of_adhesion:g} J/m$^2$, $E^*$ = {pair.effective_modulus / 1e9:.3g} GPa, "
-            f"$p_y$ = {pair.limiting_pressure / 1e6:.3g} MPa; {part}",
+            f"$p_y$ = {pair.limiting_pressure / 1e6:.3g} MPa{part}",
             fontsize=7.5,
         )
     return np.asarray(axes, dtype=object)

@@ -71,6 +71,7 @@ class Face:
     liggghts: Any
     restitution_of_yield_velocity: Any
     closed_form_history: Any
+    params_for_work_of_adhesion: Any
     module: Any
 
 
@@ -118,6 +119,9 @@ def face(name: str = DEFAULT) -> Face:
         liggghts=ns.get("liggghts", _base.liggghts),
         restitution_of_yield_velocity=ns.get("restitution_of_yield_velocity", _base.restitution_of_yield_velocity),
         closed_form_history=ns.get("closed_form_history", _base.closed_form_history),
+        params_for_work_of_adhesion=ns.get(
+            "params_for_work_of_adhesion", functools.partial(_base.params_for_work_of_adhesion, model)
+        ),
         module=module,
     )
     return found

@@ -59,6 +59,7 @@ __all__ = [
     "I_CONTACT_TIME",
     "restitution_of_yield_velocity",
     "closed_form_history",
+    "params_for_work_of_adhesion",
 ]
 
 #: Position of ``restitution`` in an outcome tuple.
@@ -163,3 +164,18 @@ def lammps(calibration):
 def liggghts(calibration, poisson, wall):
     """Refuse: the model has no LIGGGHTS normal model."""
     raise ValueError(f"LIGGGHTS has no normal model for {calibration.model!r} with these parameters")
+
+
+def params_for_work_of_adhesion(model, work_of_adhesion, pair_values, params):
+    """``params`` of ``model`` with its parameter ``work_of_adhesion`` set to ``G``, or its
+    ``surface_energy`` to ``G/2`` (Dupre: ``G = 2 gamma`` for like surfaces); None where it has
+    neither (the default face hook; ``pair_values`` is not needed by a law whose input is ``G`` itself)."""
+    names = [p.name for p in model.PARAMETERS]
+    out = list(params)
+    if "work_of_adhesion" in names:
+        out[names.index("work_of_adhesion")] = float(work_of_adhesion)
+    elif "surface_energy" in names:
+        out[names.index("surface_energy")] = 0.5 * float(work_of_adhesion)
+    else:
+        return None
+    return tuple(out)
