@@ -19,13 +19,36 @@ What is matched
   spring: ``k1``): the target's contact time at that speed (the mean over several speeds). Hertz's
   stiffness is fixed by ``E*`` and ``R*``, so the two Hertz laws match ``e`` only.
 
-Targets default to the seed's model (``thornton_ning_2016``) for the pair; pass
+Targets of :func:`calibrate` default to the seed's model (``thornton_ning_2016``) for the pair; pass
 ``target_restitution`` (and ``target_contact_time``) as callables of the speed [m/s], or as
 arrays of the calibration speeds' shape, to calibrate to measurements or another model.
+
+Adhesive laws as the DEM codes run them
+---------------------------------------
+A DEM code's adhesive law (EEPA, a simplified JKR, LAMMPS' ``jkr``/``dmt`` with their damping, a
+capillary bridge) has inputs of its own: a cohesion energy density, an adhesive stiffness, a
+restitution coefficient that its damping turns into a dashpot. Which values make it capture and
+rebound as the particle would? :func:`calibrate_adhesive` answers by least squares against a
+reference law for the same pair and work of adhesion, by default Thornton & Ning's whole adhesive
+elastic-plastic law (the model declaring ``WALL_ADHESION``, :func:`microimpact.core.models.whole_law`):
+
+* the residuals are ``e(V) - e_ref(V)`` at each calibration speed and ``w log(V_s / V_s,ref)`` for
+  the capture velocity (weight ``w``, ``capture_weight``), so the capture velocity and the rebound
+  above it are matched together, in the least-squares sense where the law cannot match both;
+* the free inputs are the law's adhesion input (the parameters its face's
+  ``params_for_work_of_adhesion`` sets from the work of adhesion), any without a default, or those
+  named in ``free``; each is searched within its bounds, starting from its physical value;
+* the result is an :class:`AdhesiveCalibration` (a :class:`~microimpact.calibrate.Calibration`, so
+  :meth:`~microimpact.calibrate.Calibration.lammps` and :meth:`~microimpact.calibrate.Calibration.liggghts`
+  print the code's lines) with both capture velocities and the residual reported, never hidden.
+
+The other way, from a code's inputs to what it will give, is the model itself:
+:func:`code_prediction` returns the capture velocity and ``e(V)`` of given inputs.
 """
 
 from __future__ import annotations
 
+import math
 import warnings
 from dataclasses import dataclass
 
@@ -33,10 +56,15 @@ import numpy as np
 
 from . import _calibration_cache
 from . import models as _models
-from ._validation import check_dem_lines, check_dem_words, check_poisson
+from ._validation import check_dem_lines, check_dem_words, check_nonnegative, check_poisson
+from .core import models as _core
 from .core.quantities import OUTCOME_FIELDS
 
 __all__ = [
+    "AdhesiveCalibration",
+    "adhesion_inputs",
+    "calibrate_adhesive",
+    "code_prediction",
     "Calibration",
     "CalibrationError",
     "CalibrationWarning",
@@ -441,4 +469,214 @@ def calibrate_all(pair, velocity, **options) -> dict:
     return {
         name: calibrate(pair, name, velocity, **{k: v for k, v in options.items() if k in takes[name]})
         for name in names
+    }
+
+
+# ----------------------------------------------------------------------------- adhesive laws
+@dataclass(frozen=True)
+class AdhesiveCalibration(Calibration):
+    """An adhesive law's inputs matched to a reference law (:func:`calibrate_adhesive`).
+
+    Beyond :class:`~microimpact.calibrate.Calibration`'s attributes (``target_restitution`` is the
+    reference law's ``e``):
+
+    Attributes
+    ----------
+    reference : str
+        The reference law.
+    work_of_adhesion : float
+        ``G`` [J/m^2] of the reference.
+    capture_velocity, target_capture_velocity : float
+        The calibrated law's and the reference's capture velocity [m/s].
+    free : tuple of str
+        The inputs that were searched.
+    residual : float
+        Root mean square of the residuals at the solution (``e`` differences and the weighted log
+        ratio of the capture velocities) [-]: 0 where the law reproduces the reference.
+    """
+
+    reference: str = ""
+    work_of_adhesion: float = math.nan
+    capture_velocity: float = math.nan
+    target_capture_velocity: float = math.nan
+    free: tuple = ()
+    residual: float = math.nan
+
+
+def adhesion_inputs(model: str, work_of_adhesion, pair_values, given=None) -> tuple:
+    """The parameter tuple of ``model`` for the work of adhesion ``G`` [J/m^2] and ``pair_values =
+    (E*, R*, m*, p_y)``: its adhesion input from its face (``params_for_work_of_adhesion``), the
+    others from ``given`` (name -> value) or their defaults (NaN where there is none)."""
+    mod = _core.get(model)
+    names = [p.name for p in mod.PARAMETERS]
+    given = dict(given or {})
+    unknown = sorted(set(given) - set(names))
+    if unknown:
+        raise ValueError(f"model {model!r} has no parameter {unknown[0]!r}; its parameters: {', '.join(names)}")
+    start = tuple(float(given.get(n, d)) for n, d in zip(names, mod.DEFAULTS))
+    mapped = _models.face(model).params_for_work_of_adhesion(float(work_of_adhesion), tuple(pair_values), start)
+    if mapped is None:
+        return start
+    return tuple(float(given[n]) if n in given else float(v) for n, v in zip(names, mapped))
+
+
+def _check_free(mod, free):
+    names = [p.name for p in mod.PARAMETERS]
+    for n in free:
+        if n not in names:
+            raise ValueError(f"free names {n!r}, which is not a parameter of {mod.NAME!r}: {', '.join(names)}")
+    if len(set(free)) != len(free):
+        raise ValueError(f"free names a parameter more than once: {free!r}")
+    return tuple(free)
+
+
+def calibrate_adhesive(
+    pair,
+    model: str,
+    work_of_adhesion,
+    velocity,
+    *,
+    reference: str | None = None,
+    params=None,
+    free=None,
+    capture_weight: float = 1.0,
+) -> AdhesiveCalibration:
+    """Inputs of the adhesive law ``model`` that give the reference law's capture velocity and ``e(V)``.
+
+    Parameters
+    ----------
+    pair : ContactPair
+        The particle and the surface (``E*``, ``R*``, ``m*``, ``p_y``).
+    model : str
+        A law that captures particles (``STICKS``, with a ``sticking_velocity``): the law as a DEM
+        code computes it.
+    work_of_adhesion : float
+        ``G`` [J/m^2] of the interface: sets the reference law's adhesion, and the start of the
+        calibrated law's adhesion input.
+    velocity : float or array_like
+        Speeds [m/s] at which ``e`` is matched (above the capture velocity, where ``e`` carries
+        information; ``e = 0`` below it is matched through the capture velocity).
+    reference : str, optional
+        The law to reproduce (default Thornton & Ning's whole law); its adhesion is set from ``G``.
+    params : dict, optional
+        Values of the law's other inputs (``{name: value}``), held fixed unless named in ``free``,
+        where they are the search's start.
+    free : sequence of str, optional
+        The inputs to search (default: the adhesion input and the inputs without a default).
+    capture_weight : float
+        Weight ``w`` of the capture velocity's residual ``w log(V_s / V_s,ref)`` beside the ``e``
+        residuals; positive.
+
+    Returns
+    -------
+    AdhesiveCalibration
+        With the residual's root mean square, 0 when the law reproduces the reference; a law that
+        cannot (an elastic law against a plastic reference) gets its best fit, the residual stating by
+        how much it misses.
+
+    Raises
+    ------
+    ValueError
+        A law that does not capture particles, an unknown parameter, nothing to search, bad speeds,
+        or a search that does not converge.
+    """
+    from scipy.optimize import least_squares
+
+    from .models._base import bounded_value, unbounded_variable
+
+    G = float(check_nonnegative("work_of_adhesion", work_of_adhesion))
+    if isinstance(capture_weight, bool) or not (isinstance(capture_weight, (int, float)) and capture_weight > 0.0):
+        raise ValueError(f"capture_weight must be a positive number, got {capture_weight!r}")
+    if not math.isfinite(capture_weight):
+        raise ValueError(f"capture_weight must be finite, got {capture_weight!r}")
+    reference = _core.whole_law() if reference is None else reference
+    mod, ref = _core.get(model), _core.get(reference)
+    for what, m in (("model", mod), ("reference", ref)):
+        if not (m.STICKS and m.sticking_velocity is not None):
+            raise ValueError(f"{what} {m.NAME!r} does not capture particles (no sticking velocity)")
+    pv = _pair_values(pair)
+    V = _speeds(velocity)
+    ref_params = _core.resolve_params(
+        ref, dict(zip([q.name for q in ref.PARAMETERS], adhesion_inputs(reference, G, pv)))
+    )
+    e_ref, _ = _run(reference, V, pv, ref_params)
+    vs_ref = float(ref.sticking_velocity(*pv, ref_params))
+    if not (vs_ref > 0.0 and math.isfinite(vs_ref)):
+        raise ValueError(f"the reference {reference!r} has no finite positive capture velocity here ({vs_ref!r} m/s)")
+    start = adhesion_inputs(model, G, pv, params)
+    names = [p.name for p in mod.PARAMETERS]
+    if free is None:
+        moved = adhesion_inputs(model, 2.0 * G + 1.0, pv, params)
+        free = tuple(n for n, a, b, s in zip(names, start, moved, start) if a != b or math.isnan(s))
+        free = tuple(n for n in free if n not in (params or {}))
+    free = _check_free(mod, tuple(free))
+    if not free:
+        raise ValueError(f"model {model!r}: nothing to calibrate (name its inputs to search in free=)")
+    spec = {p.name: p for p in mod.PARAMETERS}
+
+    def params_of(u):
+        values = {}
+        for n, s in zip(names, start):
+            values[n] = bounded_value(spec[n], float(u[free.index(n)]), values) if n in free else s
+        return tuple(values.values())
+
+    def residuals(u):
+        p = params_of(u)
+        try:
+            checked = mod.validate(p)
+        except ValueError:
+            return np.full(V.size + 1, 10.0)
+        e, _ = _run(model, V, pv, checked)
+        vs = float(mod.sticking_velocity(*pv, checked))
+        cap = capture_weight * math.log(vs / vs_ref) if vs > 0.0 and math.isfinite(vs) else 10.0
+        return np.append(np.nan_to_num(e - e_ref, nan=10.0), cap)
+
+    values0 = {}
+    u0 = []
+    for n, s in zip(names, start):
+        values0[n] = s
+        if n in free:
+            u0.append(unbounded_variable(spec[n], s, values0))
+    sol = least_squares(residuals, np.array(u0), xtol=1e-14, ftol=1e-14, gtol=1e-14)
+    if not np.all(np.isfinite(sol.x)):
+        raise ValueError(f"model {model!r} could not be calibrated to {reference!r}: {sol.message}")
+    found = tuple(mod.validate(params_of(sol.x)))
+    e_c, t_c = _run(model, V, pv, found)
+    _, t_ref = _run(reference, V, pv, ref_params)
+    return AdhesiveCalibration(
+        model=model,
+        params=tuple(float(x) for x in found),
+        names=tuple(names),
+        velocity=V,
+        target_restitution=np.asarray(e_ref, dtype=float),
+        restitution=np.asarray(e_c, dtype=float),
+        target_contact_time=np.asarray(t_ref, dtype=float),
+        contact_time=np.asarray(t_c, dtype=float),
+        effective_modulus=pv[0],
+        effective_radius=pv[1],
+        effective_mass=pv[2],
+        reference=reference,
+        work_of_adhesion=G,
+        capture_velocity=float(mod.sticking_velocity(*pv, found)),
+        target_capture_velocity=vs_ref,
+        free=free,
+        residual=float(np.sqrt(np.mean(sol.fun**2))),
+    )
+
+
+def code_prediction(pair, model: str, velocity, **params) -> dict:
+    """What a code's adhesive law gives with the inputs ``params`` (its parameters by name):
+    ``{"capture_velocity": V_s [m/s], "velocity": V, "restitution": e(V), "contact_time": t_c(V)}``."""
+    mod = _core.get(model)
+    if not (mod.STICKS and mod.sticking_velocity is not None):
+        raise ValueError(f"model {model!r} does not capture particles (no sticking velocity)")
+    pv = _pair_values(pair)
+    V = _speeds(velocity)
+    p = _core.resolve_params(mod, params)
+    e, t = _run(model, V, pv, p)
+    return {
+        "capture_velocity": float(mod.sticking_velocity(*pv, p)),
+        "velocity": V,
+        "restitution": e,
+        "contact_time": t,
     }

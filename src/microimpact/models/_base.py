@@ -49,6 +49,8 @@ from ..core.quantities import OUTCOME_FIELDS
 __all__ = [
     "run",
     "calibrate",
+    "bounded_value",
+    "unbounded_variable",
     "lammps",
     "liggghts",
     "limit_force_option",
@@ -95,7 +97,7 @@ def limit_force_option(value, law) -> float:
     return float(value)
 
 
-def _to_value(spec, u, values):
+def bounded_value(spec, u, values):
     """Parameter value from the unconstrained variable ``u`` within the bounds of ``spec``."""
     low = values[spec.low] if isinstance(spec.low, str) else spec.low
     if math.isfinite(low) and math.isfinite(spec.high):
@@ -105,6 +107,22 @@ def _to_value(spec, u, values):
     if math.isfinite(spec.high):
         return spec.high - math.exp(u)
     return u
+
+
+def unbounded_variable(spec, x, values):
+    """The inverse of :func:`bounded_value`: the unconstrained variable of the value ``x`` within the
+    bounds of ``spec`` (0, the middle of the bounds, for a value not strictly inside them)."""
+    low = values[spec.low] if isinstance(spec.low, str) else spec.low
+    high = spec.high
+    if not math.isfinite(x):
+        return 0.0
+    if math.isfinite(low) and math.isfinite(high):
+        return math.log((x - low) / (high - x)) if low < x < high else 0.0
+    if math.isfinite(low):
+        return math.log(x - low) if x > low else 0.0
+    if math.isfinite(high):
+        return math.log(high - x) if x < high else 0.0
+    return x
 
 
 def _scan_cost(residuals, u):
@@ -133,7 +151,7 @@ def calibrate(model, pair_values, velocity, target_restitution, target_contact_t
     def params_of(u):
         values = {}
         for i, p in enumerate(spec):
-            values[p.name] = _to_value(p, float(u[free.index(i)]), values) if i in free else p.default
+            values[p.name] = bounded_value(p, float(u[free.index(i)]), values) if i in free else p.default
         return tuple(values.values())
 
     def residuals(u):
