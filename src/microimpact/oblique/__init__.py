@@ -472,6 +472,10 @@ def oblique_impact(
     method="auto",
     steps=DEFAULT_STEPS,
     tangential_stiffness=None,
+    adhesion=None,
+    adhesion_params=None,
+    work_of_adhesion=None,
+    coulomb=None,
 ) -> ObliqueImpact:
     """Rebound of a sphere hitting a flat wall obliquely (vectorized over impacts).
 
@@ -533,6 +537,29 @@ def oblique_impact(
     """
     if tangential not in TANGENTIAL_MODELS:
         raise ValueError(f"tangential must be one of {TANGENTIAL_MODELS}, got {tangential!r}")
+    if adhesion is not None or work_of_adhesion is not None:
+        from .adhesive import adhesive_law
+
+        law_params = adhesive_law(adhesion, adhesion_params, work_of_adhesion)
+        if law_params is not None:
+            from .adhesive import adhesive_oblique_impact
+
+            kappa = None
+            if tangential != "rigid":
+                kappa = stiffness_ratio_of(pair, poisson_ratio, effective_shear_modulus)
+            return adhesive_oblique_impact(
+                pair,
+                velocity,
+                angle,
+                friction,
+                model=law_params[0],
+                params=law_params[1],
+                tangential=tangential,
+                spin=spin,
+                kappa=kappa,
+                coulomb=coulomb,
+                tangential_stiffness=tangential_stiffness,
+            )
     if method not in ("auto", "table", "direct"):
         raise ValueError(f"method must be 'auto', 'table' or 'direct', got {method!r}")
     if method == "auto":

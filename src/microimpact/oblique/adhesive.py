@@ -273,6 +273,38 @@ def _separation(model, params, alpha_max, E, R, m, p_y):
     return 0.0
 
 
+def adhesive_law(adhesion=None, params=None, work_of_adhesion=None):
+    """``(model, params)`` of an adhesive normal law, or None where its work of adhesion is 0 (no adhesion).
+
+    ``adhesion``: a model name (default ``"jkr_elastic_adhesive"`` where only ``work_of_adhesion`` is
+    given); ``params``: its parameters (default its defaults); ``work_of_adhesion`` ``G`` [J/m^2] sets the
+    parameter that is a work of adhesion (``work_of_adhesion``) or a surface energy (``G/2``) by the
+    parameter's name, the quantity it declares.
+    """
+    from ..core import models as _models
+
+    name = "jkr_elastic_adhesive" if adhesion is None else adhesion
+    mod = _models.get(name)
+    values = list(mod.DEFAULTS if params is None else params)
+    if work_of_adhesion is not None:
+        G = float(work_of_adhesion)
+        if not (0.0 <= G < math.inf):
+            raise ValueError(f"work_of_adhesion must be non-negative and finite, got {work_of_adhesion!r}")
+        names = [p.name for p in mod.PARAMETERS]
+        if "work_of_adhesion" in names:
+            values[names.index("work_of_adhesion")] = G
+        elif "surface_energy" in names:
+            values[names.index("surface_energy")] = 0.5 * G
+        else:
+            raise ValueError(
+                f"adhesion={name!r} has no work of adhesion or surface energy to set from work_of_adhesion"
+            )
+    values = tuple(mod.validate(tuple(values)))
+    if mod.work_of_adhesion is not None and float(mod.work_of_adhesion(values)) == 0.0:
+        return None
+    return name, values
+
+
 def adhesive_oblique_impact(
     pair,
     velocity,
