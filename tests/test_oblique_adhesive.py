@@ -198,3 +198,18 @@ def test_a_captured_sliding_particle_and_bad_input():
         ad.adhesive_oblique_impact(PAIR, 0.1, 10.0, MU, model="jkr_elastic_adhesive", params=(GAMMA,))
     with pytest.raises(ValueError, match="work_of_adhesion"):
         ad.adhesive_law(None, None, -1.0)
+
+
+def test_capture_map_data():
+    from microimpact.figures.oblique_adhesive import capture_map_data
+
+    from microimpact.core.models import whole_law
+
+    name = whole_law()
+    angles, speeds, code, et = capture_map_data(
+        PAIR, model=name, params=(2 * GAMMA,), friction=MU, kappa=KAPPA, speeds=[0.01, 1.0], angles=[0.0, 60.0],
+        steps=400,
+    )  # fmt: skip
+    assert code.shape == (2, 2)
+    assert ad.OUTCOMES[code[0, 0]] == "stick" and ad.OUTCOMES[code[0, 1]] == "captured rolling"
+    assert ad.OUTCOMES[code[1, 0]] == "bounce" and np.isnan(et[0]).all() and np.isfinite(et[1, 1])

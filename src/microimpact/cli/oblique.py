@@ -64,14 +64,14 @@ def register(sub) -> None:
     p.add_argument(
         "--work-of-adhesion",
         metavar="G",
-        help="work of adhesion G [J/m^2]: the normal contact becomes the adhesive law --adhesion (default JKR, "
-        "surface energy G/2), integrated with the tangential law; each impact is classified as bounce, stick, "
+        help="work of adhesion G [J/m^2]: the normal contact becomes the adhesive law --adhesion (default the "
+        "whole adhesive elastic-plastic law of Thornton & Ning 1998, the wall interaction's), integrated with the tangential law; each impact is classified as bounce, stick, "
         "captured rolling or captured sliding (microimpact.oblique.adhesive)",
     )
     p.add_argument(
         "--adhesion",
         metavar="MODEL",
-        help="the adhesive normal law for --work-of-adhesion (default jkr_elastic_adhesive)",
+        help="the adhesive normal law for --work-of-adhesion (default the whole adhesive elastic-plastic law)",
     )
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
     p.add_argument("--plot", metavar="FILE.png", help="also draw the three curves to this image")

@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..oblique import adhesive as ad
+from ..quantities import axis_label
 
 __all__ = ["capture_map_data", "plot_capture_map"]
 
@@ -43,14 +44,15 @@ def plot_capture_map(pair, *, model, params, friction, kappa, ax=None, sticking_
     cmap = ListedColormap([COLORS[o] for o in ad.OUTCOMES])
     ax.pcolormesh(angles, speeds, code, cmap=cmap, vmin=-0.5, vmax=len(ad.OUTCOMES) - 0.5, shading="nearest")
     cs = ax.contour(angles, speeds, et, levels=[0.6, 0.7, 0.8, 0.9], colors="0.35", linewidths=0.6)
-    ax.clabel(cs, fontsize=6, fmt=lambda v: f"$e_t$={v:.1f}")
+    ax.clabel(cs, fontsize=6, fmt=lambda v: f"{v:.1f}", inline_spacing=2)
+    ax.text(0.98, 0.97, "contours: $e_t$ of the rebound", transform=ax.transAxes, ha="right", va="top", fontsize=6)
     if sticking_velocity is not None:
         th = np.linspace(0.0, 85.0, 200)
         ax.plot(th, sticking_velocity / np.cos(np.radians(th)), "k--", lw=0.8, label="$V\\cos\\theta = V_s$")
     ax.set_yscale("log")
     ax.set_ylim(speeds[0], speeds[-1])
-    ax.set_xlabel("impact angle from the normal $\\theta$ [deg]")
-    ax.set_ylabel("impact speed $V$ [m/s]")
+    ax.set_xlabel(axis_label("angle", "impact angle from the normal"))
+    ax.set_ylabel(axis_label("velocity", "impact speed"))
     handles = [
         Patch(facecolor=COLORS[o], edgecolor="0.3", lw=0.4, label=o)
         for o in ad.OUTCOMES
@@ -58,5 +60,5 @@ def plot_capture_map(pair, *, model, params, friction, kappa, ax=None, sticking_
     ]
     if sticking_velocity is not None:
         handles.append(ax.lines[-1])
-    ax.legend(handles=handles, fontsize=6, loc="upper left", framealpha=0.9)
+    ax.legend(handles=handles, fontsize=6, loc="lower left", framealpha=0.9)
     return ax

@@ -276,14 +276,15 @@ def _separation(model, params, alpha_max, E, R, m, p_y):
 def adhesive_law(adhesion=None, params=None, work_of_adhesion=None):
     """``(model, params)`` of an adhesive normal law, or None where its work of adhesion is 0 (no adhesion).
 
-    ``adhesion``: a model name (default ``"jkr_elastic_adhesive"`` where only ``work_of_adhesion`` is
-    given); ``params``: its parameters (default its defaults); ``work_of_adhesion`` ``G`` [J/m^2] sets the
+    ``adhesion``: a model name (default where only ``work_of_adhesion`` is given: the whole adhesive
+    elastic-plastic law, :func:`microimpact.core.models.whole_law`, the law of the wall interaction's
+    ``adhesion=``; with ``p_y = inf`` it is the elastic JKR contact of work of adhesion ``G``); ``params``: its parameters (default its defaults); ``work_of_adhesion`` ``G`` [J/m^2] sets the
     parameter that is a work of adhesion (``work_of_adhesion``) or a surface energy (``G/2``) by the
     parameter's name, the quantity it declares.
     """
     from ..core import models as _models
 
-    name = "jkr_elastic_adhesive" if adhesion is None else adhesion
+    name = _models.whole_law() if adhesion is None else adhesion
     mod = _models.get(name)
     values = list(mod.DEFAULTS if params is None else params)
     if work_of_adhesion is not None:
