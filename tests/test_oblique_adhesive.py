@@ -201,9 +201,8 @@ def test_a_captured_sliding_particle_and_bad_input():
 
 
 def test_capture_map_data():
-    from microimpact.figures.oblique_adhesive import capture_map_data
-
     from microimpact.core.models import whole_law
+    from microimpact.figures.oblique_adhesive import capture_map_data
 
     name = whole_law()
     angles, speeds, code, et = capture_map_data(
