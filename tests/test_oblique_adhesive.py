@@ -175,6 +175,28 @@ def test_energy_is_never_created(tangential):
     assert np.all(np.isin(out.outcome, ad.OUTCOMES))
 
 
+def test_energy_and_contact_radius_of_the_whole_law_with_plasticity():
+    from microimpact.core.models import whole_law
+
+    pair = mi.ContactPair.sphere_on_flat(radius=R, density=RHO, effective_modulus=E_STAR, limiting_pressure=2e8)
+    name = whole_law()
+    mod = mi.models.get(name)
+    # the radius the tangential spring sees is the law's: a(alpha) of its JKR curve at first touch (a > 0 at
+    # zero approach) and of the flattened unloading curve after yield (the contact still open at alpha = 0)
+    a0 = mod.tangential_contact_radius(0.0, 0.0, E_STAR, R, pair.effective_mass, 2e8, (0.1,))
+    assert a0 > 0.0
+    V = np.array([0.05, 0.3, 1.0, 3.0])
+    out = ad.adhesive_oblique_impact(
+        pair, V, 40.0, MU, model=name, params=(0.1,), tangential="lammps_mindlin", kappa=KAPPA, steps=1000
+    )
+    before = 0.5 * V**2
+    after = 0.5 * (out.normal_restitution * out.normal_speed) ** 2 + 0.5 * out.tangential_velocity**2
+    after = after + 0.2 * (R * out.rebound_spin) ** 2
+    assert np.all(after < before)
+    ok = ~out.captured
+    np.testing.assert_allclose(out.integrated_normal_restitution[ok], out.normal_restitution[ok], atol=3e-3)
+
+
 def test_head_on_capture_speed_is_the_law_s():
     mod = mi.models.get("jkr_elastic_adhesive")
     Vs = mod.sticking_velocity(E_STAR, R, PAIR.effective_mass, math.inf, (GAMMA,))

@@ -166,7 +166,9 @@ def run(args) -> int:
         for m in models
     }
     rows_of = {m: (_rows if isinstance(out, ob.ObliqueImpact) else _adhesive_rows) for m, out in results.items()}
-    kappa = next((float(out.kappa) for out in results.values() if hasattr(out, "kappa")), math.nan)
+    kappa = next((float(out.kappa) for out in results.values() if hasattr(out, "kappa")), None)
+    if kappa is None:  # adhesive results carry no kappa: the pair's own
+        kappa = ob.stiffness_ratio_of(pair, nu) if any(m != "rigid" for m in models) else math.nan
     if args.json:
         doc = {
             "velocity": V,
