@@ -30,7 +30,7 @@ def main():
     A, S = np.meshgrid(ANGLES, SPEEDS)
     th = np.radians(A.ravel())
     vel = np.column_stack([S.ravel() * np.sin(th), np.zeros(th.size), -S.ravel() * np.cos(th)])
-    for p_y in (math.inf, 3e8):
+    for p_y in (math.inf, 5e7):
         pair = mi.ContactPair.sphere_on_flat(radius=R, density=RHO, effective_modulus=E, limiting_pressure=p_y)
         old = wall_interaction(
             vel, [0, 0, 1], 2 * R, RHO, effective_modulus=E, limiting_pressure=p_y, work_of_adhesion=G,
