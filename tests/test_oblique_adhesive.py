@@ -234,3 +234,19 @@ def test_capture_map_data():
     assert code.shape == (2, 2)
     assert ad.OUTCOMES[code[0, 0]] == "stick" and ad.OUTCOMES[code[0, 1]] == "captured rolling"
     assert ad.OUTCOMES[code[1, 0]] == "bounce" and np.isnan(et[0]).all() and np.isfinite(et[1, 1])
+
+
+def test_cli_work_of_adhesion(capsys):
+    import json
+
+    from microimpact.cli import main
+
+    args = ["oblique", "0.05", "--radius", "5e-6", "--density", "2500", "--effective-modulus", "5e9"]
+    args += ["--limiting-pressure", "inf", "--angles", "0,60", "--poisson", "0.25", "--tangential", "rigid"]
+    assert main([*args, "--work-of-adhesion", "0.1", "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["models"]["rigid"]["outcome"] == ["stick", "captured rolling"]
+    assert main([*args, "--work-of-adhesion", "-1"]) == 2
+    assert "work_of_adhesion" in capsys.readouterr().err
+    assert main([*args, "--work-of-adhesion", "0", "--json"]) == 0  # no adhesion: the non-adhesive table
+    assert "outcome" not in json.loads(capsys.readouterr().out)["models"]["rigid"]
