@@ -150,22 +150,36 @@ def _hertz_radius(alpha, alpha_max, E, R, m, p_y, params):
     return math.sqrt(R * alpha) if alpha > 0.0 else 0.0
 
 
-@functools.lru_cache(maxsize=32)
 def _kernel(model):
-    """The compiled integrator of one model (its force and contact radius bound in): numba compiles
-    a function per normal law, since a compiled function cannot take another as an argument."""
+    """The integrator of one model: compiled (:func:`_compiled`), or the same source in Python where
+    ``MICROIMPACT_BACKEND=python`` (about 30 us a step instead of 30 ns: for checks, not for maps)."""
+    import os
+
+    if os.environ.get("MICROIMPACT_BACKEND") == "python":
+        return _integrator(model, _hertz_radius)
+    return _compiled(model)
+
+
+@functools.lru_cache(maxsize=32)
+def _compiled(model):
+    """The compiled integrator of one model: numba compiles one per normal law (its force and contact
+    radius bound in as the core's registered functions), since a compiled function cannot take another
+    as an argument."""
     import numba
 
     from ..engine import registry
 
     registry.register_all()
-    sforce = model.signed_force
-    radius = getattr(model.module, "tangential_contact_radius", None)
-    radius = numba.njit(error_model="numpy")(radius if radius is not None else _hertz_radius)
-    if radius is None:  # pragma: no cover
-        raise RuntimeError
+    fallback = numba.njit(error_model="numpy")(_hertz_radius)
+    return numba.njit(error_model="numpy")(_integrator(model, fallback))
 
-    @numba.njit(error_model="numpy")
+
+def _integrator(model, fallback):
+    """The time-stepping integrator of one impact under ``model`` (module docstring), a plain function;
+    ``fallback``: the contact radius where the model declares none (Hertz's)."""
+    sforce = model.signed_force
+    radius = getattr(model.module, "tangential_contact_radius", None) or fallback
+
     def run(Vn, v0, w0, E, R, m, p_y, params, mu, kG, c_load, c_unload, lin, k_lin, lam, limit_mode, Fc, a_sep,
             zero_end, dt, max_steps, t_end):  # fmt: skip
         alpha = 0.0
