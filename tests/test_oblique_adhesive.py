@@ -250,3 +250,17 @@ def test_cli_work_of_adhesion(capsys):
     assert "work_of_adhesion" in capsys.readouterr().err
     assert main([*args, "--work-of-adhesion", "0", "--json"]) == 0  # no adhesion: the non-adhesive table
     assert "outcome" not in json.loads(capsys.readouterr().out)["models"]["rigid"]
+
+
+def test_the_default_step_is_converged():
+    V = np.array([0.04, 0.1, 0.5, 0.5, 0.3])
+    kw = dict(
+        model="jkr_elastic_adhesive", params=(GAMMA,), kappa=KAPPA, tangential="lammps_mindlin", spin=[0, 0, 0, 0, 2e4]
+    )
+    coarse, fine = (
+        ad.adhesive_oblique_impact(PAIR, V, [30.0, 45.0, 5.0, 80.0, 30.0], MU, steps=n, **kw)
+        for n in (ad.DEFAULT_STEPS, 4 * ad.DEFAULT_STEPS)
+    )
+    assert np.all(np.abs(coarse.tangential_velocity - fine.tangential_velocity) < 1e-4 * V)
+    assert np.all(np.abs(coarse.rebound_spin - fine.rebound_spin) * R < 1e-4 * V)
+    np.testing.assert_allclose(coarse.integrated_normal_restitution, fine.integrated_normal_restitution, atol=3e-4)
