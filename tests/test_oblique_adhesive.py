@@ -264,3 +264,18 @@ def test_the_default_step_is_converged():
     assert np.all(np.abs(coarse.tangential_velocity - fine.tangential_velocity) < 1e-4 * V)
     assert np.all(np.abs(coarse.rebound_spin - fine.rebound_spin) * R < 1e-4 * V)
     np.testing.assert_allclose(coarse.integrated_normal_restitution, fine.integrated_normal_restitution, atol=3e-4)
+
+
+def test_a_law_without_a_declared_contact_radius_plugs_in():
+    # Luding's linear adhesive law declares no radius (Hertz's of the approach is used) and a contact time
+    # far shorter than Hertz's at these stiffnesses (the step follows the shorter)
+    params = (50.0, 100.0, 20.0, 0.05)
+    V = np.array([0.001, 0.05, 1.0])
+    out = ad.adhesive_oblique_impact(
+        PAIR, V, 45.0, MU, model="luding_adhesive", params=params, tangential="lammps_mindlin", kappa=KAPPA,
+        steps=1000,
+    )  # fmt: skip
+    np.testing.assert_allclose(out.integrated_normal_restitution, out.normal_restitution, atol=1e-4)
+    after = 0.5 * (out.normal_restitution * out.normal_speed) ** 2 + 0.5 * out.tangential_velocity**2
+    assert np.all(after + 0.2 * (R * out.rebound_spin) ** 2 < 0.5 * V**2)
+    assert np.all(out.pulloff_force > 0.0)

@@ -9,7 +9,8 @@ alone: ``signed_force`` (negative: attractive), ``separation_approach`` /
 **Normal and tangential together.** The sphere's approach ``alpha``, its tangential velocity ``v``,
 its rim speed ``w = R omega`` and the tangential force ``T`` are integrated together in time
 (velocity Verlet for the centre, as the DEM codes do; ``steps`` steps per Hertz contact time at the
-normal speed): ``m alpha'' = -P(alpha, alpha', alpha_max)``, ``m v' = T``, ``m w' = 5/2 T rho/R``
+normal speed, or per twice the law's own loading time where that is shorter):
+``m alpha'' = -P(alpha, alpha', alpha_max)``, ``m v' = T``, ``m w' = 5/2 T rho/R``
 (solid sphere, arm ``rho``). The tangential law is one of :data:`microimpact.core.tangential_laws.LAWS`
 (their continuous-time form, that module's docstring): the stored force follows the contact radius
 as ``a^c`` (``c`` of the law, loading / unloading), is loaded by ``-k_t u dt`` with ``k_t = f 8 G* a``
@@ -398,6 +399,9 @@ def adhesive_oblique_impact(
     out = pair.impact(Vn, model=model, warn=False, **dict(zip((p.name for p in mod.PARAMETERS), params)))
     e = np.asarray(out.restitution, dtype=float)
     amax_all = np.asarray(out.max_approach, dtype=float)
+    # the step's time scale: Hertz's contact time, or the law's own where shorter (a stiff linear law)
+    scale = 2.0 * np.asarray(out.loading_time, dtype=float)
+    scale = np.where(np.isfinite(scale) & (scale > 0.0), scale, np.inf)
     captured_law = ~(e > 0.0)
     shape = speed.shape
     res = {k: np.full(shape, np.nan) for k in ("e_int", "v", "w", "Fc")}
@@ -428,7 +432,7 @@ def adhesive_oblique_impact(
             am = float(amax_all[idx])
             Fc = elastic_fc if elastic_fc is not None else _pulloff(mod, params, am, E, R, m, p_y)
             a_sep = _separation(mod, params, am, E, R, m, p_y)
-            dt = _hertz_time(float(Vn[idx]), E, R, m) / steps
+            dt = min(_hertz_time(float(Vn[idx]), E, R, m), float(scale[idx])) / steps
             t_end = -1.0 if end_time is None else float(end_time)
             max_steps = int(MAX_CONTACT_TIMES * steps) if end_time is None else int(t_end / dt) + 2
             ei, v, w, cap, sl, _, _ = run(float(Vn[idx]), float(vt[idx]), float(R * w0[idx]), E, R, m, p_y, params,
