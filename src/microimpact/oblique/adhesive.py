@@ -68,7 +68,9 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from ..core import hertz
 from ..core import tangential_laws as tl
+from ..core.tangential_stages import SLIP_FACTOR
 
 __all__ = ["OUTCOMES", "AdhesiveObliqueImpact", "adhesive_oblique_impact", "COULOMB_LIMITS", "ADHESIVE_LAWS"]
 
@@ -142,10 +144,8 @@ class AdhesiveObliqueImpact:
 
 
 def _hertz_time(Vn, E, R, m):
-    """Hertz contact time [s] at ``Vn`` (THEORY.md section 4): the step's scale."""
-    am = (15.0 * m * Vn * Vn / (16.0 * E * math.sqrt(R))) ** 0.4
-    beta = math.exp(math.lgamma(0.4) + math.lgamma(0.5) - math.lgamma(0.9))
-    return 0.8 * beta * am / Vn
+    """Hertz contact time [s] at ``Vn`` (:func:`microimpact.core.hertz.contact_time`): the step's scale."""
+    return float(hertz.contact_time(Vn, E, R, m))
 
 
 def _hertz_radius(alpha, alpha_max, E, R, m, p_y, params):
@@ -480,7 +480,7 @@ def adhesive_oblique_impact(
 def _rigid(mod, params, pair, out, E, R, m, p_y, vt, w0r, mu, captured, elastic_fc, amax_all, res, sliding):
     """The rigid-body impulse with the adhesive limit: the tangential impulse is at most
     ``mu int (F_n + 2 F_c) dt = mu (m (1 + e) V_n + 2 F_c t_c)`` (``t_c`` the law's contact time; unbounded
-    for a captured particle), else the contact point stops (rolling: ``J = -m u0 / (7/2)``)."""
+    for a captured particle), else the contact point stops (rolling: ``J = -m u0 / (7/2)``, ``7/2`` the slip factor of a solid sphere)."""
     e = np.asarray(out.restitution, dtype=float)
     Vn = np.asarray(out.velocity, dtype=float)
     tc = np.asarray(out.contact_time, dtype=float)
@@ -492,7 +492,7 @@ def _rigid(mod, params, pair, out, E, R, m, p_y, vt, w0r, mu, captured, elastic_
         limit = np.where(
             captured & (mu > 0.0), np.inf, mu * ((1.0 + e) * Vn + 2.0 * Fc * np.where(captured, 0.0, tc) / m)
         )
-    stop = np.abs(u0) / 3.5
+    stop = np.abs(u0) / SLIP_FACTOR
     roll = stop <= limit
     J = -np.sign(u0) * np.where(roll, stop, limit)
     J = np.where(u0 == 0.0, 0.0, J)
