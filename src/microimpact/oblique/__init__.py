@@ -22,6 +22,10 @@ it so that ``method="table"`` costs an interpolation per impact; the default ``m
 interpolates where the table's own second differences bound its error (within 2.5e-4 of ``F``) and
 integrates the impacts near the kinks of ``F(psi)``, which gives the integration's spin to 1e-3.
 
+With adhesion (``work_of_adhesion=`` or ``adhesion=``, an adhesive normal law of the model zoo) the
+normal and tangential contact are integrated together and each impact classified as a bounce or a
+capture (at rest, rolling or sliding): :mod:`microimpact.oblique.adhesive`.
+
 Conventions: ``angle`` is the impact angle from the wall normal [deg] (0 = head-on); the
 resultant speed is ``velocity``, so ``V_n = velocity cos(angle)`` and ``v_t = velocity
 sin(angle)``. ``spin`` [rad/s] is counted positive when it adds to the contact point's
