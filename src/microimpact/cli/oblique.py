@@ -61,6 +61,18 @@ def register(sub) -> None:
         metavar="N/M",
         help="lammps_linear_history: constant tangential stiffness [N/m] (default 8 G* a_m of each impact)",
     )
+    p.add_argument(
+        "--work-of-adhesion",
+        metavar="G",
+        help="work of adhesion G [J/m^2]: the normal contact becomes the adhesive law --adhesion (default the "
+        "whole adhesive elastic-plastic law of Thornton & Ning 1998, the wall interaction's), integrated with the tangential law; each impact is classified as bounce, stick, "
+        "captured rolling or captured sliding (microimpact.oblique.adhesive)",
+    )
+    p.add_argument(
+        "--adhesion",
+        metavar="MODEL",
+        help="the adhesive normal law for --work-of-adhesion (default the whole adhesive elastic-plastic law)",
+    )
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
     p.add_argument("--plot", metavar="FILE.png", help="also draw the three curves to this image")
     p.set_defaults(func=encodable_stdout(run))
@@ -76,6 +88,17 @@ def _rows(out):
         "rebound_angle_deg": out.rebound_angle,
         "contact_rebound_angle_deg": out.contact_rebound_angle,
         "regime": out.regime,
+    }
+
+
+def _adhesive_rows(out):
+    return {
+        column("angle"): out.angle,
+        "e_n": out.normal_restitution,
+        "e_t": out.tangential_restitution,
+        "v_t_m_s": out.tangential_velocity,
+        "spin_rad_s": out.rebound_spin,
+        "outcome": out.outcome,
     }
 
 
@@ -118,6 +141,17 @@ def run(args) -> int:
         if "lammps_linear_history" not in models:
             raise ValueError("--tangential-stiffness is used by --tangential lammps_linear_history only")
         k_lin = parse_float(args.tangential_stiffness, "tangential-stiffness")
+    adhesive = {}
+    if args.work_of_adhesion is not None or args.adhesion is not None:
+        G = None if args.work_of_adhesion is None else parse_float(args.work_of_adhesion, "work-of-adhesion")
+        adhesive = {"work_of_adhesion": G, "adhesion": args.adhesion}
+        if args.plot:
+            raise ValueError(
+                "--plot draws the non-adhesive curves: use microimpact.figures.oblique_adhesive for a capture map"
+            )
+        bad = [m for m in models if m in ("mindlin_deresiewicz", "stronge")]
+        if bad:
+            raise ValueError(f"--work-of-adhesion: tangential {bad[0]} is not integrated with an adhesive normal law")
     results = {
         m: ob.oblique_impact(
             pair,
@@ -128,29 +162,34 @@ def run(args) -> int:
             tangential=m,
             spin=spin,
             **({"tangential_stiffness": k_lin} if m == "lammps_linear_history" and k_lin is not None else {}),
+            **adhesive,
         )
         for m in models
     }
+    rows_of = {m: (_rows if isinstance(out, ob.ObliqueImpact) else _adhesive_rows) for m, out in results.items()}
+    kappa = next((float(out.kappa) for out in results.values() if hasattr(out, "kappa")), None)
+    if kappa is None:  # adhesive results carry no kappa: the pair's own
+        kappa = ob.stiffness_ratio_of(pair, nu) if any(m != "rigid" for m in models) else math.nan
     if args.json:
         doc = {
             "velocity": V,
             "friction": mu,
-            "kappa": results[models[0]].kappa,
+            "kappa": kappa,
             "yield_velocity": float(pair.yield_velocity),
             "models": {
-                m: {k: [_json_value(x) for x in np.ravel(v)] for k, v in _rows(out).items()}
+                m: {k: [_json_value(x) for x in np.ravel(v)] for k, v in rows_of[m](out).items()}
                 for m, out in results.items()
             },
         }
         print(json.dumps(doc, indent=1))
     else:
         print(
-            f"# oblique impacts at V = {V:g} m/s, mu = {mu:g}, kappa = 4G*/E* = {results[models[0]].kappa:.4g}, "
+            f"# oblique impacts at V = {V:g} m/s, mu = {mu:g}, kappa = 4G*/E* = {kappa:.4g}, "
             f"V_y = {float(pair.yield_velocity):.4g} m/s"
         )
         for m, out in results.items():
             print(f"# tangential model: {m}")
-            rows = _rows(out)
+            rows = rows_of[m](out)
             width = [max(len(k), 11) for k in rows]
             print("  ".join(f"{k:>{w}s}" for k, w in zip(rows, width)))
             for i in range(out.angle.size):
@@ -172,6 +211,6 @@ def run(args) -> int:
 
         plt.close(fig)
         print(f"# plot in {args.plot}", file=sys.stderr)
-    if any(bool(np.any(out.large_strain)) for out in results.values()):
+    if any(bool(np.any(getattr(out, "large_strain", False))) for out in results.values()):
         print("warning: the contact radius exceeds 0.3 R*: outside the model's small-strain range", file=sys.stderr)
     return 0

@@ -22,6 +22,10 @@ it so that ``method="table"`` costs an interpolation per impact; the default ``m
 interpolates where the table's own second differences bound its error (within 2.5e-4 of ``F``) and
 integrates the impacts near the kinks of ``F(psi)``, which gives the integration's spin to 1e-3.
 
+With adhesion (``work_of_adhesion=`` or ``adhesion=``, an adhesive normal law of the model zoo) the
+normal and tangential contact are integrated together and each impact classified as a bounce or a
+capture (at rest, rolling or sliding): :mod:`microimpact.oblique.adhesive`.
+
 Conventions: ``angle`` is the impact angle from the wall normal [deg] (0 = head-on); the
 resultant speed is ``velocity``, so ``V_n = velocity cos(angle)`` and ``v_t = velocity
 sin(angle)``. ``spin`` [rad/s] is counted positive when it adds to the contact point's
@@ -472,6 +476,10 @@ def oblique_impact(
     method="auto",
     steps=DEFAULT_STEPS,
     tangential_stiffness=None,
+    adhesion=None,
+    adhesion_params=None,
+    work_of_adhesion=None,
+    coulomb=None,
 ) -> ObliqueImpact:
     """Rebound of a sphere hitting a flat wall obliquely (vectorized over impacts).
 
@@ -533,6 +541,29 @@ def oblique_impact(
     """
     if tangential not in TANGENTIAL_MODELS:
         raise ValueError(f"tangential must be one of {TANGENTIAL_MODELS}, got {tangential!r}")
+    if adhesion is not None or work_of_adhesion is not None:
+        from .adhesive import adhesive_law
+
+        law_params = adhesive_law(adhesion, adhesion_params, work_of_adhesion)
+        if law_params is not None:
+            from .adhesive import adhesive_oblique_impact
+
+            kappa = None
+            if tangential != "rigid":
+                kappa = stiffness_ratio_of(pair, poisson_ratio, effective_shear_modulus)
+            return adhesive_oblique_impact(
+                pair,
+                velocity,
+                angle,
+                friction,
+                model=law_params[0],
+                params=law_params[1],
+                tangential=tangential,
+                spin=spin,
+                kappa=kappa,
+                coulomb=coulomb,
+                tangential_stiffness=tangential_stiffness,
+            )
     if method not in ("auto", "table", "direct"):
         raise ValueError(f"method must be 'auto', 'table' or 'direct', got {method!r}")
     if method == "auto":

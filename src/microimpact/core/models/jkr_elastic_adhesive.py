@@ -192,3 +192,13 @@ ADHESION_LIMIT = "JKR"
 def work_of_adhesion(params):
     """The work of adhesion ``G`` [J/m^2] of ``params`` (twice LAMMPS' ``cohesion``: ``2 gamma``), for Tabor's parameter."""
     return 2.0 * params[0]
+
+
+@jitable
+def tangential_contact_radius(alpha, alpha_max, E, R, m, p_y, params):
+    """Contact radius [m] a tangential spring sees (:mod:`microimpact.oblique.adhesive`): the JKR radius
+    of :func:`contact_radius`, positive at negative approach down to pull-off, as LAMMPS' ``jkr`` gives it
+    to its ``mindlin`` tangential models (``GranSubModNormalJKR::calculate_contact_radius``)."""
+    if params[0] == 0.0:
+        return math.sqrt(R * alpha) if alpha > 0.0 else 0.0
+    return contact_radius(alpha, E, R, params[0])

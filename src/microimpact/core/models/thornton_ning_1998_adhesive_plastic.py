@@ -498,3 +498,20 @@ ADHESION_LIMIT = "JKR"
 def work_of_adhesion(params):
     """The work of adhesion ``G`` [J/m^2] of ``params`` (``G`` itself), for Tabor's parameter."""
     return params[0]
+
+
+@jitable
+def tangential_contact_radius(alpha, alpha_max, E, R, m, p_y, params):
+    """Contact radius [m] at ``alpha`` for a tangential spring (:mod:`microimpact.oblique.adhesive`): the
+    JKR radius of the loading curve while ``alpha >= alpha_max``, of the unloading curve of ``R_p`` from
+    the plastic approach after (``a = b^2``, as :func:`force` computes it)."""
+    G = params[0]
+    if G == 0.0:
+        return math.sqrt(R * alpha) if alpha > 0.0 else 0.0
+    if alpha >= alpha_max:
+        s = math.sqrt(0.5 * math.pi * G / E)
+        b = _b_of_alpha(alpha, E, R, s)
+        return b * b
+    yielded, Rp, ap, s = _unloading_state(alpha_max, E, R, p_y, G)
+    b = _b_of_alpha(alpha - ap, E, Rp, s)
+    return b * b

@@ -196,3 +196,14 @@ ADHESION_LIMIT = "JKR"
 def work_of_adhesion(params):
     """The work of adhesion ``G`` [J/m^2] of ``params`` (``G`` itself), for Tabor's parameter."""
     return params[0]
+
+
+@jitable
+def tangential_contact_radius(alpha, alpha_max, E, R, m, p_y, params):
+    """Contact radius [m] of the JKR curve at ``alpha`` (``a = b^2``, as :func:`signed_force` computes
+    it), for a tangential spring (:mod:`microimpact.oblique.adhesive`)."""
+    G = params[0]
+    if G == 0.0:
+        return math.sqrt(R * alpha) if alpha > 0.0 else 0.0
+    b = _b_of_alpha(alpha, E, R, math.sqrt(0.5 * math.pi * G / E))
+    return b * b
