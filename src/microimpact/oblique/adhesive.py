@@ -181,7 +181,7 @@ def _integrator(model, fallback):
     """The time-stepping integrator of one impact under ``model`` (module docstring), a plain function;
     ``fallback``: the contact radius where the model declares none (Hertz's)."""
     sforce = model.signed_force
-    radius = getattr(model.module, "tangential_contact_radius", None) or fallback
+    radius = model.tangential_contact_radius or fallback
 
     def run(Vn, v0, w0, E, R, m, p_y, params, mu, kG, c_load, c_unload, lin, k_lin, lam, limit_mode, Fc, a_sep,
             zero_end, dt, max_steps, t_end):  # fmt: skip

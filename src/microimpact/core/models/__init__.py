@@ -87,6 +87,11 @@ as users name it (``model=NAME``). It declares what it is with module-level name
 ``sticking_velocity(E, R, m, p_y, params)`` [``None``: none known]
     The speed [m/s] at and below which the particle sticks (``e = 0``), for a law with ``STICKS``
     (:meth:`ContactPair.sticking_velocity <microimpact.pair.ContactPair.sticking_velocity>`).
+``tangential_contact_radius(alpha, alpha_max, E, R, m, p_y, params)`` [``None``: Hertz's ``(R alpha)^(1/2)``]
+    Marked ``@jitable``; the contact radius [m] at approach ``alpha`` after the largest approach
+    ``alpha_max``, for a law whose contact is not Hertz's (JKR's larger radius under adhesion, a
+    flattened plastic contact): the tangential stiffness of an oblique adhesive impact grows with it
+    (:mod:`microimpact.oblique.adhesive`).
 
 *What is evaluated at many speeds* (fitting and ranking compare only ``e``; the stick/bounce maps
 read ``V_y``), without what only the outcome's other fields need (a contact time by quadrature, an
@@ -373,6 +378,7 @@ class Model:
     restitution_group: Callable | None = None
     restitution_of_group: Callable | None = None
     outside_validity: Callable | None = None
+    tangential_contact_radius: Callable | None = None
     ADHESION_LIMIT: str | None = None
     work_of_adhesion: Callable | None = None
     WALL_ADHESION: bool = False
@@ -405,6 +411,7 @@ _HOOKS = (
     "restitution_of_group",
     "outside_validity",
     "work_of_adhesion",
+    "tangential_contact_radius",
 )
 
 #: The reasons an impact lies outside what its law can say, by the bit of ``outside_validity``'s code.
