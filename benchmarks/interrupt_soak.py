@@ -246,7 +246,7 @@ def one_run(name: str, seed: int, from_exec: bool = False, typical: float | None
             res["ok"] = all(checks.values())
             if not res["ok"]:
                 res["failed"] = [k for k, v in checks.items() if not v]
-                res["stderr"] = err[-600:] if took <= LIMIT else err[-6000:]
+                res["stderr"] = err[-600:] if took <= LIMIT else err  # all the stacks of a run that did not end
                 res["temporaries"] = _temporaries(folder)
         return res
     finally:
