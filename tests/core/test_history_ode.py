@@ -45,6 +45,10 @@ PARAMS = {
     "luding_adhesive": [
         {"loading_stiffness": 1e3, "unloading_stiffness": 4e3, "adhesion_stiffness": 50.0, "plasticity_depth": 0.2}
     ],
+    "lammps_mdr": [
+        {"poisson_ratio": 0.3, "yield_strength": 74e6, "surface_energy": 0.0, "damping": 0.0},
+        {"poisson_ratio": 0.3, "yield_strength": 74e6, "surface_energy": 0.1, "damping": 0.5},
+    ],
 }
 CASES = [(name, i) for name in PARAMS for i in range(len(PARAMS[name]))]
 SILICON = mi.ContactPair.paper_case("silicon")

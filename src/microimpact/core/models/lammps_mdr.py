@@ -411,11 +411,49 @@ def _locate(which, level, x, v, h, xh, vh, amax, E, R, m, params, L, V, c):
 
 
 @jitable
+def _peak(xa, va, hh, amax, E, R, m, params, L, V, c):
+    """Largest scaled force on ``[0, hh]`` of the trajectory from ``(xa, va)`` (golden section over the
+    length of one step from there: the bracket spans the two steps around the best step end)."""
+    g = 0.6180339887498949
+    a = 0.0
+    b = hh
+    s1 = b - g * (b - a)
+    s2 = a + g * (b - a)
+    x1, v1, _ = _step(xa, va, s1, amax, E, R, m, params, L, V, c)
+    x2, v2, _ = _step(xa, va, s2, amax, E, R, m, params, L, V, c)
+    f1 = -_acc(x1, v1, amax, E, R, m, params, L, V, c)
+    f2 = -_acc(x2, v2, amax, E, R, m, params, L, V, c)
+    for _ in range(80):
+        if f1 > f2:
+            b = s2
+            s2 = s1
+            f2 = f1
+            s1 = b - g * (b - a)
+            x1, v1, _ = _step(xa, va, s1, amax, E, R, m, params, L, V, c)
+            f1 = -_acc(x1, v1, amax, E, R, m, params, L, V, c)
+        else:
+            a = s1
+            s1 = s2
+            f1 = f2
+            s2 = a + g * (b - a)
+            x2, v2, _ = _step(xa, va, s2, amax, E, R, m, params, L, V, c)
+            f2 = -_acc(x2, v2, amax, E, R, m, params, L, V, c)
+        if b - a <= 1e-12 * hh:
+            break
+    return f1 if f1 > f2 else f2
+
+
+@jitable
 def _phase(x, v, t, h, amax, which, level, E, R, m, params, L, V, c):
     """Integrate from ``(x, v)`` at scaled time ``t`` with first step ``h`` until event ``which``
     (at ``level``); returns ``(x, v, t, h, found, fmax)`` at the event, ``fmax`` the largest scaled
-    force at the accepted steps' ends (``-acceleration``)."""
+    force (``-acceleration``) of the phase: the best step end, refined by :func:`_peak` over the
+    two steps around it."""
     fmax = 0.0
+    xa = x
+    va = v
+    ha = 0.0
+    hb = -1.0  # the length of the step after the best step end (-1: not yet taken)
     h_old = 0.0
     err_old = 0.0
     for _ in range(_MAX_STEPS):
@@ -426,10 +464,21 @@ def _phase(x, v, t, h, amax, which, level, E, R, m, params, L, V, c):
         if _event(which, xn, vn, level) <= 0.0:
             s = _locate(which, level, x, v, h, xn, vn, amax, E, R, m, params, L, V, c)
             xs, vs, _ = _step(x, v, s, amax, E, R, m, params, L, V, c)
-            return xs, vs, t + s, h, True, fmax
+            fs = -_acc(xs, vs, amax, E, R, m, params, L, V, c)
+            if hb < 0.0:
+                hb = s
+            if ha > 0.0:
+                fmax = max(fmax, _peak(xa, va, ha + hb, amax, E, R, m, params, L, V, c))
+            return xs, vs, t + s, h, True, max(fmax, fs)
         f = -_acc(xn, vn, amax, E, R, m, params, L, V, c)
+        if hb < 0.0:
+            hb = h
         if f > fmax:
             fmax = f
+            xa = x
+            va = v
+            ha = h
+            hb = -1.0
         t += h
         x = xn
         v = vn
