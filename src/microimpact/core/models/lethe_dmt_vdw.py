@@ -85,9 +85,8 @@ STICKS = True
 COST = "slow"
 ADHESION_LIMIT = "DMT"
 PARAMETERS = (
-    Parameter(
+    Parameter.of(
         "restitution",
-        "1",
         "Lethe's effective restitution coefficient e in (0, 1]",
         default=1.0,
         low=0.0,
