@@ -45,7 +45,16 @@ PARAMS = {
     "luding_adhesive": [
         {"loading_stiffness": 1e3, "unloading_stiffness": 4e3, "adhesion_stiffness": 50.0, "plasticity_depth": 0.2}
     ],
+    "lammps_mdr": [
+        {"poisson_ratio": 0.3, "yield_strength": 74e6, "surface_energy": 0.0, "damping": 0.0},
+        {"poisson_ratio": 0.3, "yield_strength": 74e6, "surface_energy": 0.1, "damping": 0.5},
+    ],
+    "lethe_dmt_vdw": [{"restitution": 0.6, "effective_surface_energy": 0.05, "hamaker_constant": 1e-19}],
 }
+#: Models whose speed V is not the speed at first contact, which the generic integration starts from:
+#: Lethe's DMT attracts the particle before contact (V is the speed outside its cut-off); its outcome
+#: is held to its own integration from the cut-off in tests/test_lethe_dmt_vdw.py.
+NOT_FROM_CONTACT = {"lethe_dmt_vdw"}
 CASES = [(name, i) for name in PARAMS for i in range(len(PARAMS[name]))]
 SILICON = mi.ContactPair.paper_case("silicon")
 TOL = 1e-8  # the issue asks 1e-8 of closed form against the integration of the force law
@@ -56,6 +65,8 @@ def test_every_model_is_covered():
 
 
 def _check(pair, V, name, params):
+    if name in NOT_FROM_CONTACT:
+        pytest.skip(f"{name}: V is the speed outside the cut-off, not at first contact")
     h = pair.history(V, model=name, method="ode", n=201, **params)
     o = pair.impact(V, model=name, warn=False, **params)
     assert h.method == "ode" and h.model == name
