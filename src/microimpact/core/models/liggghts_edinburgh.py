@@ -268,7 +268,14 @@ def signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
     if alpha <= 0.0:
         return 0.0
     top = alpha_max if alpha_max > alpha else alpha
-    return _spring(alpha, top, E, R, params) + damping_coefficient(E, R, m, params) * alpha_dot + params[_F0]
+    fc = _spring(alpha, top, E, R, params)
+    if fc == 0.0 and alpha < top and ends_at_zero_force(params):
+        # the code's force is 0 on a branch of k_adh = 0; the unloading line's continuation (negative)
+        # makes the end of the contact, where that force reaches 0, a crossing of zero
+        k2, K, dp, kadh, ds = unloading_state(top, E, R, params)
+        if kadh == 0.0:
+            fc = k2 * alpha ** params[_N] - K
+    return fc + damping_coefficient(E, R, m, params) * alpha_dot + params[_F0]
 
 
 @jitable
@@ -491,12 +498,16 @@ def integrate(V, E, R, m, params):
                 continue
             if _event(which, a1, v1, phase, c, ds) <= 0.0:
                 s = _locate(which, a, v, wc, wd, h, phase, c, ds)
-                if first < 0 or s < s_first:
+                if first < 0 or s < s_first or (which == 3 and s == s_first):
                     first = which
                     s_first = s
         if first < 0:
             t += h
-            a, v, wc, wd = a1, v1, wc1, wd1
+            # two half steps, extrapolated (Richardson: fifth order)
+            a = a2 + (a2 - a1) / 15.0
+            v = v2 + (v2 - v1) / 15.0
+            wc = wc2 + (wc2 - wc1) / 15.0
+            wd = wd2 + (wd2 - wd1) / 15.0
             if phase == 2 and a > a_eq > 0.0 and a - a_eq <= 1e-9 * amax and -v <= 1e-6 * V:
                 return 0.0, amax, dp, pmax, tL, math.inf, wc, wd, 1.0, a
             grow = 5.0 if err == 0.0 else min(5.0, 0.9 * (_TOL / err) ** 0.2)
@@ -526,6 +537,8 @@ def integrate(V, E, R, m, params):
         if first == 1:  # onto the adhesive branch
             a = ds
             phase = 3
+            if c[9] and _rhs(a, v, 3, c)[2] <= 0.0:  # a branch of k_adh = 0, clipped: the force ends here
+                return -v / V, amax, dp, pmax, tL, t - tL, wc, wd, 0.0, a
             h = 1e-4 * T0
             continue
         if first == 4:  # turned back before the contact ended: captured
