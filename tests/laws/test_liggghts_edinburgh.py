@@ -80,8 +80,10 @@ def _reference(V, E, R, m, params):
 CASES = {
     "no adhesion": P(unloading_ratio=3.0),
     "f0 and damping, wall": P(coefficient_restitution=0.99, pull_off_force=-1e-3),
-    "surface energy, two spheres": P(surface_energy=10.0, two_spheres=1.0),
-    "surface energy capped, x != n": P(surface_energy=3e4, two_spheres=1.0, adhesion_exponent=1.2, unloading_ratio=2.0),
+    "surface energy, two spheres": P(work_of_adhesion=10.0, two_spheres=1.0),
+    "surface energy capped, x != n": P(
+        work_of_adhesion=3e4, two_spheres=1.0, adhesion_exponent=1.2, unloading_ratio=2.0
+    ),
     "fixKc, limitForce off, damped": P(
         fix_kc=1.0, adhesion_stiffness_ratio=0.2, limit_force=0.0, coefficient_restitution=0.995
     ),
@@ -212,7 +214,7 @@ def _captured_in_liggghts(cal, V, V_bounce, geometry, tmp_path):
     "kw, geometry",
     [
         (dict(coefficient_restitution=0.99, pull_off_force=-1e-3), "wall"),  # f0, dashpot
-        (dict(surface_energy=10.0, two_spheres=1.0), "sphere"),  # option 1: k_adh from Gamma
+        (dict(work_of_adhesion=10.0, two_spheres=1.0), "sphere"),  # option 1: k_adh from Gamma
         (dict(fix_kc=1.0, adhesion_stiffness_ratio=0.2, limit_force=0.0, coefficient_restitution=0.995), "wall"),
     ],
 )
@@ -235,7 +237,7 @@ def test_liggghts_gives_the_models_e_and_capture(kw, geometry, tmp_path):
     "kw",
     [
         dict(fix_kc=1.0, adhesion_stiffness_ratio=0.2),  # limitForce on, f0 = 0: the branch is clipped away
-        dict(surface_energy=10.0),  # on a wall the code's contact radius is 0: no adhesion
+        dict(work_of_adhesion=10.0),  # on a wall the code's contact radius is 0: no adhesion
     ],
 )
 def test_liggghts_defects_are_what_the_model_says(kw):

@@ -80,7 +80,7 @@ def liggghts(cal, poisson, wall):
         f"fix m5 all property/global UnloadingStiffness peratomtypepair 1 {p['unloading_ratio']:.15g}",
         f"fix m6 all property/global overlapExponent scalar {p['overlap_exponent']:.15g}",
         f"fix m7 all property/global adhesionExponent scalar {p['adhesion_exponent']:.15g}",
-        f"fix m8 all property/global surfaceEnergy peratomtypepair 1 {p['surface_energy']:.15g}",
+        f"fix m8 all property/global surfaceEnergy peratomtypepair 1 {p['work_of_adhesion']:.15g}",
         f"fix m9 all property/global coefficientAdhesionStiffness peratomtypepair 1 "
         f"{p['adhesion_stiffness_ratio']:.15g}",
         f"fix m10 all property/global pullOffForce peratomtypepair 1 {p['pull_off_force']:.15g}",
@@ -98,6 +98,6 @@ def params_for_work_of_adhesion(work_of_adhesion, pair_values, params):
         raise ValueError(f"work_of_adhesion must be non-negative and finite, got {work_of_adhesion!r}")
     spec = _get(law.NAME)
     values = dict(zip((p.name for p in spec.PARAMETERS), params))
-    values["surface_energy"] = G
+    values["work_of_adhesion"] = G
     values["fix_kc"] = 0.0
     return spec.validate(tuple(values.values()))

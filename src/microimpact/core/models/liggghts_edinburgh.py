@@ -89,7 +89,7 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
-from . import Parameter, checks
+from . import LIMIT_FORCE, Parameter, checks
 from ._common import dem_outcome, in_bounds, nan_outcome
 
 NAME = "liggghts_edinburgh"
@@ -127,7 +127,12 @@ PARAMETERS = (
         high=1.0,
         low_open=True,
     ),
-    Parameter("surface_energy", "J/m^2", "surfaceEnergy Gamma >= 0 of k_adh's option fixKc off", default=0.0, low=0.0),
+    Parameter.of(
+        "work_of_adhesion",
+        "G >= 0: LIGGGHTS' surfaceEnergy, which its pull-off 1.5 pi G a (fixKc off) uses as the work of adhesion G",
+        default=0.0,
+        low=0.0,
+    ),
     Parameter(
         "adhesion_stiffness_ratio",
         "1",
@@ -139,7 +144,7 @@ PARAMETERS = (
     Parameter(
         "fix_kc", "1", "1: k_adh = kn2kc k1 (fixKc on); 0: k_adh from the surface energy", default=0.0, flag=True
     ),
-    Parameter("limit_force", "1", "1: limitForce on (the code's default), 0: off", default=1.0, flag=True),
+    LIMIT_FORCE,  # limitForce: on (1) is the code's default
     Parameter(
         "two_spheres", "1", "0: sphere on a wall (a = 0); 1: two equal spheres of radius 2 R*", default=0.0, flag=True
     ),
