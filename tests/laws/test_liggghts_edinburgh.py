@@ -247,3 +247,34 @@ def test_liggghts_defects_are_what_the_model_says(kw):
     assert row["predicted_restitution"] == pytest.approx(plain, abs=1e-9)  # the adhesion does nothing ...
     assert abs(row["restitution"] - plain) < 1e-3  # ... in the code either
     assert law.sticking_velocity(E, R, M, math.inf, cal.params) == 0.0
+
+
+@pytest.mark.parametrize("ratio, n", [(5.0, 1.5), (1.5, 1.0), (30.0, 1.5), (3.0, 1.2)])
+def test_without_damping_and_adhesion_e_is_the_closed_form(ratio, n):
+    """The homogeneous law: e^2 = r [1 - q^((n+1)/n) - (n+1) q (1 - q^(1/n))], q = 1 - 1/r, at any speed."""
+    q = 1.0 - 1.0 / ratio
+    e = math.sqrt(ratio * (1.0 - q ** ((n + 1.0) / n) - (n + 1.0) * q * (1.0 - q ** (1.0 / n))))
+    params = P(unloading_ratio=ratio, overlap_exponent=n, adhesion_exponent=n)
+    for V in (0.01, 3.0):
+        assert law.outcome(V, E, R, M, math.inf, params)[4] == pytest.approx(e, abs=1e-10)
+
+
+def test_face_lines_calibration_and_work_of_adhesion():
+    from microimpact.models import face
+
+    f = face(law.NAME)
+    pair_values = (E, R, M, 1e12)
+    params = f.calibrate(pair_values, np.array([0.3]), np.array([0.6]), np.array([1e-4]), pull_off_force=-1e-4)
+    assert law.outcome(0.3, E, R, M, math.inf, params)[4] == pytest.approx(0.6, abs=1e-9)
+    with pytest.raises(ValueError, match="target_restitution"):
+        f.calibrate(pair_values, np.array([0.3]), np.array([0.9999]), np.array([1e-4]), coefficient_restitution=0.9)
+    import importlib
+
+    hook = importlib.import_module(f"microimpact.models.{law.NAME}").params_for_work_of_adhesion  # not a Face hook yet
+    with_g = hook(0.2, pair_values, P(fix_kc=1.0, adhesion_stiffness_ratio=0.1))
+    assert dict(zip(NAMES, with_g))["work_of_adhesion"] == 0.2 and dict(zip(NAMES, with_g))["fix_kc"] == 0.0
+    with pytest.raises(ValueError, match="work_of_adhesion"):
+        hook(-1.0, pair_values, P())
+    text = _cal(fix_kc=1.0, adhesion_stiffness_ratio=0.2, limit_force=0.0).liggghts()
+    assert "model edinburgh" in text and "fixKc on" in text and "limitForce off" in text
+    assert "coefficientAdhesionStiffness peratomtypepair 1 0.2" in text
