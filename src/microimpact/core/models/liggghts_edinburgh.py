@@ -56,6 +56,10 @@ The force, as the code computes it (``deltan`` is the approach ``alpha``)
   (the particle bounces as without adhesion). With option 1 the outer ``k_adh`` is set once the contact
   unloads.
 
+Geometry: the parameter ``two_spheres`` chooses the contact radius of option 1 (0: a sphere on a
+wall, ``a = 0``, what ``dem.deck(geometry="wall")`` runs; 1: two equal spheres of radius ``2 R*`` and
+mass ``2 m*``, ``geometry="sphere"``); ``k1``, ``k2`` and ``gamman`` are the same for both.
+
 So the law is ``F = F_c(alpha, alpha_max) + gamma alpha' + f_0`` (clipped at zero where
 ``limitForce`` applies), ``F_c`` the hysteretic spring above. The speed enters only through the
 damping; in its first pass (load, unload, separate or turn back) the path of ``F_c`` depends only
@@ -65,10 +69,12 @@ Outcome
 -------
 With the constant ``gamma`` and the power laws there is no closed form; :func:`outcome` integrates
 ``m* alpha'' = -F`` through its phases (loading to ``alpha_max``; unloading to ``delta_s``; the
-adhesive branch to zero approach) with the classical fourth-order Runge-Kutta method, the step
-controlled by step doubling to ``1e-13`` of the approach and speed scales, and the ends of the phases
-located by bisection of the step. A particle whose approach rate returns to zero before the contact
-ends has been captured (``e = 0``, ``unloading_time = inf``). ``max_force`` is the largest force of
+adhesive branch to zero approach) with the classical fourth-order Runge-Kutta method, each step
+checked against two half steps (error below ``1e-12`` of the approach and speed scales) and
+advanced by their Richardson extrapolation; the ends of the phases are located by regula falsi on
+the step. A damped particle that creeps towards the equilibrium of the unloading line with ``f_0``
+(where ``F_c + f_0 = 0``) never reaches it and is captured, as is a particle whose approach rate
+returns to zero before the contact ends (``e = 0``, ``unloading_time = inf``). ``max_force`` is the largest force of
 the contact (the damping's ``gamma V + f_0`` at first touch or the maximum of loading),
 ``plastic_approach`` is ``delta_p``. Where ``limitForce`` clips, the contact ends where the force
 first vanishes (the particle then leaves at constant speed), as the DEM record measures it.
