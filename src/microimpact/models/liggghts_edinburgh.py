@@ -52,6 +52,9 @@ def calibrate(pair_values, velocity, target_restitution, target_contact_time, **
     def miss(log_r):
         return law.outcome(V, E, R, m, p_y, params_of(log_r))[4] - e_t
 
+    elastic = params_of(-math.inf)  # k2 = k1: no plastic loss
+    if abs(law.outcome(V, E, R, m, p_y, elastic)[4] - e_t) <= 1e-12:
+        return elastic
     lo, hi = -30.0, 30.0
     f_lo, f_hi = miss(lo), miss(hi)
     if not (f_lo >= 0.0 >= f_hi):

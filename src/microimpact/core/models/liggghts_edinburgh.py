@@ -111,7 +111,11 @@ COST = "slow"
 ZERO_FORCE_ORDER = 1.0
 PARAMETERS = (
     Parameter(
-        "unloading_ratio", "1", "k2/k1 > 1 (LIGGGHTS' UnloadingStiffness, kn2k1)", default=5.0, low=1.0, low_open=True
+        "unloading_ratio",
+        "1",
+        "k2/k1 >= 1 (LIGGGHTS' UnloadingStiffness, kn2k1; 1: elastic)",
+        default=5.0,
+        low=1.0,
     ),
     Parameter(
         "overlap_exponent", "1", "n >= 1 of k1 d^n, k2 d^n (overlapExponent, dex)", default=1.5, low=1.0, high=3.0
@@ -233,6 +237,8 @@ def unloading_state(alpha_max, E, R, params):
     dpn = (1.0 - 1.0 / params[_RATIO]) * alpha_max**n  # delta_p^n
     dp = dpn ** (1.0 / n)
     K = k2 * dpn
+    if dp == 0.0:  # k2 = k1: elastic, the unloading line is the loading curve and never meets a branch
+        return k2, 0.0, 0.0, 0.0, 0.0
     if params[_FIXKC] == 1.0:
         kadh = params[_KC] * k1
     elif params[_PAIR] == 1.0 and params[_GAMMA] > 0.0 and dp > 0.0:
