@@ -466,6 +466,9 @@ def integrate(V, E, R, m, params):
         T0 = min(T0, m / gam)
     if f0 != 0.0:
         T0 = min(T0, m * V / abs(f0))
+    if not (scale_a > 0.0 and T0 > 0.0 and T0 < math.inf):  # the scales under- or overflow (V near 0 or inf)
+        n_ = math.nan
+        return n_, n_, n_, n_, n_, n_, n_, n_, n_, n_
     h = 1e-4 * T0
     sa = scale_a
     sv = V
