@@ -50,6 +50,7 @@ PARAMS = {
         {"poisson_ratio": 0.3, "yield_strength": 74e6, "surface_energy": 0.1, "damping": 0.5},
     ],
     "lethe_dmt_vdw": [{"restitution": 0.6, "effective_surface_energy": 0.05, "hamaker_constant": 1e-19}],
+    "liggghts_edinburgh": [{}, {"fix_kc": 1, "adhesion_stiffness_ratio": 0.2, "limit_force": 0}],
 }
 #: Models whose speed V is not the speed at first contact, which the generic integration starts from:
 #: Lethe's DMT attracts the particle before contact (V is the speed outside its cut-off); its outcome
