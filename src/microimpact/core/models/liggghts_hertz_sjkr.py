@@ -374,9 +374,9 @@ def _step(x, v, h, g):
 
 @jitable
 def _event(which, x, v, g):
-    """Event functions, each crossing zero from above: 0 top or inner turning point (``-x'`` for
-    the latter, see :func:`_locate`), 1 force maximum (:func:`_force_rate`), 2 zero approach (``x``),
-    3 inner turning point (``-x'``)."""
+    """Event functions, each crossing zero from above: 0 the maximum approach (``x'``), 1 the force
+    maximum (:func:`_force_rate`), 2 zero approach (``x``), 3 the inner turning point of a captured
+    particle (``-x'``)."""
     if which == 0:
         return v
     if which == 1:
