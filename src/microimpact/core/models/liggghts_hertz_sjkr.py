@@ -26,16 +26,12 @@ of the centre from the wall, ``r = R - delta``), ``R*`` the code's ``reff`` (``r
   the cohesion below never enters ``gamman`` (so no NaN at small overlap, unlike LAMMPS'
   ``coeff_restitution`` with a cohesive normal model, lammps/lammps#4180).
 * Cohesion, added after the normal model to the same contact (``i_forces.delta_F``), never clipped:
-  ``Fn_coh = -cohEnergyDens * Acont`` (sjkr L99, sjkr2 L100), with
+  ``Fn_coh = -cohEnergyDens * Acont`` (sjkr L99, sjkr2 L100), with the area ``Acont``:
 
-  ======================  ============================================  =============================
-  model                   wall (``sidata.is_wall``)                     two particles
-  ======================  ============================================  =============================
-  ``sjkr``                ``(ri^2 - r^2) pi`` = ``pi (2 R delta -        ``pi/4 ((r-ri-rj)(r+ri-rj)
-                          delta^2)`` (L96)                              (r-ri+rj)(r+ri+rj))/r^2`` (L98)
-  ``sjkr2``               ``2 pi ri (ri - r)`` = ``2 pi R delta`` (L96)  ``2 pi (2 ri rj/(ri+rj))
-                                                                        delta`` = ``4 pi R* delta`` (L98)
-  ======================  ============================================  =============================
+  - sjkr at a wall (``sidata.is_wall``, L96): ``(ri^2 - r^2) pi = pi (2 R delta - delta^2)``;
+  - sjkr between particles (L98): ``pi/4 ((r-ri-rj)(r+ri-rj)(r-ri+rj)(r+ri+rj))/r^2``;
+  - sjkr2 at a wall (L96): ``2 pi ri (ri - r) = 2 pi R delta``;
+  - sjkr2 between particles (L98): ``2 pi (2 ri rj/(ri+rj)) delta = 4 pi R* delta``.
 
   At a wall the force is multiplied by ``area_ratio`` twice (in ``Acont`` and again when applied,
   L106); ``area_ratio`` is 1 for a primitive wall (``fix_wall_gran_base.h`` L185). ``sjkr``'s
@@ -47,7 +43,7 @@ of the centre from the wall, ``r = R - delta``), ``R*`` the code's ``reff`` (``r
   cohesion models' ``surfacesClose`` only clears a flag): **no force beyond contact**, and both
   vanish at zero overlap, so the contact ends at zero approach.
 
-With ``A(alpha) = pi (c_1 R* alpha - c_2 alpha^2)`` (``c_1, c_2`` = ``2, 1`` sjkr at a wall;
+With ``A(alpha) = pi (c_1 R* alpha - c_2 alpha^2)`` (``c_1, c_2`` = ``2, 1`` for sjkr at a wall;
 ``2, 1/4`` sjkr between equal spheres; ``2, 0`` sjkr2 at a wall; ``4, 0`` sjkr2 between
 particles) and ``k`` the ``cohesionEnergyDensity`` [J/m^3], the normal force is
 
@@ -78,8 +74,7 @@ Scaling (as :mod:`~microimpact.core.models.hertz_tsuji`): ``rho = 4/3 E* R*^(1/2
           x(0) = 0,\ x'(0) = 1,
 
 with ``kappa = alpha_T`` (to rounding), ``c = k pi c_1 R*/(rho X^(1/2))`` and
-``d = k pi c_2 X^(1/2)/rho`` (``d/c = c_2 X/(c_1 R*)``: the ``alpha^2`` term of sjkr is of the
-order of the strain). ``e`` is no longer constant in ``V``: ``c`` grows as ``V^(-2/5)`` at low
+``d = k pi c_2 X^(1/2)/rho`` (``d/c = c_2 X/(c_1 R*)``: the ``alpha^2`` term of sjkr is of the order of the strain). ``e`` is no longer constant in ``V``: ``c`` grows as ``V^(-2/5)`` at low
 speed. There is no closed form; ``e``, the times, the maximum approach and force are integrated
 with Hairer's DOP853 tableau (:mod:`microimpact.core.dop853`) at a relative tolerance of 2e-14,
 from the series ``x = t - kappa t^(9/4)/(45/16) - 4/35 t^(7/2) + c t^3/6`` at ``t = 1e-4``, with
