@@ -44,6 +44,7 @@ def test_layout_units_and_coordinates(ds):
     assert cal == {
         "thornton_ning_2016": False,
         "liggghts_thornton_ning": False,
+        "liggghts_hertz_sjkr": True,
         "linear_spring_dashpot": True,
         "hertz_viscoelastic": True,
         "hertz_tsuji": True,

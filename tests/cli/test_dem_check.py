@@ -99,7 +99,7 @@ def test_export_dem_writes_runnable_decks(tmp_path, capsys):
     assert "lmp -in in.hertz_tsuji.wall.lammps" in readme and "liggghts -in in.hertz_tsuji.wall.liggghts" in readme
     assert "luding_hysteretic for lammps" in readme and "hertz_viscoelastic for liggghts" in readme
     names = sorted(p.name for p in out.glob("in.*"))
-    assert len(names) == 12
+    assert len(names) == 14
     cal = calibrate(SILICON, "hertz_tsuji", 40.0)
     d = dem.deck(cal, "lammps", 40.0, geometry="sphere", record="record.hertz_tsuji.sphere.lammps.txt")
     assert (out / "in.hertz_tsuji.sphere.lammps").read_text() == d.text
@@ -108,7 +108,7 @@ def test_export_dem_writes_runnable_decks(tmp_path, capsys):
         assert abs(res["restitution"] / d.predicted_restitution - 1) < 1e-4
     # again into the same directory: it holds only what export wrote, so it is replaced
     assert main(["export", "--out", str(out), "--no-c", "--dem", "liggghts"]) == 0
-    assert len(list(out.glob("in.*"))) == 6
+    assert len(list(out.glob("in.*"))) == 8
 
 
 @pytest.mark.parametrize(
