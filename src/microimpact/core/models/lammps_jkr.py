@@ -1,0 +1,150 @@
+"""The JKR normal model of LAMMPS' ``pair_style granular`` with its damping, as LAMMPS computes it.
+
+Source: lammps/lammps ``src/GRANULAR/gran_sub_mod_normal.cpp`` (``GranSubModNormalJKR``: ``touch``,
+``pulloff_distance``, ``calculate_contact_radius``, ``calculate_forces``; commit ``58ee3925``, the
+algebra after lammps/lammps#3728), ``gran_sub_mod_damping.cpp`` (commit of the ``get_damp()``
+era, the one with ``coeff_restitution`` and ``allow_cohesion = 0``), ``granular_model.cpp``
+(``calculate_forces``: ``F_n = F_ne + F_damp``, no clipping with cohesion) and
+``doc/src/pair_granular.rst``. The elastic-adhesive curve is the one of
+:mod:`~microimpact.core.models.jkr_elastic_adhesive` (Johnson, Kendall & Roberts 1971, in
+LAMMPS' form: ``F_ne = 4 E* a^3/(3 R*) - 2 pi a^2 (4 gamma E*/(pi a))^(1/2)``, ``delta = a^2/R* -
+2 (pi gamma a/E*)^(1/2)``), used here unchanged: the contact forms at zero approach and breaks at
+``-delta_c``, ``delta_c = (3 pi^2/16)^(1/3) (R* gamma^2/E*^2)^(1/3)``, where the force is the
+pull-off force ``-3 pi gamma R*``. The damping and the equation of motion are
+:mod:`~microimpact.core.models._lammps_granular`'s:
+
+* ``damping_model`` 0 (``damping viscoelastic``, LAMMPS' default): ``F_damp = eta_n0 m* a alpha'``
+  with JKR's contact radius ``a``, which stays positive in the adhesive neck (negative approach):
+  the damping acts until the contact breaks;
+* 1 (``tsuji``) and 2 (``coeff_restitution``): ``F_damp = c (m* max(0, F_ne/alpha))^(1/2) alpha'``
+  at positive approach, 0 elsewhere, ``F_ne`` the whole JKR force (cohesion included), ``c`` from
+  ``e_n``. LAMMPS 22 Jul 2025 refuses both with ``jkr`` ("Cannot use tsuji model with a cohesive
+  normal model"): :func:`outside_validity` flags them (code 4); the 2024 releases that accepted
+  ``coeff_restitution`` with ``jkr`` took ``sqrt(m* F_ne/delta)`` unguarded, NaN as soon as
+  ``F_ne < 0`` at positive approach, i.e. on the first step of every contact (lammps/lammps#4180).
+  LIGGGHTS damps only the Hertz part (``S_n = 2 Y* (R* delta)^(1/2)``), a different law.
+
+Geometry: the wall (``fix wall/gran granular jkr``: ``R*`` the radius, ``m*`` the mass,
+``E* = E/(2(1 - nu^2))`` by ``mix_stiffnessE_wall``, the wall taken as the particle's material).
+Two equal spheres of one type (``pair_coeff * *``) have ``E* = E/(2(1 - nu^2))`` too, ``R* = R/2``,
+``m* = m/2``; between types LAMMPS mixes ``E`` (lammps/lammps#4141: the wall ignored that mixing).
+
+Outputs: ``e`` and the contact time by integration, ``e = 0`` (captured, infinite contact time)
+where the approach rate vanishes again before ``-delta_c``; :func:`sticking_velocity` the capture
+velocity ``V_s`` by a root search on the integration; :func:`energy_budget` the impact energy split
+into the neck's work, the damping's work and the rebound energy.
+
+**Parameters of this model** (``params``, in this order):
+
+``surface_energy`` ``gamma`` [J/m^2], ``>= 0``
+    LAMMPS' ``cohesion`` (the work of adhesion is ``2 gamma``); 0 gives Hertz with the damping.
+``damping_model`` [-], 0, 1 or 2
+    0 ``viscoelastic``, 1 ``tsuji``, 2 ``coeff_restitution``.
+``damping`` [1/(m s) or -], ``>= 0``
+    LAMMPS' damping input of the normal model: ``eta_n0`` for ``viscoelastic``; ``e_n`` in [0, 1]
+    (``tsuji``) or (0, 1] (``coeff_restitution``).
+
+Fields this model does not define (NaN): ``yield_velocity``, ``normalized_velocity``,
+``unloading_radius``, ``elastic_stage_time``, ``plastic_stage_time``. ``plastic_approach`` is the
+approach where the contact breaks (``-delta_c``). ``p_y`` is not used.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .._jit import jitable
+from . import Parameter, checks
+from . import _lammps_granular as lg
+from ._common import in_bounds
+
+NAME = "lammps_jkr"
+TITLE = "LAMMPS pair granular jkr with damping viscoelastic, tsuji or coeff_restitution (as LAMMPS computes it)"
+CITATION = "Johnson, Kendall & Roberts, Proc. R. Soc. Lond. A 324:301 (1971); LAMMPS pair_style granular jkr"
+LABEL = "LAMMPS JKR damped"
+STICKS = True
+COST = "slow"
+KIND = lg.JKR
+PARAMETERS = (
+    Parameter.of("surface_energy", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)", low=0.0),
+    Parameter("damping_model", "1", "0 viscoelastic, 1 tsuji, 2 coeff_restitution", default=0.0, low=0.0, high=2.0),
+    Parameter("damping", "1/(m s) or 1", "eta_n0 (viscoelastic) or e_n (tsuji, coeff_restitution)", low=0.0),
+)
+BOUNDS, _validate = checks(NAME, PARAMETERS)
+#: The adhesion limit of the law (Tabor's parameter large).
+ADHESION_LIMIT = "JKR"
+
+
+def validate(params):
+    """Check ``params`` (ValueError naming the parameter and its value); return them as floats."""
+    return lg.validate(_validate(params))
+
+
+@jitable
+def _valid(params):
+    return in_bounds(params, BOUNDS) and lg.valid(params)
+
+
+@jitable
+def outcome(V, E, R, m, p_y, params):
+    """Outcome of one impact (module docstring; ``p_y`` unused)."""
+    ok = _valid(params)
+    return lg.outcome(KIND, V, E, R, m, ok, params[0] if ok else 0.0, params[1], params[2])
+
+
+@jitable
+def signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
+    """``F_n = F_ne + F_damp`` [N] on the JKR curve (positive: repulsive)."""
+    factor = lg.damping_factor(params[1], params[2])
+    return lg.total_force(KIND, params[1], factor, alpha, alpha_dot, E, R, m, params[0])
+
+
+@jitable
+def force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
+    """Normal force [N]: :func:`signed_force` from zero approach in loading down to ``-delta_c``, 0 apart."""
+    if alpha_max <= 0.0 and alpha < 0.0:
+        return 0.0
+    if alpha < lg.separation(KIND, E, R, params[0]):
+        return 0.0
+    return signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params)
+
+
+@jitable
+def ends_at_zero_force(params):
+    """False: the contact ends at :func:`separation_approach`, not where the force vanishes."""
+    return False
+
+
+#: The force does not vanish where the contact ends (it jumps from the pull-off force to 0).
+ZERO_FORCE_ORDER = 1.0
+
+
+@jitable
+def separation_approach(E, R, m, p_y, params):
+    """Approach [m] at which the contact breaks: ``-delta_c`` (0 without cohesion)."""
+    return lg.separation(KIND, E, R, params[0])
+
+
+@jitable
+def sticking_velocity(E, R, m, p_y, params):
+    """The capture velocity ``V_s`` [m/s] (``e = 0`` at and below it; NaN for invalid ``params``)."""
+    if not _valid(params):
+        return math.nan
+    return lg.capture_velocity(KIND, params[1], lg.damping_factor(params[1], params[2]), E, R, m, params[0])
+
+
+@jitable
+def outside_validity(V, E, R, m, p_y, params):
+    """4 where LAMMPS 22 Jul 2025 refuses the input (damping tsuji or coeff_restitution with jkr), else 0."""
+    return lg.refused(params)
+
+
+def energy_budget(V, E, R, m, params):
+    """``(K_in, W_neck, W_damping, K_out)`` [J] of one impact (:func:`~._lammps_granular.energy_budget`)."""
+    return lg.energy_budget(KIND, float(V), E, R, m, params[0], params[1], params[2])
+
+
+@jitable
+def work_of_adhesion(params):
+    """The work of adhesion ``G = 2 gamma`` [J/m^2] (LAMMPS' cohesion is ``gamma``)."""
+    return 2.0 * params[0]
