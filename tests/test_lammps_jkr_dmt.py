@@ -14,10 +14,9 @@ from hypothesis import strategies as st
 import microimpact as mi
 from microimpact import dem
 from microimpact.calibrate import Calibration
-from microimpact.core.models import get
+from microimpact.core.models import get, lammps_dmt, lammps_jkr
 from microimpact.core.models import hertz_viscoelastic as hv
 from microimpact.core.models import jkr_elastic_adhesive as jkr_el
-from microimpact.core.models import lammps_dmt, lammps_jkr
 from microimpact.models import face
 
 # a 4.9 um polystyrene-like sphere on a wall (E* = 1.31 GPa)
@@ -84,10 +83,14 @@ def test_without_damping_jkr_is_the_elastic_jkr_and_without_cohesion_hertz_visco
         a = lammps_jkr.outcome(V, E, R, M, 0.0, (0.05, 0.0, 0.0))
         b = jkr_el.outcome(V, E, R, M, 0.0, (0.05,))
         assert abs(a[4] - b[4]) < 1e-9 and abs(a[-1] / b[-1] - 1.0) < 1e-9
-    assert abs(
-        lammps_jkr.sticking_velocity(E, R, M, 0.0, (0.05, 0.0, 0.0)) / jkr_el.sticking_velocity(E, R, M, 0.0, (0.05,))
-        - 1.0
-    ) < 1e-9
+    assert (
+        abs(
+            lammps_jkr.sticking_velocity(E, R, M, 0.0, (0.05, 0.0, 0.0))
+            / jkr_el.sticking_velocity(E, R, M, 0.0, (0.05,))
+            - 1.0
+        )
+        < 1e-9
+    )
     A = 2e-9
     eta = 4.0 * E * A / (3.0 * M)
     for law in LAWS.values():
@@ -110,7 +113,9 @@ def test_tsuji_and_coeff_restitution_are_flagged_and_switch_off_under_tension():
             assert law.outside_validity(1.0, E, R, M, 0.0, (0.05, mode, 0.5)) == 4.0
             p = (0.05, mode, 0.5)
             tiny = 1e-14  # approach where the cohesive force is still tensile
-            assert law.signed_force(tiny, 1.0, tiny, E, R, M, 0.0, p) == law.signed_force(tiny, 0.0, tiny, E, R, M, 0.0, p)
+            assert law.signed_force(tiny, 1.0, tiny, E, R, M, 0.0, p) == law.signed_force(
+                tiny, 0.0, tiny, E, R, M, 0.0, p
+            )
         with pytest.warns(mi.models.OutsideValidityWarning, match="refuses"):
             mi.models.outside_validity(PAIR, [1.0], model=name, **_params(0.05, 2, 0.5))
 
@@ -145,11 +150,15 @@ def _run_capture(cal, V, dt, steps, tmp_path):
     """Run the printed lines at ``V`` with step ``dt``; ``(left, final gap)``: whether the particle got
     beyond the separation approach after touching, from LAMMPS' own record."""
     d = dem.deck(cal, "lammps", 2.0 * V, time_step=dt)  # a deck of the lines; its speed is replaced
-    text = d.text.replace(f"velocity all set 0.0 0.0 {-2.0 * V!r} units box", f"velocity all set 0.0 0.0 {-V!r} units box")
+    text = d.text.replace(
+        f"velocity all set 0.0 0.0 {-2.0 * V!r} units box", f"velocity all set 0.0 0.0 {-V!r} units box"
+    )
     text = text.replace(f"run {d.steps}", f"run {steps}")
     assert text.count(f"{-V!r} units box") == 1
     (tmp_path / "in.deck").write_text(text)
-    subprocess.run([LMP, "-in", "in.deck", "-log", "none", "-echo", "none"], cwd=tmp_path, check=True, capture_output=True)
+    subprocess.run(
+        [LMP, "-in", "in.deck", "-log", "none", "-echo", "none"], cwd=tmp_path, check=True, capture_output=True
+    )
     rows = np.loadtxt(tmp_path / d.record)
     approach = d.radius - rows[:, 1]
     touched = np.flatnonzero(approach >= 0.0)

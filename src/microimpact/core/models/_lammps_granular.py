@@ -453,7 +453,9 @@ def validate(params):
     if mode != 0.0 and not coeff <= 1.0:
         raise ValueError(f"damping must be a restitution e_n <= 1 for damping_model {mode:g}, got {coeff!r}")
     if mode == 2.0 and not coeff > 0.0:
-        raise ValueError(f"damping must be a restitution e_n > 0 for coeff_restitution (its log is taken), got {coeff!r}")
+        raise ValueError(
+            f"damping must be a restitution e_n > 0 for coeff_restitution (its log is taken), got {coeff!r}"
+        )
     return params
 
 
