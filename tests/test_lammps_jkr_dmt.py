@@ -120,12 +120,22 @@ def test_tsuji_and_coeff_restitution_are_flagged_and_switch_off_under_tension():
             mi.models.outside_validity(PAIR, [1.0], model=name, **_params(0.05, 2, 0.5))
 
 
-def test_bad_parameters_are_named():
+def test_bad_parameters_are_named_and_unchecked_inputs_run_as_lammps_runs_them():
+    """Out of bounds: ValueError naming the parameter. LAMMPS does not check ``e_n``: ``e_n > 1``
+    makes the damping feed energy in (e > 1, flagged with code 1 beside the refusal's 4) and
+    coeff_restitution's ``e_n = 0`` is NaN (infinity over infinity, as in LAMMPS)."""
     with pytest.raises(ValueError, match="damping_model"):
-        PAIR.impact(1.0, model="lammps_jkr", **_params(0.05, 1.5, 0.5))
-    with pytest.raises(ValueError, match="damping"):
-        PAIR.impact(1.0, model="lammps_dmt", **_params(0.05, 2, 0.0))
+        PAIR.impact(1.0, model="lammps_jkr", **_params(0.05, 2.5, 0.5))
+    with pytest.raises(ValueError, match="surface_energy"):
+        PAIR.impact(1.0, model="lammps_dmt", **_params(-0.05, 0, 0.5))
     assert math.isnan(lammps_jkr.outcome(1.0, E, R, M, 0.0, (0.05, 3.0, 0.5))[4])
+    assert math.isnan(lammps_dmt.outcome(1.0, E, R, M, 0.0, (0.05, 2.0, 0.0))[4])
+    for law in LAWS.values():
+        assert law.outside_validity(1.0, E, R, M, 0.0, (0.05, 2.0, 1.5)) == 5.0
+        assert law.outcome(2.0, E, R, M, 0.0, (0.05, 2.0, 1.5))[4] > 1.0
+        assert (
+            law.outcome(2.0, E, R, M, 0.0, (0.05, 1.5, 0.6))[4] == law.outcome(2.0, E, R, M, 0.0, (0.05, 1.0, 0.6))[4]
+        )
 
 
 def test_generic_machinery_takes_both_models():

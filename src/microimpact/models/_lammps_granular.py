@@ -18,7 +18,7 @@ def lammps(cal, style):
     """``(coeff, comment)``: ``STYLE E damp nu cohesion tangential ... damping KEYWORD``, ``E = 2 (1 - nu^2) E*``
     (LAMMPS' ``mix_stiffnessE_wall`` and ``mix_stiffnessE`` for one material give back ``E*``)."""
     p = cal.as_dict()
-    mode = int(p["damping_model"])
+    mode = int(lg.mode_of(p["damping_model"]))
     E_in = 2.0 * (1.0 - POISSON * POISSON) * cal.effective_modulus
     keyword = lg.DAMPING_NAMES[mode]
     coeff = (
@@ -40,7 +40,10 @@ def calibrate(law, pair_values, velocity, target_restitution, surface_energy, da
 
     gamma = float(surface_energy)
     mode = float(damping_model)
-    lg.validate((gamma, mode, 0.5))
+    if mode not in (0.0, 1.0, 2.0):
+        raise ValueError(
+            f"damping_model must be 0 (viscoelastic), 1 (tsuji) or 2 (coeff_restitution), got {damping_model!r}"
+        )
     if not (gamma >= 0.0 and math.isfinite(gamma)):
         raise ValueError(f"surface_energy must be non-negative and finite, got {surface_energy!r}")
     E, R, m, _ = pair_values

@@ -58,13 +58,13 @@ _MAX_STEPS = 400000
 def damping_factor(mode, coeff):
     """The constant of ``eta_n`` LAMMPS' ``init()`` makes of the damping input ``coeff``: ``eta_n0``
     itself (viscoelastic), Marshall's polynomial of ``e_n`` (tsuji), ``5^(1/2)(-ln e_n)/(pi^2 +
-    ln^2 e_n)^(1/2)`` (coeff_restitution; ``e_n = 0`` gives an infinite factor)."""
+    ln^2 e_n)^(1/2)`` (coeff_restitution: at ``e_n = 0`` LAMMPS divides infinity by infinity, NaN)."""
     if mode == 0.0:
         return coeff
     if mode == 1.0:
         return alpha_tsuji(coeff)
     if coeff == 0.0:
-        return math.inf
+        return math.nan
     return alpha_coeff_restitution(coeff)
 
 
@@ -432,35 +432,19 @@ def energy_budget(kind, V, E, R, m, gamma, mode, coeff):
 
 
 @jitable
-def valid(params):
-    """The rules bounds cannot state: ``damping_model`` 0, 1 or 2; ``e_n <= 1`` for tsuji and
-    ``0 < e_n <= 1`` for coeff_restitution (``params``: surface energy, mode, damping input)."""
-    mode = params[1]
-    if not (mode == 0.0 or mode == 1.0 or mode == 2.0):
-        return False
-    if mode != 0.0 and not params[2] <= 1.0:
-        return False
-    if mode == 2.0 and not params[2] > 0.0:
-        return False
-    return True
-
-
-def validate(params):
-    """ValueError naming the parameter for the rules of :func:`valid`; ``params`` back."""
-    mode, coeff = params[1], params[2]
-    if mode not in (0.0, 1.0, 2.0):
-        raise ValueError(f"damping_model must be 0 (viscoelastic), 1 (tsuji) or 2 (coeff_restitution), got {mode!r}")
-    if mode != 0.0 and not coeff <= 1.0:
-        raise ValueError(f"damping must be a restitution e_n <= 1 for damping_model {mode:g}, got {coeff!r}")
-    if mode == 2.0 and not coeff > 0.0:
-        raise ValueError(
-            f"damping must be a restitution e_n > 0 for coeff_restitution (its log is taken), got {coeff!r}"
-        )
-    return params
+def mode_of(x):
+    """The damping keyword's number, 0, 1 or 2, of the parameter ``damping_model`` in [0, 2] (a value
+    between two integers is read as the one below it, as C's cast of a float to an int)."""
+    return float(math.floor(x))
 
 
 @jitable
 def refused(params):
     """The ``outside_validity`` code: 4 where LAMMPS 22 Jul 2025 refuses the damping keyword with a
-    cohesive normal model (tsuji, coeff_restitution), else 0."""
-    return 4.0 if params[1] != 0.0 else 0.0
+    cohesive normal model (tsuji, coeff_restitution), plus 1 where the damping factor is negative
+    (an ``e_n > 1``, which LAMMPS does not check): the damping then feeds energy in."""
+    mode = mode_of(params[1])
+    code = 4.0 if mode != 0.0 else 0.0
+    if damping_factor(mode, params[2]) < 0.0:
+        code += 1.0
+    return code

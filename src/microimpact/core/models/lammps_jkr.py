@@ -38,11 +38,14 @@ into the neck's work, the damping's work and the rebound energy.
 
 ``surface_energy`` ``gamma`` [J/m^2], ``>= 0``
     LAMMPS' ``cohesion`` (the work of adhesion is ``2 gamma``); 0 gives Hertz with the damping.
-``damping_model`` [-], 0, 1 or 2
-    0 ``viscoelastic``, 1 ``tsuji``, 2 ``coeff_restitution``.
+``damping_model`` [-], in [0, 2]
+    0 ``viscoelastic``, 1 ``tsuji``, 2 ``coeff_restitution`` (a value between two integers is read
+    as the one below it).
 ``damping`` [1/(m s) or -], ``>= 0``
-    LAMMPS' damping input of the normal model: ``eta_n0`` for ``viscoelastic``; ``e_n`` in [0, 1]
-    (``tsuji``) or (0, 1] (``coeff_restitution``).
+    LAMMPS' damping input of the normal model: ``eta_n0`` for ``viscoelastic``; ``e_n`` for
+    ``tsuji`` and ``coeff_restitution``, which LAMMPS does not check: ``e_n > 1`` gives a negative
+    factor (the damping feeds energy in; flagged, code 1) and ``e_n = 0`` with
+    ``coeff_restitution`` NaN (infinity over infinity, as in LAMMPS).
 
 Fields this model does not define (NaN): ``yield_velocity``, ``normalized_velocity``,
 ``unloading_radius``, ``elastic_stage_time``, ``plastic_stage_time``. ``plastic_approach`` is the
@@ -67,36 +70,31 @@ COST = "slow"
 KIND = lg.JKR
 PARAMETERS = (
     Parameter.of("surface_energy", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)", low=0.0),
-    Parameter("damping_model", "1", "0 viscoelastic, 1 tsuji, 2 coeff_restitution", default=0.0, low=0.0, high=2.0),
+    Parameter(
+        "damping_model", "1", "0 viscoelastic, 1 tsuji, 2 coeff_restitution (floored)", default=0.0, low=0.0, high=2.0
+    ),
     Parameter("damping", "1/(m s) or 1", "eta_n0 (viscoelastic) or e_n (tsuji, coeff_restitution)", low=0.0),
 )
-BOUNDS, _validate = checks(NAME, PARAMETERS)
+BOUNDS, validate = checks(NAME, PARAMETERS)
 #: The adhesion limit of the law (Tabor's parameter large).
 ADHESION_LIMIT = "JKR"
-
-
-def validate(params):
-    """Check ``params`` (ValueError naming the parameter and its value); return them as floats."""
-    return lg.validate(_validate(params))
-
-
-@jitable
-def _valid(params):
-    return in_bounds(params, BOUNDS) and lg.valid(params)
 
 
 @jitable
 def outcome(V, E, R, m, p_y, params):
     """Outcome of one impact (module docstring; ``p_y`` unused)."""
-    ok = _valid(params)
-    return lg.outcome(KIND, V, E, R, m, ok, params[0] if ok else 0.0, params[1], params[2])
+    ok = in_bounds(params, BOUNDS)
+    if not ok:
+        return lg.outcome(KIND, V, E, R, m, False, 0.0, 0.0, 0.0)
+    return lg.outcome(KIND, V, E, R, m, True, params[0], lg.mode_of(params[1]), params[2])
 
 
 @jitable
 def signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
     """``F_n = F_ne + F_damp`` [N] on the JKR curve (positive: repulsive)."""
-    factor = lg.damping_factor(params[1], params[2])
-    return lg.total_force(KIND, params[1], factor, alpha, alpha_dot, E, R, m, params[0])
+    mode = lg.mode_of(params[1])
+    factor = lg.damping_factor(mode, params[2])
+    return lg.total_force(KIND, mode, factor, alpha, alpha_dot, E, R, m, params[0])
 
 
 @jitable
@@ -128,20 +126,22 @@ def separation_approach(E, R, m, p_y, params):
 @jitable
 def sticking_velocity(E, R, m, p_y, params):
     """The capture velocity ``V_s`` [m/s] (``e = 0`` at and below it; NaN for invalid ``params``)."""
-    if not _valid(params):
+    if not in_bounds(params, BOUNDS):
         return math.nan
-    return lg.capture_velocity(KIND, params[1], lg.damping_factor(params[1], params[2]), E, R, m, params[0])
+    mode = lg.mode_of(params[1])
+    return lg.capture_velocity(KIND, mode, lg.damping_factor(mode, params[2]), E, R, m, params[0])
 
 
 @jitable
 def outside_validity(V, E, R, m, p_y, params):
-    """4 where LAMMPS 22 Jul 2025 refuses the input (damping tsuji or coeff_restitution with jkr), else 0."""
+    """4 where LAMMPS 22 Jul 2025 refuses the input (damping tsuji or coeff_restitution with jkr), plus 1
+    where a negative damping factor (``e_n > 1``) feeds energy in; else 0."""
     return lg.refused(params)
 
 
 def energy_budget(V, E, R, m, params):
     """``(K_in, W_neck, W_damping, K_out)`` [J] of one impact (:func:`~._lammps_granular.energy_budget`)."""
-    return lg.energy_budget(KIND, float(V), E, R, m, params[0], params[1], params[2])
+    return lg.energy_budget(KIND, float(V), E, R, m, params[0], lg.mode_of(params[1]), params[2])
 
 
 @jitable
