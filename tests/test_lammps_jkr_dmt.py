@@ -27,8 +27,14 @@ LAWS = {"lammps_jkr": lammps_jkr, "lammps_dmt": lammps_dmt}
 NAMES = {0: "viscoelastic", 1: "tsuji", 2: "coeff_restitution"}
 
 
+def _tuple(gamma, mode, coeff):
+    """The params tuple of a surface energy, damping keyword number and that keyword's input."""
+    return (gamma, float(mode), coeff, 1.0) if int(mode) == 0 else (gamma, float(mode), 0.0, coeff)
+
+
 def _params(gamma, mode, coeff):
-    return {"surface_energy": gamma, "damping_model": mode, "damping": coeff}
+    names = ("surface_energy", "damping_model", "viscoelastic_damping", "normal_restitution")
+    return dict(zip(names, _tuple(gamma, mode, coeff)))
 
 
 # ----------------------------------------------------------------------------- the law itself
@@ -41,7 +47,7 @@ def test_outcome_is_the_integration_of_its_force(name, mode, coeff):
     ``pair.history(method="ode")`` (scipy's DOP853 on :func:`force`) to 1e-8."""
     p = _params(0.05, mode, coeff)
     law = LAWS[name]
-    V = 1.5 * law.sticking_velocity(E, R, M, 0.0, (0.05, float(mode), coeff))
+    V = 1.5 * law.sticking_velocity(E, R, M, 0.0, _tuple(0.05, float(mode), coeff))
     h = PAIR.history(V, model=name, method="ode", n=51, **p)
     o = PAIR.impact(V, model=name, warn=False, **p)
     assert abs(h.rebound_velocity / V - float(o.restitution)) < 1e-8
@@ -61,10 +67,10 @@ def test_capture_velocity_is_where_the_integration_stops_leaving(log_gamma, log_
     force law keeps the particle, at ``factor V_s`` it leaves with ``e`` = the outcome's (1e-8),
     and the energy bookkeeping closes: impact energy = neck + damping + rebound, none created."""
     law = LAWS[which]
-    params = (10.0**log_gamma, 0.0, 10.0**log_eta)
+    params = _tuple(10.0**log_gamma, 0.0, 10.0**log_eta)
     Vs = law.sticking_velocity(E, R, M, 0.0, params)
     assert Vs > 0.0
-    kw = _params(*params)
+    kw = _params(10.0**log_gamma, 0, 10.0**log_eta)
     assert float(PAIR.impact(Vs * (1.0 - 1e-6), model=which, warn=False, **kw).restitution) == 0.0
     V = factor * Vs
     h = PAIR.history(V, model=which, method="ode", n=21, **kw)
@@ -80,12 +86,12 @@ def test_without_damping_jkr_is_the_elastic_jkr_and_without_cohesion_hertz_visco
     """damping 0: the JKR model's closed form (e, V_s to 1e-9); cohesion 0 with viscoelastic damping:
     Hertz with Brilliantov's damping, ``eta_n0 = 4 E* A/(3 m*)`` (LAMMPS' viscoelastic, 1e-9)."""
     for V in (0.3, 1.0):
-        a = lammps_jkr.outcome(V, E, R, M, 0.0, (0.05, 0.0, 0.0))
+        a = lammps_jkr.outcome(V, E, R, M, 0.0, _tuple(0.05, 0.0, 0.0))
         b = jkr_el.outcome(V, E, R, M, 0.0, (0.05,))
         assert abs(a[4] - b[4]) < 1e-9 and abs(a[-1] / b[-1] - 1.0) < 1e-9
     assert (
         abs(
-            lammps_jkr.sticking_velocity(E, R, M, 0.0, (0.05, 0.0, 0.0))
+            lammps_jkr.sticking_velocity(E, R, M, 0.0, _tuple(0.05, 0.0, 0.0))
             / jkr_el.sticking_velocity(E, R, M, 0.0, (0.05,))
             - 1.0
         )
@@ -94,24 +100,24 @@ def test_without_damping_jkr_is_the_elastic_jkr_and_without_cohesion_hertz_visco
     A = 2e-9
     eta = 4.0 * E * A / (3.0 * M)
     for law in LAWS.values():
-        e = law.outcome(0.7, E, R, M, 0.0, (0.0, 0.0, eta))[4]
+        e = law.outcome(0.7, E, R, M, 0.0, _tuple(0.0, 0.0, eta))[4]
         assert abs(e - hv.outcome(0.7, E, R, M, 0.0, (A, 0.0))[4]) < 1e-9
 
 
 def test_dmt_without_damping_never_captures_and_damping_does():
-    assert lammps_dmt.sticking_velocity(E, R, M, 0.0, (0.05, 0.0, 0.0)) == 0.0
-    assert lammps_dmt.outcome(0.01, E, R, M, 0.0, (0.05, 0.0, 0.0))[4] > 0.999
-    assert lammps_dmt.outcome(0.01, E, R, M, 0.0, (0.05, 0.0, 3e13))[4] == 0.0
+    assert lammps_dmt.sticking_velocity(E, R, M, 0.0, _tuple(0.05, 0.0, 0.0)) == 0.0
+    assert lammps_dmt.outcome(0.01, E, R, M, 0.0, _tuple(0.05, 0.0, 0.0))[4] > 0.999
+    assert lammps_dmt.outcome(0.01, E, R, M, 0.0, _tuple(0.05, 0.0, 3e13))[4] == 0.0
 
 
 def test_tsuji_and_coeff_restitution_are_flagged_and_switch_off_under_tension():
     """Modes 1 and 2 carry the refusal code 4 (LAMMPS 22 Jul 2025 refuses them with cohesion); their
     damping vanishes where the cohesive force is tensile (``max(0, F_ne/delta)``) and beyond contact."""
     for name, law in LAWS.items():
-        assert law.outside_validity(1.0, E, R, M, 0.0, (0.05, 0.0, 1e13)) == 0.0
+        assert law.outside_validity(1.0, E, R, M, 0.0, _tuple(0.05, 0.0, 1e13)) == 0.0
         for mode in (1.0, 2.0):
-            assert law.outside_validity(1.0, E, R, M, 0.0, (0.05, mode, 0.5)) == 4.0
-            p = (0.05, mode, 0.5)
+            assert law.outside_validity(1.0, E, R, M, 0.0, _tuple(0.05, mode, 0.5)) == 4.0
+            p = _tuple(0.05, mode, 0.5)
             tiny = 1e-14  # approach where the cohesive force is still tensile
             assert law.signed_force(tiny, 1.0, tiny, E, R, M, 0.0, p) == law.signed_force(
                 tiny, 0.0, tiny, E, R, M, 0.0, p
@@ -128,13 +134,14 @@ def test_bad_parameters_are_named_and_unchecked_inputs_run_as_lammps_runs_them()
         PAIR.impact(1.0, model="lammps_jkr", **_params(0.05, 2.5, 0.5))
     with pytest.raises(ValueError, match="surface_energy"):
         PAIR.impact(1.0, model="lammps_dmt", **_params(-0.05, 0, 0.5))
-    assert math.isnan(lammps_jkr.outcome(1.0, E, R, M, 0.0, (0.05, 3.0, 0.5))[4])
-    assert math.isnan(lammps_dmt.outcome(1.0, E, R, M, 0.0, (0.05, 2.0, 0.0))[4])
+    assert math.isnan(lammps_jkr.outcome(1.0, E, R, M, 0.0, _tuple(0.05, 3.0, 0.5))[4])
+    assert math.isnan(lammps_dmt.outcome(1.0, E, R, M, 0.0, _tuple(0.05, 2.0, 0.0))[4])
     for law in LAWS.values():
-        assert law.outside_validity(1.0, E, R, M, 0.0, (0.05, 2.0, 1.5)) == 5.0
-        assert law.outcome(2.0, E, R, M, 0.0, (0.05, 2.0, 1.5))[4] > 1.0
+        assert law.outside_validity(1.0, E, R, M, 0.0, _tuple(0.05, 2.0, 1.5)) == 5.0
+        assert law.outcome(2.0, E, R, M, 0.0, _tuple(0.05, 2.0, 1.5))[4] > 1.0
         assert (
-            law.outcome(2.0, E, R, M, 0.0, (0.05, 1.5, 0.6))[4] == law.outcome(2.0, E, R, M, 0.0, (0.05, 1.0, 0.6))[4]
+            law.outcome(2.0, E, R, M, 0.0, _tuple(0.05, 1.5, 0.6))[4]
+            == law.outcome(2.0, E, R, M, 0.0, _tuple(0.05, 1.0, 0.6))[4]
         )
 
 
@@ -143,7 +150,9 @@ def test_generic_machinery_takes_both_models():
     for name in LAWS:
         f = face(name)
         assert f.own_calibration
-        assert f.module.params_for_work_of_adhesion(0.1, (E, R, M, 1e12), (0.0, 0.0, 1e13)) == (0.05, 0.0, 1e13)
+        assert f.module.params_for_work_of_adhesion(0.1, (E, R, M, 1e12), _tuple(0.0, 0.0, 1e13)) == _tuple(
+            0.05, 0.0, 1e13
+        )
         cal = Calibration.of(PAIR, name, _params(0.05, 0, 3e13), velocity=1.0)
         text = cal.lammps()
         assert f"{name[7:]} " in text and "damping viscoelastic" in text
@@ -183,8 +192,8 @@ def test_lammps_viscoelastic_bounce_and_capture(name, tmp_path):
     """LAMMPS' ``damping viscoelastic`` with cohesion: at 1.2 V_s its e equals the model's within
     1e-3 (measured 4e-5 at 5000 steps per contact, the velocity-Verlet error of the damping, first
     order in the step); at 0.9 V_s LAMMPS keeps the particle, as the model does."""
-    p = (0.05, 0.0, 3e13)
-    cal = Calibration.of(PAIR, name, _params(*p), velocity=1.0)
+    p = _tuple(0.05, 0.0, 3e13)
+    cal = Calibration.of(PAIR, name, _params(0.05, 0, 3e13), velocity=1.0)
     Vs = get(name).sticking_velocity(E, R, M, 0.0, p)
     V = 1.2 * Vs
     res = dem.run(dem.deck(cal, "lammps", V, steps_per_contact=STEPS), LMP)

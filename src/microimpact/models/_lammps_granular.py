@@ -21,9 +21,9 @@ def lammps(cal, style):
     mode = int(lg.mode_of(p["damping_model"]))
     E_in = 2.0 * (1.0 - POISSON * POISSON) * cal.effective_modulus
     keyword = lg.DAMPING_NAMES[mode]
+    damp = p["viscoelastic_damping"] if mode == 0 else p["normal_restitution"]
     coeff = (
-        f"{style} {E_in:.17g} {p['damping']:.17g} {POISSON!r} {p['surface_energy']:.17g} "
-        f"{LAMMPS_TANGENTIAL} damping {keyword}"
+        f"{style} {E_in:.17g} {damp:.17g} {POISSON!r} {p['surface_energy']:.17g} {LAMMPS_TANGENTIAL} damping {keyword}"
     )
     if mode == 0:
         note = f"# {style}: E = 2 (1 - nu^2) E*, cohesion = gamma = G/2, eta_n = eta_n0 m* a (a: the {style} contact radius)"
@@ -57,11 +57,15 @@ def calibrate(law, pair_values, velocity, target_restitution, surface_energy, da
         # eta_n0 of the order of the Hertz stiffness over m* and a speed: 4 E* / (3 m* V) per second of A
         scale = 4.0 * E / (3.0 * m * float(np.median(velocity)))
         g = math.log(scale)
-        r = minimize_scalar(lambda u: cost((gamma, mode, math.exp(u))), bounds=(g - 20.0, g + 5.0), method="bounded")
-        return (gamma, mode, math.exp(r.x))
+        r = minimize_scalar(
+            lambda u: cost((gamma, mode, math.exp(u), 1.0)), bounds=(g - 20.0, g + 5.0), method="bounded"
+        )
+        return (gamma, mode, math.exp(r.x), 1.0)
     lo = 1e-6 if mode == 2.0 else 0.0
-    r = minimize_scalar(lambda x: cost((gamma, mode, x)), bounds=(lo, 1.0), method="bounded", options={"xatol": 1e-12})
-    return (gamma, mode, float(r.x))
+    r = minimize_scalar(
+        lambda x: cost((gamma, mode, 0.0, x)), bounds=(lo, 1.0), method="bounded", options={"xatol": 1e-12}
+    )
+    return (gamma, mode, 0.0, float(r.x))
 
 
 def params_for_work_of_adhesion(work_of_adhesion, pair_values, params):

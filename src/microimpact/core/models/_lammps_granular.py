@@ -39,7 +39,7 @@ import math
 
 from .. import dop853 as dp
 from .._jit import jitable
-from ._common import dem_outcome
+from ._common import dem_outcome, nan_outcome
 from .hertz_tsuji import alpha_coeff_restitution, alpha_tsuji
 from .jkr_elastic_adhesive import WORK_CONSTANT, contact_radius, pulloff_approach
 from .jkr_elastic_adhesive import signed_force as jkr_elastic_force
@@ -399,15 +399,14 @@ def capture_velocity(kind, mode, factor, E, R, m, gamma):
 @jitable
 def outcome(kind, V, E, R, m, valid, gamma, mode, coeff):
     """The contract's outcome tuple of one impact (``valid``: the parameters passed the checks)."""
-    n = math.nan
     if not valid or not (V >= 0.0 and V < math.inf):
-        return (V, n, n, n, n, n, n, n, n, n, n, n, n, n, n, n, n, n)
+        return nan_outcome(V)
     if V == 0.0:
         return dem_outcome(V, 0.0 if gamma > 0.0 else 1.0, 0.0, 0.0, 0.0, R, math.inf, math.inf)
     factor = damping_factor(mode, coeff)
     e, x_max, t_max, f_max, t_end, _, end = impact(kind, mode, factor, V, E, R, m, gamma)
     if e != e:
-        return (V, n, n, n, n, n, n, n, n, n, n, n, n, n, n, n, n, n)
+        return nan_outcome(V)
     if end != 1.0:
         return dem_outcome(V, 0.0, x_max, separation(kind, E, R, gamma), f_max, R, t_max, math.inf)
     return dem_outcome(V, e, x_max, separation(kind, E, R, gamma), f_max, R, t_max, t_end - t_max)
@@ -439,12 +438,20 @@ def mode_of(x):
 
 
 @jitable
+def damping_input(params):
+    """``(mode, input)``: the damping keyword's number and the input it reads (``eta_n0`` for
+    viscoelastic, ``e_n`` else) of ``params = (gamma, damping_model, eta_n0, e_n)``."""
+    mode = mode_of(params[1])
+    return mode, params[2] if mode == 0.0 else params[3]
+
+
+@jitable
 def refused(params):
     """The ``outside_validity`` code: 4 where LAMMPS 22 Jul 2025 refuses the damping keyword with a
     cohesive normal model (tsuji, coeff_restitution), plus 1 where the damping factor is negative
     (an ``e_n > 1``, which LAMMPS does not check): the damping then feeds energy in."""
-    mode = mode_of(params[1])
+    mode, coeff = damping_input(params)
     code = 4.0 if mode != 0.0 else 0.0
-    if damping_factor(mode, params[2]) < 0.0:
+    if damping_factor(mode, coeff) < 0.0:
         code += 1.0
     return code

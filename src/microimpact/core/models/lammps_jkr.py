@@ -39,13 +39,14 @@ into the neck's work, the damping's work and the rebound energy.
 ``surface_energy`` ``gamma`` [J/m^2], ``>= 0``
     LAMMPS' ``cohesion`` (the work of adhesion is ``2 gamma``); 0 gives Hertz with the damping.
 ``damping_model`` [-], in [0, 2]
-    0 ``viscoelastic``, 1 ``tsuji``, 2 ``coeff_restitution`` (a value between two integers is read
-    as the one below it).
-``damping`` [1/(m s) or -], ``>= 0``
-    LAMMPS' damping input of the normal model: ``eta_n0`` for ``viscoelastic``; ``e_n`` for
-    ``tsuji`` and ``coeff_restitution``, which LAMMPS does not check: ``e_n > 1`` gives a negative
-    factor (the damping feeds energy in; flagged, code 1) and ``e_n = 0`` with
-    ``coeff_restitution`` NaN (infinity over infinity, as in LAMMPS).
+    LAMMPS' ``damping`` keyword: 0 ``viscoelastic`` (its default), 1 ``tsuji``, 2
+    ``coeff_restitution`` (a value between two integers is read as the one below it).
+``viscoelastic_damping`` ``eta_n0`` [1/(m s)], ``>= 0`` (default 0)
+    The normal model's damping input under ``damping viscoelastic``.
+``normal_restitution`` ``e_n`` [-], ``>= 0`` (default 1)
+    The normal model's damping input under ``tsuji`` and ``coeff_restitution``. LAMMPS does not
+    check it: ``e_n > 1`` gives a negative factor (the damping feeds energy in; flagged, code 1)
+    and ``e_n = 0`` with ``coeff_restitution`` NaN (infinity over infinity, as in LAMMPS).
 
 Fields this model does not define (NaN): ``yield_velocity``, ``normalized_velocity``,
 ``unloading_radius``, ``elastic_stage_time``, ``plastic_stage_time``. ``plastic_approach`` is the
@@ -70,10 +71,16 @@ COST = "slow"
 KIND = lg.JKR
 PARAMETERS = (
     Parameter.of("surface_energy", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)", low=0.0),
-    Parameter(
-        "damping_model", "1", "0 viscoelastic, 1 tsuji, 2 coeff_restitution (floored)", default=0.0, low=0.0, high=2.0
+    Parameter.of(
+        "damping_model",
+        default=0.0,
+        low=0.0,
+        high=2.0,
     ),
-    Parameter("damping", "1/(m s) or 1", "eta_n0 (viscoelastic) or e_n (tsuji, coeff_restitution)", low=0.0),
+    Parameter.of("viscoelastic_damping", "eta_n0 >= 0, used by damping_model 0", default=0.0, low=0.0),
+    Parameter.of(
+        "normal_restitution", "e_n >= 0 (unchecked, as LAMMPS), used by damping_model 1 and 2", default=1.0, low=0.0
+    ),
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
 #: The adhesion limit of the law (Tabor's parameter large).
@@ -86,14 +93,15 @@ def outcome(V, E, R, m, p_y, params):
     ok = in_bounds(params, BOUNDS)
     if not ok:
         return lg.outcome(KIND, V, E, R, m, False, 0.0, 0.0, 0.0)
-    return lg.outcome(KIND, V, E, R, m, True, params[0], lg.mode_of(params[1]), params[2])
+    mode, coeff = lg.damping_input(params)
+    return lg.outcome(KIND, V, E, R, m, True, params[0], mode, coeff)
 
 
 @jitable
 def signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
     """``F_n = F_ne + F_damp`` [N] on the JKR curve (positive: repulsive)."""
-    mode = lg.mode_of(params[1])
-    factor = lg.damping_factor(mode, params[2])
+    mode, coeff = lg.damping_input(params)
+    factor = lg.damping_factor(mode, coeff)
     return lg.total_force(KIND, mode, factor, alpha, alpha_dot, E, R, m, params[0])
 
 
@@ -128,8 +136,8 @@ def sticking_velocity(E, R, m, p_y, params):
     """The capture velocity ``V_s`` [m/s] (``e = 0`` at and below it; NaN for invalid ``params``)."""
     if not in_bounds(params, BOUNDS):
         return math.nan
-    mode = lg.mode_of(params[1])
-    return lg.capture_velocity(KIND, mode, lg.damping_factor(mode, params[2]), E, R, m, params[0])
+    mode, coeff = lg.damping_input(params)
+    return lg.capture_velocity(KIND, mode, lg.damping_factor(mode, coeff), E, R, m, params[0])
 
 
 @jitable
@@ -141,7 +149,8 @@ def outside_validity(V, E, R, m, p_y, params):
 
 def energy_budget(V, E, R, m, params):
     """``(K_in, W_neck, W_damping, K_out)`` [J] of one impact (:func:`~._lammps_granular.energy_budget`)."""
-    return lg.energy_budget(KIND, float(V), E, R, m, params[0], lg.mode_of(params[1]), params[2])
+    mode, coeff = lg.damping_input(params)
+    return lg.energy_budget(KIND, float(V), E, R, m, params[0], mode, coeff)
 
 
 @jitable
