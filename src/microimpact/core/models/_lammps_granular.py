@@ -70,8 +70,12 @@ def damping_factor(mode, coeff):
 
 @jitable
 def elastic_force(kind, alpha, E, R, gamma):
-    """``F_ne`` [N] of the normal model at approach ``alpha`` (in contact)."""
+    """``F_ne`` [N] of the normal model at approach ``alpha`` (in contact; JKR's curve is held at
+    its end ``-delta_c`` below it, where only a step's trial stages look: the closed-form radius has
+    no real value far beyond the end)."""
     if kind == JKR:
+        if gamma > 0.0:
+            alpha = max(alpha, -pulloff_approach(E, R, gamma))
         return jkr_elastic_force(alpha, 0.0, 0.0, E, R, 1.0, math.inf, (gamma,))
     a = math.sqrt(R * alpha) if alpha > 0.0 else 0.0
     return 4.0 / 3.0 * E * a * alpha - 4.0 * math.pi * gamma * R
@@ -81,7 +85,7 @@ def elastic_force(kind, alpha, E, R, gamma):
 def radius(kind, alpha, E, R, gamma):
     """The normal model's contact radius ``a`` [m] (what ``damping viscoelastic`` multiplies)."""
     if kind == JKR and gamma > 0.0:
-        return contact_radius(alpha, E, R, gamma)
+        return contact_radius(max(alpha, -pulloff_approach(E, R, gamma)), E, R, gamma)
     return math.sqrt(R * alpha) if alpha > 0.0 else 0.0
 
 
@@ -285,7 +289,14 @@ def impact(kind, mode, factor, V, E, R, m, gamma):
     phase = 0  # 0 loading (v > 0), 1 unloading (v < 0)
     x_max = 0.0
     t_max = 0.0
-    f_max = -math.inf
+    f_max = total_force(kind, mode, factor, x, v, E, R, m, gamma)
+    # the force's largest value: the two steps around the largest one at a step's end, searched later
+    xb = x
+    vb = v
+    span = 0.0
+    pending = False
+    xp = x
+    vp = v
     for _ in range(_MAX_STEPS):
         xn, vn, wn, err = _step(x, v, w, h, kind, mode, factor, E, R, m, gamma, sx, sv)
         if not (err <= 1.0):
@@ -293,35 +304,73 @@ def impact(kind, mode, factor, V, E, R, m, gamma):
                 return math.nan, math.nan, math.nan, math.nan, math.nan, math.nan, math.nan
             h *= max(0.2, 0.9 * err ** (-1.0 / 8.0))
             continue
+        done = 0.0
+        s = h
         if phase == 0 and vn <= 0.0:
             s = _locate(0, 1.0, x, v, w, h, xn, vn, kind, mode, factor, E, R, m, gamma, sx, sv, x_sep)
-            x, v, w, _ = _step(x, v, w, s, kind, mode, factor, E, R, m, gamma, sx, sv)
-            t += s
+            done = 2.0
+        elif phase == 1 and xn <= x_sep:
+            s = _locate(1, 1.0, x, v, w, h, xn, vn, kind, mode, factor, E, R, m, gamma, sx, sv, x_sep)
+            done = 1.0
+        elif phase == 1 and vn >= 0.0 and x < x_max:
+            s = _locate(0, -1.0, x, v, w, h, xn, vn, kind, mode, factor, E, R, m, gamma, sx, sv, x_sep)
+            done = -1.0
+        if s != h:
+            xn, vn, wn, _ = _step(x, v, w, s, kind, mode, factor, E, R, m, gamma, sx, sv)
+        xp, vp = x, v
+        x, v, w = xn, vn, wn
+        t += s
+        if pending:
+            span += s
+            pending = False
+        f = total_force(kind, mode, factor, x, v, E, R, m, gamma)
+        if f > f_max:
+            f_max = f
+            xb, vb, span = xp, vp, s
+            pending = True
+        if done == 2.0:
             x_max = x
             t_max = t
-            f = total_force(kind, mode, factor, x, v, E, R, m, gamma)
-            if f > f_max:
-                f_max = f
             phase = 1
-            continue
-        if phase == 1 and xn <= x_sep:
-            s = _locate(1, 1.0, x, v, w, h, xn, vn, kind, mode, factor, E, R, m, gamma, sx, sv, x_sep)
-            x, v, w, _ = _step(x, v, w, s, kind, mode, factor, E, R, m, gamma, sx, sv)
-            t += s
-            return -v / V, x_max, t_max, f_max, t, w, 1.0
-        if phase == 1 and vn >= 0.0 and x < x_max:
-            s = _locate(0, -1.0, x, v, w, h, xn, vn, kind, mode, factor, E, R, m, gamma, sx, sv, x_sep)
-            x, v, w, _ = _step(x, v, w, s, kind, mode, factor, E, R, m, gamma, sx, sv)
-            t += s
+        elif done != 0.0:
+            f_max = _largest_force(xb, vb, w, span, f_max, kind, mode, factor, E, R, m, gamma, sx, sv)
+            if done == 1.0:
+                return -v / V, x_max, t_max, f_max, t, w, 1.0
             return 0.0, x_max, t_max, f_max, t, w, -(x - x_sep) / sx
-        x, v, w = xn, vn, wn
-        t += h
-        if phase == 0:
-            f = total_force(kind, mode, factor, x, v, E, R, m, gamma)
-            if f > f_max:
-                f_max = f
-        h *= min(4.0, 0.9 * err ** (-1.0 / 8.0)) if err > 0.0 else 4.0
+        else:
+            h *= min(4.0, 0.9 * err ** (-1.0 / 8.0)) if err > 0.0 else 4.0
     return math.nan, math.nan, math.nan, math.nan, math.nan, math.nan, math.nan
+
+
+@jitable
+def _largest_force(x, v, w, span, f_best, kind, mode, factor, E, R, m, gamma, sx, sv):
+    """The largest total force over ``[0, span]`` of steps from ``(x, v)``: golden-section search
+    (the force is unimodal over the two steps around its largest sampled value), to 1e-14 of the span."""
+    if not span > 0.0:
+        return f_best
+    g = 0.5 * (math.sqrt(5.0) - 1.0)
+    a = 0.0
+    b = span
+    c = b - g * (b - a)
+    d = a + g * (b - a)
+    xc, vc, _, _ = _step(x, v, w, c, kind, mode, factor, E, R, m, gamma, sx, sv)
+    fc = total_force(kind, mode, factor, xc, vc, E, R, m, gamma)
+    xd, vd, _, _ = _step(x, v, w, d, kind, mode, factor, E, R, m, gamma, sx, sv)
+    fd = total_force(kind, mode, factor, xd, vd, E, R, m, gamma)
+    for _ in range(120):
+        if fc > fd:
+            b, d, fd = d, c, fc
+            c = b - g * (b - a)
+            xc, vc, _, _ = _step(x, v, w, c, kind, mode, factor, E, R, m, gamma, sx, sv)
+            fc = total_force(kind, mode, factor, xc, vc, E, R, m, gamma)
+        else:
+            a, c, fc = c, d, fd
+            d = a + g * (b - a)
+            xd, vd, _, _ = _step(x, v, w, d, kind, mode, factor, E, R, m, gamma, sx, sv)
+            fd = total_force(kind, mode, factor, xd, vd, E, R, m, gamma)
+        if b - a <= 1e-14 * span:
+            break
+    return max(f_best, fc, fd)
 
 
 @jitable
