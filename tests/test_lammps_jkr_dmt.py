@@ -53,6 +53,7 @@ def test_outcome_is_the_integration_of_its_force(name, mode, coeff):
     assert abs(h.rebound_velocity / V - float(o.restitution)) < 1e-8
     assert abs(h.contact_time / float(o.contact_time) - 1.0) < 1e-8
     assert abs(h.max_approach / float(o.max_approach) - 1.0) < 1e-8
+    assert abs(h.max_force / float(o.max_force) - 1.0) < 1e-8
 
 
 @settings(max_examples=8)

@@ -15,7 +15,8 @@ POISSON = 0.3
 
 
 def lammps(cal, style):
-    """``(coeff, comment)``: ``STYLE E damp nu cohesion tangential ... damping KEYWORD``, ``E = 2 (1 - nu^2) E*``
+    """``(coeff, comment)``: ``STYLE E damp nu cohesion tangential ... damping KEYWORD`` (each number the
+    shortest text that reads back as the same double), ``E = 2 (1 - nu^2) E*``
     (LAMMPS' ``mix_stiffnessE_wall`` and ``mix_stiffnessE`` for one material give back ``E*``)."""
     p = cal.as_dict()
     mode = int(lg.mode_of(p["damping_model"]))
@@ -23,7 +24,8 @@ def lammps(cal, style):
     keyword = lg.DAMPING_NAMES[mode]
     damp = p["viscoelastic_damping"] if mode == 0 else p["normal_restitution"]
     coeff = (
-        f"{style} {E_in:.17g} {damp:.17g} {POISSON!r} {p['surface_energy']:.17g} {LAMMPS_TANGENTIAL} damping {keyword}"
+        f"{style} {float(E_in)!r} {float(damp)!r} {POISSON!r} {float(p['surface_energy'])!r} {LAMMPS_TANGENTIAL} "
+        f"damping {keyword}"
     )
     if mode == 0:
         note = f"# {style}: E = 2 (1 - nu^2) E*, cohesion = gamma = G/2, eta_n = eta_n0 m* a (a: the {style} contact radius)"
