@@ -54,6 +54,8 @@ def test_outcome_is_the_integration_of_its_force(name, mode, coeff):
     assert abs(h.contact_time / float(o.contact_time) - 1.0) < 1e-8
     assert abs(h.max_approach / float(o.max_approach) - 1.0) < 1e-8
     assert abs(h.max_force / float(o.max_force) - 1.0) < 1e-8
+    K, W_neck, W_damp, K_out = law.energy_budget(V, E, R, M, _tuple(0.05, mode, coeff))
+    assert W_damp > 0.0 and abs(K - W_neck - W_damp - K_out) < 1e-9 * K  # no energy created
 
 
 @settings(max_examples=8)

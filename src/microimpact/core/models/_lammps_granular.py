@@ -19,7 +19,7 @@ damping factor ``eta_n`` of each ``damping`` keyword:
   (``coeff_restitution``, its branch for every normal model but ``hooke``). With cohesion
   ``F_ne/alpha`` is negative over the tensile part of the contact: there the guard ``max(0, .)``
   switches the damping off (the releases of 2024 without the guard took the square root of a
-  negative number: NaN positions, lammps/lammps#4180). LAMMPS 22 Jul 2025 refuses both keywords with
+  negative number: NaN positions; see docs/laws/lammps_jkr_dmt.rst). LAMMPS 22 Jul 2025 refuses both keywords with
   ``jkr`` or ``dmt`` ("Cannot use tsuji model with a cohesive normal model", ``granular_model.cpp``,
   ``allow_cohesion = 0``): these modes are what its damping kernel would compute, flagged.
 

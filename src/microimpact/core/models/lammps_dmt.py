@@ -20,11 +20,11 @@ form), which alone returns every joule (``e = 1``); the damping and the equation
   with ``dmt`` ("Cannot use tsuji model with a cohesive normal model"): :func:`outside_validity` flags
   them (code 4). The 2024 releases that accepted ``coeff_restitution`` with ``dmt`` took
   ``sqrt(m* F_ne/delta)`` unguarded: NaN on the first step of every contact with cohesion
-  (lammps/lammps#4180). LIGGGHTS damps only the Hertz part, a different law.
+  (the known bugs: docs/laws/lammps_jkr_dmt.rst). LIGGGHTS damps only the Hertz part, a different law.
 
 Geometry: the wall (``fix wall/gran granular dmt``: ``R*`` the radius, ``m*`` the mass,
 ``E* = E/(2(1 - nu^2))`` by ``mix_stiffnessE_wall``). Two equal spheres of one type have the same
-``E*``, ``R* = R/2``, ``m* = m/2``; between types LAMMPS mixes ``E`` (lammps/lammps#4141).
+``E*``, ``R* = R/2``, ``m* = m/2``; between types LAMMPS mixes ``E`` and the wall does not.
 
 Outputs: ``e`` and the contact time by integration (``e = 0``, infinite contact time, where the
 approach rate vanishes again at positive approach), :func:`sticking_velocity` the capture velocity

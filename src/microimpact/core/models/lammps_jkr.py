@@ -2,7 +2,7 @@
 
 Source: lammps/lammps ``src/GRANULAR/gran_sub_mod_normal.cpp`` (``GranSubModNormalJKR``: ``touch``,
 ``pulloff_distance``, ``calculate_contact_radius``, ``calculate_forces``; commit ``58ee3925``, the
-algebra after lammps/lammps#3728), ``gran_sub_mod_damping.cpp`` (commit of the ``get_damp()``
+corrected JKR algebra), ``gran_sub_mod_damping.cpp`` (commit of the ``get_damp()``
 era, the one with ``coeff_restitution`` and ``allow_cohesion = 0``), ``granular_model.cpp``
 (``calculate_forces``: ``F_n = F_ne + F_damp``, no clipping with cohesion) and
 ``doc/src/pair_granular.rst``. The elastic-adhesive curve is the one of
@@ -21,13 +21,13 @@ pull-off force ``-3 pi gamma R*``. The damping and the equation of motion are
   ``e_n``. LAMMPS 22 Jul 2025 refuses both with ``jkr`` ("Cannot use tsuji model with a cohesive
   normal model"): :func:`outside_validity` flags them (code 4); the 2024 releases that accepted
   ``coeff_restitution`` with ``jkr`` took ``sqrt(m* F_ne/delta)`` unguarded, NaN as soon as
-  ``F_ne < 0`` at positive approach, i.e. on the first step of every contact (lammps/lammps#4180).
+  ``F_ne < 0`` at positive approach, i.e. on the first step of every contact (docs/laws/lammps_jkr_dmt.rst).
   LIGGGHTS damps only the Hertz part (``S_n = 2 Y* (R* delta)^(1/2)``), a different law.
 
 Geometry: the wall (``fix wall/gran granular jkr``: ``R*`` the radius, ``m*`` the mass,
 ``E* = E/(2(1 - nu^2))`` by ``mix_stiffnessE_wall``, the wall taken as the particle's material).
 Two equal spheres of one type (``pair_coeff * *``) have ``E* = E/(2(1 - nu^2))`` too, ``R* = R/2``,
-``m* = m/2``; between types LAMMPS mixes ``E`` (lammps/lammps#4141: the wall ignored that mixing).
+``m* = m/2``; between types LAMMPS mixes ``E`` and the wall does not.
 
 Outputs: ``e`` and the contact time by integration, ``e = 0`` (captured, infinite contact time)
 where the approach rate vanishes again before ``-delta_c``; :func:`sticking_velocity` the capture
