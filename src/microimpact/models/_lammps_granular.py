@@ -62,12 +62,16 @@ def calibrate(law, pair_values, velocity, target_restitution, surface_energy, da
         r = minimize_scalar(
             lambda u: cost((gamma, mode, math.exp(u), 1.0)), bounds=(g - 20.0, g + 5.0), method="bounded"
         )
-        return (gamma, mode, math.exp(r.x), 1.0)
+        best = (gamma, mode, math.exp(r.x), 1.0)
+        undamped = (gamma, mode, 0.0, 1.0)  # the search's open end: an elastic target needs no damping
+        return undamped if cost(undamped) <= cost(best) else best
     lo = 1e-6 if mode == 2.0 else 0.0
     r = minimize_scalar(
         lambda x: cost((gamma, mode, 0.0, x)), bounds=(lo, 1.0), method="bounded", options={"xatol": 1e-12}
     )
-    return (gamma, mode, 0.0, float(r.x))
+    best = (gamma, mode, 0.0, float(r.x))
+    ends = [(gamma, mode, 0.0, x) for x in (lo, 1.0)]  # the bounds themselves, which the search does not try
+    return min([best, *ends], key=cost)
 
 
 def params_for_work_of_adhesion(work_of_adhesion, pair_values, params):

@@ -458,6 +458,8 @@ def outcome(kind, V, E, R, m, valid, gamma, mode, coeff):
         return nan_outcome(V)
     if end != 1.0:
         return dem_outcome(V, 0.0, x_max, separation(kind, E, R, gamma), f_max, R, t_max, math.inf)
+    if factor == 0.0 and not (kind == JKR and gamma > 0.0):
+        e = 1.0  # a conservative curve left where it was entered: exactly the speed it came with
     return dem_outcome(V, e, x_max, separation(kind, E, R, gamma), f_max, R, t_max, t_end - t_max)
 
 
