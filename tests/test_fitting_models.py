@@ -111,11 +111,20 @@ STICKING = {
         (200.0, 1000.0),
         {"loading_stiffness": 50.0, "unloading_stiffness": 200.0, "plasticity_depth": 0.01},
     ),
+    "lammps_jkr": ("surface_energy", (0.05, 0.2), {"viscoelastic_damping": 2e13}),
+    "lammps_dmt": ("surface_energy", (0.05, 0.2), {"viscoelastic_damping": 2e13}),
+    "liggghts_hertz_sjkr": ("cohesion_energy_density", (1e7, 2e7), {"restitution": 0.5}),
+    "lethe_dmt_vdw": ("effective_surface_energy", (0.05, 0.2), {"restitution": 0.6}),
+}
+#: Sticking models whose adhesion input a fit of positive parameters cannot recover here, and why.
+NOT_FITTED = {
+    "liggghts_edinburgh": "its pull-off force f0 is negative (fits search positive parameters in log scale), and "
+    "its kn2kc adhesion captures nothing at 0.05-5 m/s for this pair",
 }
 
 
 def test_every_sticking_model_is_fitted_here():
-    assert sorted(STICKING) == sorted(n for n in zoo.available() if zoo.get(n).STICKS)
+    assert sorted([*STICKING, *NOT_FITTED]) == sorted(n for n in zoo.available() if zoo.get(n).STICKS)
 
 
 @pytest.mark.parametrize("name", sorted(STICKING))

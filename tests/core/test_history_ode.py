@@ -55,6 +55,14 @@ PARAMS = {
     ],
     "lethe_dmt_vdw": [{"restitution": 0.6, "effective_surface_energy": 0.05, "hamaker_constant": 1e-19}],
     "liggghts_edinburgh": [{}, {"fix_kc": 1, "adhesion_stiffness_ratio": 0.2, "limit_force": 0}],
+    "lammps_jkr": [
+        {"surface_energy": 0.05, "viscoelastic_damping": 2e13},
+        {"surface_energy": 0.05, "damping_model": 2, "normal_restitution": 0.6},
+    ],
+    "lammps_dmt": [
+        {"surface_energy": 0.05, "viscoelastic_damping": 2e13},
+        {"surface_energy": 0.05, "damping_model": 2, "normal_restitution": 0.6},
+    ],
 }
 #: Models whose speed V is not the speed at first contact, which the generic integration starts from:
 #: Lethe's DMT attracts the particle before contact (V is the speed outside its cut-off); its outcome
