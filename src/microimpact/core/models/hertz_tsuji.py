@@ -54,7 +54,7 @@ from .. import hertz
 from .._jit import jitable
 from . import LIMIT_FORCE, Parameter, checks, deprecated_names
 from ._common import dem_outcome, in_bounds, nan_outcome
-from .hertz_viscoelastic import scaled_damped_hertz, scaled_restitution
+from .hertz_viscoelastic import reaches_bound, scaled_damped_hertz, scaled_restitution
 
 NAME = "hertz_tsuji"
 TITLE = "Hertz with Tsuji's nonlinear damping (LAMMPS damping tsuji/coeff_restitution, LIGGGHTS hertz)"
@@ -124,6 +124,17 @@ def outcome(V, E, R, m, p_y, params):
     kappa = restitution_group(V, E, R, m, p_y, params)
     e, x_max, t_max, p_max, t_end, x_end = scaled_damped_hertz(kappa, params[1] == 1.0, 0.25)
     return dem_outcome(V, e, X * x_max, X * x_end, rho * X * math.sqrt(X) * p_max, R, T * t_max, T * (t_end - t_max))
+
+
+@jitable
+def outside_validity(V, E, R, m, p_y, params):
+    """The contract's validity code: 4 where the integration reached its bounds before the contact
+    ended (``limit_force = 0`` only: the particle creeps out of a heavily damped contact, and ``e = 0``,
+    ``contact_time = inf`` are the limit returned; :data:`~microimpact.core.models.hertz_viscoelastic.MAX_STEPS`);
+    0 otherwise (and for invalid input)."""
+    if not in_bounds(params, BOUNDS) or not (V > 0.0 and V < math.inf):
+        return 0.0
+    return 4.0 if reaches_bound(restitution_group(V, E, R, m, p_y, params), params[1] == 1.0, 0.25) else 0.0
 
 
 @jitable
