@@ -274,6 +274,12 @@ class Parameter(NamedTuple):
         lo_ok = value > self.low if self.low_open else value >= self.low
         hi_ok = value < self.high if self.high_open else value <= self.high
         if lo_ok and hi_ok and math.isfinite(value):
+            if value != 0.0 and abs(value) < 2.2250738585072014e-308:
+                # a subnormal has lost precision, and the laws divide by their parameters (a JKR
+                # pull-off search with a subnormal surface energy did not end)
+                raise ValueError(
+                    f"{name} must be 0 or a normal float (at least 2.2250738585072014e-308), got {value!r}"
+                )
             return
         if self.high == math.inf and self.low == 0.0:
             raise ValueError(

@@ -145,6 +145,8 @@ def restitution_group(V, E, R, m, p_y, params):
     T = hertz.dem_time_scale(V, E, R, m)
     X = V * T
     # damping term alpha_T (m (4/3) E R^(1/2))^(1/2) alpha^(1/4) alpha_dot, scaled by m X / T^2:
+    if not X > 0.0:  # V so small that X = V T underflows: the same group as V^(1/4) T^(5/4) (rho/m)^(1/2)
+        return params[0] * math.sqrt(rho / m) * V**0.25 * T**1.25
     return params[0] * math.sqrt(m * rho) * X**0.25 * (X / T) / (m * X / (T * T))
 
 
