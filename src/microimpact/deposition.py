@@ -56,6 +56,7 @@ __all__ = [
     "flight_to_wall",
     "flight_to_wall_ode",
     "DepositionResult",
+    "DepositionBoundWarning",
     "simulate_deposition",
     "plot_deposition",
 ]
@@ -296,6 +297,10 @@ def flight_to_wall_ode(x0, z0, u0, w0, strain_rate, tau, *, t_max=None, rtol=1e-
     return {"time": float(sol.t_events[0][0]), "x": x, "u": u, "w": w}
 
 
+class DepositionBoundWarning(UserWarning):
+    """:func:`simulate_deposition` reached its bound ``max_impacts`` with particles still bouncing."""
+
+
 @dataclass(frozen=True, eq=False)
 class DepositionResult:
     """Outcome of :func:`simulate_deposition`; arrays shaped (jet speeds, diameters) unless noted.
@@ -322,6 +327,11 @@ class DepositionResult:
         Yield velocity ``V_y`` and sticking velocity ``V_s`` [m/s].
     parameters : dict
         The inputs of :func:`simulate_deposition`.
+    unresolved_fraction : ndarray or None
+        Fraction still bouncing after ``max_impacts`` impacts, neither deposited nor lost: the
+        bound on the tracking was reached for them, and :func:`simulate_deposition` warns
+        (:class:`DepositionBoundWarning`) unless ``max_impacts=1``, where a bounce is a loss by choice.
+        ``None`` for a result made without it.
     """
 
     diameters: np.ndarray
@@ -335,6 +345,7 @@ class DepositionResult:
     yield_velocity: np.ndarray
     sticking_velocity: np.ndarray
     parameters: dict = field(default_factory=dict)
+    unresolved_fraction: np.ndarray | None = None
 
     def to_rows(self):
         """One dict per (jet speed, diameter): for CSV writers and tables."""
@@ -490,6 +501,18 @@ def simulate_deposition(
         up = _axial_peak(w[b], a[b], tau[b]) > H
         alive[b[up]] = False
 
+    if alive.any() and int(max_impacts) > 1:
+        # the tracking's bound: these particles have neither stuck nor left, and their fate is unknown
+        # (with max_impacts=1 the first impact decides by choice: a bounce is a loss, no warning)
+        import warnings
+
+        warnings.warn(
+            f"simulate_deposition reached its bound max_impacts={int(max_impacts)} with "
+            f"{int(alive.sum())} of {alive.size} particles still bouncing: they count neither as "
+            "deposited nor as lost (result.unresolved_fraction; raise max_impacts to follow them)",
+            DepositionBoundWarning,
+            stacklevel=2,
+        )
     # yield and sticking velocities per diameter (independent of the jet speed)
     probe = wall_interaction(np.tile([0.0, 0.0, -1.0], (D, 1)), [0.0, 0.0, 1.0], d, rho, **wall_kw)
     frac = lambda m: m.reshape(shape).mean(axis=2)  # noqa: E731
@@ -506,6 +529,7 @@ def simulate_deposition(
         impacted_fraction=frac(impacted),
         first_impact_speed=fs,
         mean_impacts=n_imp.reshape(shape).mean(axis=2),
+        unresolved_fraction=frac(alive),
         yield_velocity=np.asarray(probe.yield_velocity),
         sticking_velocity=np.asarray(probe.sticking_velocity),
         parameters=dict(

@@ -389,7 +389,10 @@ def _integrate_phase(rhs, t0, y0, span, events, method, rtol, atol, tries=60, li
                 if te.size:
                     return pieces, i, float(te[0]), np.array(sol.y_events[i][0], dtype=float), nfev
         t0, y0, span = sol.t[-1], sol.y[:, -1], 2.0 * span
-    raise RuntimeError("integration did not reach the end of the stage")
+    raise ValueError(
+        f"the ODE integration reached its bound of {tries} extensions of the time span (to t/T = {t0:.6g}) "
+        "before the phase of the impact ended (use method='closed', or other parameters)"
+    )
 
 
 def _zero_force_event(mod, params, force_at_state):

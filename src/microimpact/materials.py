@@ -18,6 +18,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+import numpy as np
+
+from ._validation import TINY_NORMAL as _TINY
 from ._validation import check_poisson, check_positive
 from .core import hertz as _hertz
 from .core.constants import DEFAULT_K
@@ -390,7 +393,26 @@ def sphere_mass(radius, density):
     from .core.wall import sphere_mass as _mass
     from .engine import evaluate
 
-    return evaluate(_mass, radius, density)[0]
+    m = evaluate(_mass, radius, density)[0]
+    _check_mass(m, radius, density)
+    return m
+
+
+def _check_mass(m, radius, density) -> None:
+    """Refuse, naming ``radius`` and ``density``, a mass that left the normal floats: a radius and a
+    density each in range can give an overflowing or a subnormal (or zero) product, whose reciprocal
+    (every law divides by the mass) overflows."""
+    arr = np.asarray(m, dtype=float)
+    ok = np.isfinite(arr) & (arr >= _TINY)
+    if ok.all():
+        return
+    i = np.unravel_index(int(np.argmin(ok)), arr.shape) if arr.ndim else ()
+    r = float(np.broadcast_to(radius, arr.shape)[i])
+    d = float(np.broadcast_to(density, arr.shape)[i])
+    raise ValueError(
+        f"radius {r!r} and density {d!r} give the sphere mass {float(arr[i])!r}, which is no normal float "
+        f"(between {_TINY!r} and {float(np.finfo(float).max)!r} kg): give a radius and density in range"
+    )
 
 
 def limiting_pressure(yield_strength, k=None) -> float:

@@ -10,7 +10,8 @@ Each case failed on the code before its check:
 3. empty items of comma lists, an empty material name, ``stick --particle`` without ``--diameter``,
    a finished write reported as an error when stdout cannot encode a path, repeated sweep values, a
    C trigraph out of a label, a path of the machine in the sources;
-4. subnormal and extreme numbers that divided by zero inside a model instead of being named.
+4. subnormal and extreme numbers that divided by zero inside a model instead of being named, or
+   named a derived quantity (the mass) instead of the inputs, or made a search run without end.
 """
 
 from __future__ import annotations
@@ -387,6 +388,13 @@ def test_a_speed_too_small_for_a_models_scaling_is_named(monkeypatch):
             "effective_modulus",
         ),
         (["impact", "10", "--radius", "1e-320"], "radius"),
+        # a radius and a density each in range whose sphere mass is not (named effective_mass before)
+        (["impact", "10", "--radius", "1e300"], "radius"),
+        (["impact", "10", "--radius", "1e-6", "--density", "1e-300"], "density"),
+        # a subnormal surface energy: the pull-off search never ended
+        (["impact", "10", "--model", "jkr_elastic_adhesive", "--param", "surface_energy=1e-320"], "surface_energy"),
+        # a speed whose V^2 underflows: the closed-form history divided by its zero time scale
+        (["history", "1e-200"], "velocity"),
     ],
     ids=lambda x: " ".join(x) if isinstance(x, list) else x,
 )

@@ -30,7 +30,7 @@ Y0 = 300e6
 
 
 def _params(mod, Y=Y0, nu=0.3, twin=0.0):
-    return (Y, nu, twin) if mod is jg else (Y, nu)
+    return (Y, nu, twin, 0.0) if mod is jg else (Y, nu)
 
 
 def _switch_speed(mod, law, E, R, m, params):
@@ -51,10 +51,11 @@ def test_contract(mod):
 @pytest.mark.parametrize(
     "mod, params, match",
     [
-        (jg, (-1.0, 0.3, 0.0), "yield_strength must be positive and finite, got -1.0"),
-        (jg, (1e8, 0.6, 0.0), r"poisson_ratio must lie in \(-1, 0.5\], got 0.6"),
-        (jg, (1e8, 0.3, 0.5), "identical_spheres must be 0 or 1, got 0.5"),
-        (jg, (1e8, 0.3), "params must hold 3 values"),
+        (jg, (-1.0, 0.3, 0.0, 0.0), "yield_strength must be positive and finite, got -1.0"),
+        (jg, (1e8, 0.6, 0.0, 0.0), r"poisson_ratio must lie in \(-1, 0.5\], got 0.6"),
+        (jg, (1e8, 0.3, 0.5, 0.0), "identical_spheres must be 0 or 1, got 0.5"),
+        (jg, (1e8, 0.3, 0.0, 0.5), "hardness must be 0 or 1, got 0.5"),
+        (jg, (1e8, 0.3, 0.0), "params must hold 4 values"),
         (ke, (math.inf, 0.3), "yield_strength must be positive and finite, got inf"),
         (ke, (1e8, -1.0), r"poisson_ratio must lie in \(-1, 0.5\], got -1.0"),
         (ke, (1e8, True), "poisson_ratio must be a number, not a bool"),
@@ -65,7 +66,7 @@ def test_validate_names_the_parameter(mod, params, match):
         mod.validate(params)
 
 
-@pytest.mark.parametrize("mod, params", [(jg, (-1.0, 0.3, 0.0)), (jg, (1e8, 0.3, 2.0)), (ke, (1e8, 0.7))])
+@pytest.mark.parametrize("mod, params", [(jg, (-1.0, 0.3, 0.0, 0.0)), (jg, (1e8, 0.3, 2.0, 0.0)), (ke, (1e8, 0.7))])
 def test_invalid_params_give_nan(mod, params):
     out = mod.outcome(1.0, E0, R0, M0, 1e9, params)
     assert out[0] == 1.0 and all(math.isnan(x) for x in out[1:])
@@ -136,7 +137,7 @@ def test_kogut_etsion_printed_values():
 def test_critical_interferences_of_the_two_laws_agree_at_nu_03():
     """2.8 K = 1.6156 (Kogut-Etsion) and C = 1.6150 (Jackson-Green) at nu = 0.3: the two fits' yield
     inceptions within 0.08 %."""
-    a = jg.critical_interference(E0, R0, (Y0, 0.3, 0.0))
+    a = jg.critical_interference(E0, R0, (Y0, 0.3, 0.0, 0.0))
     b = ke.critical_interference(E0, R0, (Y0, 0.3))
     assert abs(b / a - 1) < 8e-4
 
@@ -391,7 +392,7 @@ def test_jackson_green_far_below_its_modulus_range_is_nan_on_both_paths():
     E, R, m = 2e8, 1e-6, 4.0 / 3.0 * math.pi * 1e-18 * 2000.0
     V = np.array([200.0, 1000.0, 1e4, 1e5])
     for Y in (1e8, 5e7, 1e10):  # E*/S_y = 2, 4 and 0.02 (exp(23 S_y/E) itself beyond floats)
-        params = (Y, 0.3, 0.0)
+        params = (Y, 0.3, 0.0, 0.0)
         py = engine.evaluate(jg.outcome, V, E, R, m, 1.0, nout=18, params=params, backend="python")
         nb = engine.evaluate(jg.outcome, V, E, R, m, 1.0, nout=18, params=params, backend="numba")
         assert np.array_equal(py, nb, equal_nan=True)

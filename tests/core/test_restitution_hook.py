@@ -29,7 +29,7 @@ E_FIELD = OUTCOME_FIELDS.index("restitution")
 #: Parameters of each model with a hook whose spec has no default (one valid set each).
 PARAMS: dict = {
     "thornton_ning_1998_adhesive_plastic": (0.05,),  # G [J/m^2]
-    "jackson_green_brake": (1e6, 0.3, 0.0),  # Y [Pa] (E*/Y >= 10 in the boxes), nu, identical spheres
+    "jackson_green_brake": (1e6, 0.3, 0.0, 0.0),  # Y [Pa] (E*/Y >= 10 in the boxes), nu, identical spheres
     "kogut_etsion_ekk": (1e6, 0.3),  # Y [Pa], nu
     "jkr_elastic_adhesive": (0.05,),  # gamma [J/m^2]
     "thornton_ning_1998_elastic_adhesive": (0.05,),  # G [J/m^2]

@@ -15,6 +15,8 @@ check and defaults, ``energy_loss_fraction``'s range check).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .._face import array_function, free_flight, outcome_arrays, outcome_function, scalar_pair, stage_of, time_grid
@@ -873,6 +875,13 @@ def impact_history(
     a_star, a_p, P_star, V_r = out["max_approach"], out["plastic_approach"], out["max_force"], out["rebound_velocity"]
     alpha_m = float(elastic_max_approach(V, E, R, m))
     T_m = hertz.rise_time(alpha_m, V)  # time of a purely elastic impact to reach alpha_m
+    if not (alpha_m > 0.0 and T_m > 0.0 and math.isfinite(T_m)):
+        # V^2 underflowed (V below about 1e-154 m/s) or the scales overflowed: every time divides by them
+        raise ValueError(
+            f"velocity {V!r} m/s with effective_modulus {E!r}, effective_radius {R!r} and effective_mass {m!r} "
+            f"gives no time history: the elastic maximum approach {alpha_m!r} m and its rise time {T_m!r} s "
+            "leave the float range"
+        )
 
     t = time_grid(n, times, (t1, t_L), t_c)
     stage = stage_of(t, t1, t_L, t_c)

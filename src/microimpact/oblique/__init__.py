@@ -744,6 +744,12 @@ def _large_strain(Vn, E, R, m, p_y):
 # ============================================================================ the independent check
 
 
+#: Most segments between events (stick/slip changes, yield, maximum approach, end) that
+#: :func:`integrate_oblique_ode` follows: an impact has a handful; reaching the bound is a ValueError
+#: naming it, not a result taken in the middle of the contact.
+ODE_MAX_SEGMENTS = 200
+
+
 def integrate_oblique_ode(u0_hat, kappa, x, *, rtol=1e-12, atol=1e-14, record=False):
     """The same impact as a 3-degree-of-freedom ODE: normal approach, tangential velocity, spin.
 
@@ -846,7 +852,7 @@ def integrate_oblique_ode(u0_hat, kappa, x, *, rtol=1e-12, atol=1e-14, record=Fa
     t = 0.0
     a_star = None
     times, energy = [], []
-    for _ in range(200):
+    for _ in range(ODE_MAX_SEGMENTS):
         st = state["stage"]
         events = [switch_factory(sliding, sign)]
         if st == 1 and not elastic:
@@ -866,8 +872,8 @@ def integrate_oblique_ode(u0_hat, kappa, x, *, rtol=1e-12, atol=1e-14, record=Fa
             dense_output=record,
         )
         hit = [i for i, te in enumerate(sol.t_events) if te.size]
-        if not hit:  # pragma: no cover
-            raise RuntimeError("integration did not reach an event")
+        if not hit:  # pragma: no cover - a segment is at most a contact time (about 3.2 here) long
+            raise ValueError(f"integrate_oblique_ode reached no event within 50 time units of t = {t:.6g}")
         i = min(hit, key=lambda k: sol.t_events[k][0])
         if record:
             for tt in np.linspace(t, float(sol.t_events[i][0]), 40):
@@ -907,6 +913,12 @@ def integrate_oblique_ode(u0_hat, kappa, x, *, rtol=1e-12, atol=1e-14, record=Fa
             state["stage"] = 3
         else:
             break
+    else:
+        raise ValueError(
+            f"integrate_oblique_ode reached its bound of {ODE_MAX_SEGMENTS} segments between events "
+            f"(stage {state['stage']} after {switches} stick/slip changes) before the contact ended: "
+            f"the tangential law chatters here (u0_hat={u0_hat!r}, kappa={kappa!r}, x={x!r})"
+        )
     regime = tg.REGIME_MICROSLIP if (slid and stuck) else (tg.REGIME_SLIDING if slid else tg.REGIME_STICKING)
     extra = {"time": np.array(times), "energy": np.array(energy)} if record else {}
     return {

@@ -148,7 +148,8 @@ model's own functions that :func:`outcome` calls, never a second copy of a formu
     say, else the sum of the reasons of :data:`VALIDITY_REASONS` that hold: 1 where its published
     unloading would return more work than the loading stored (``e > 1``, energy created; the outcome
     gives ``e = 1``, the contact retracing its loading), 2 where the contact radius ``a*`` exceeds the
-    sphere's radius (a fit extrapolated past any geometry: its ``e`` can rise with ``V`` there). The
+    sphere's radius (a fit extrapolated past any geometry: its ``e`` can rise with ``V`` there), 4 where
+    an integrated outcome reached its bound on the work before the contact ended. The
     outcome is kept as computed (flagged, not refused, not clipped further); the layer above flags and
     warns (:func:`validity_reasons`), as it does ``large_strain``.
 ``ADHESION_LIMIT`` [``None``: no adhesion]
@@ -278,6 +279,12 @@ class Parameter(NamedTuple):
         lo_ok = value > self.low if self.low_open else value >= self.low
         hi_ok = value < self.high if self.high_open else value <= self.high
         if lo_ok and hi_ok and math.isfinite(value):
+            if value != 0.0 and abs(value) < 2.2250738585072014e-308:
+                # a subnormal has lost precision, and the laws divide by their parameters (a JKR
+                # pull-off search with a subnormal surface energy did not end)
+                raise ValueError(
+                    f"{name} must be 0 or a normal float (at least 2.2250738585072014e-308), got {value!r}"
+                )
             return
         if self.high == math.inf and self.low == 0.0:
             raise ValueError(
@@ -418,7 +425,9 @@ _HOOKS = (
 VALIDITY_REASONS = {
     1: "the published unloading would return more work than the loading stored (e > 1; e = 1 is returned)",
     2: "the contact radius exceeds the sphere's radius (a* > R: the fit is extrapolated past the geometry)",
-    4: "the DEM code refuses this input (the result is what the code's force routine would compute without the refusal)",
+    4: "the integration reached its bound before the contact ended (e = 0 and contact_time = inf returned: "
+    "the particle creeps out of an over-damped contact)",
+    8: "the DEM code refuses this input (the result is what the code's force routine would compute without the refusal)",
 }
 
 

@@ -39,6 +39,9 @@ from .thornton_ning_2016 import elastic_stage_time
 
 JACKSON_GREEN = 0
 KOGUT_ETSION = 1
+#: Jackson & Green's law with the 2005 paper's own hardness fit (:func:`jg_hardness_ratio_2005`) in
+#: place of eq. 28's cosine form; everything else as :data:`JACKSON_GREEN`.
+JACKSON_GREEN_2005 = 2
 
 #: 24-point Gauss-Legendre nodes and weights on ``[-1, 1]`` (numpy's ``leggauss``, kept as literals).
 GX, GW = RULES[24]
@@ -76,6 +79,12 @@ def frame(E, R, twin):
 
 
 @jitable
+def is_jackson_green(law):
+    """True for either hardness form of Jackson & Green's law."""
+    return law != KOGUT_ETSION
+
+
+@jitable
 def jg_coefficient(nu):
     """``C = 1.295 exp(0.736 nu)`` [-] (Ghaednia et al. 2019 eq. 6; Jackson & Green 2005)."""
     return 1.295 * math.exp(0.736 * nu)
@@ -102,9 +111,11 @@ def jg_exponent(E, Y):
 
 
 @jitable
-def jg_constants(E, R, Y, nu):
+def jg_constants(E, R, Y, nu, form):
     """What Jackson & Green's law needs besides ``x``, computed once for many forces:
-    ``(delta_c, C, F_c, B, a_0, R)`` [m, -, N, -, m, m], ``a_0 = R pi C S_y/(2E)`` (eqs. 5, 6, 29, 24, 23)."""
+    ``(delta_c, C, F_c, B, a_0, R, form)`` [m, -, N, -, m, m, -], ``a_0 = R pi C S_y/(2E)`` (eqs. 5,
+    6, 29, 24, 23); ``form`` the hardness: 0 eq. 28 (:func:`jg_hardness_ratio`), 1 the 2005 fit
+    (:func:`jg_hardness_ratio_2005`)."""
     C = jg_coefficient(nu)
     return (
         jg_critical_interference(E, R, Y, nu),
@@ -113,6 +124,7 @@ def jg_constants(E, R, Y, nu):
         jg_exponent(E, Y),
         R * (math.pi * C * Y / (2.0 * E)),
         R,
+        form,
     )
 
 
@@ -137,7 +149,7 @@ def jg_contact_radius(x, E, R, Y, nu):
     ``x (x/1.9)^B`` leaves the float range: the radius is then NaN on every path (Python's ``**``
     raised OverflowError where the compiled loop gave NaN), and so is the impact's outcome.
     """
-    return _jg_radius(x, jg_constants(E, R, Y, nu))
+    return _jg_radius(x, jg_constants(E, R, Y, nu, 0.0))
 
 
 @jitable
@@ -147,10 +159,23 @@ def jg_hardness_ratio(a, R):
 
 
 @jitable
+def jg_hardness_ratio_2005(a, R):
+    """``H_G/S_y = 2.84 [1 - exp(-0.82 (a/R)^(-0.7))]`` [-] (Jackson & Green 2005's own fit, as the
+    project's source list quotes it; see the model file). 2.84 at ``a = 0`` (the limit), falling
+    monotonically with ``a/R``."""
+    if not a > 0.0:
+        return 2.84
+    return 2.84 * (1.0 - math.exp(-0.82 * (a / R) ** -0.7))
+
+
+@jitable
 def _jg_force(x, k):
     """Eq. 27's force [N] at ``x`` with the constants ``k`` of :func:`jg_constants` (``x^p`` as
     ``exp(p ln x)``: one logarithm for both powers)."""
-    H = jg_hardness_ratio(_jg_radius(x, k), k[5])
+    if k[6] == 0.0:
+        H = jg_hardness_ratio(_jg_radius(x, k), k[5])
+    else:
+        H = jg_hardness_ratio_2005(_jg_radius(x, k), k[5])
     lx = math.log(x)
     elastic = math.exp(-0.25 * math.exp(5.0 / 12.0 * lx)) * x * math.sqrt(x)
     plastic = 4.0 * H / k[1] * (1.0 - math.exp(-math.exp(5.0 / 9.0 * lx) / 25.0)) * x
@@ -164,7 +189,7 @@ def jg_plastic_force(x, E, R, Y, nu):
     ``F/F_c = exp(-x^(5/12)/4) x^(3/2) + 4 (H_G/S_y)/C (1 - exp(-x^(5/9)/25)) x``, with the hardness
     of eq. 28 at the contact radius of eq. 23 (eq. 30 with ``E_t = 0`` is this force).
     """
-    return _jg_force(x, jg_constants(E, R, Y, nu))
+    return _jg_force(x, jg_constants(E, R, Y, nu, 0.0))
 
 
 @jitable
@@ -178,7 +203,7 @@ def _jg_loading(delta, E, R, k):
 @jitable
 def jg_loading_force(delta, E, R, Y, nu):
     """Loading force [N]: Hertz up to ``1.9 delta_c`` (Ghaednia et al. 2019 eq. 1 and Sec. 3.2), eq. 27 beyond."""
-    return _jg_loading(delta, E, R, jg_constants(E, R, Y, nu))
+    return _jg_loading(delta, E, R, jg_constants(E, R, Y, nu, 0.0))
 
 
 # ------------------------------------------------------------------------------ Kogut & Etsion
@@ -300,8 +325,10 @@ def law_constants(law, E, R, Y, nu, twin):
     critical interference in its frame."""
     El, Rl, s = frame(E, R, twin)
     if law == JACKSON_GREEN:
-        return (s, El, Rl, Y, nu, jg_constants(El, Rl, Y, nu))
-    return (s, El, Rl, Y, nu, (ke_critical_interference(El, Rl, Y, nu), 0.0, 0.0, 0.0, 0.0, Rl))
+        return (s, El, Rl, Y, nu, jg_constants(El, Rl, Y, nu, 0.0))
+    if law == JACKSON_GREEN_2005:
+        return (s, El, Rl, Y, nu, jg_constants(El, Rl, Y, nu, 1.0))
+    return (s, El, Rl, Y, nu, (ke_critical_interference(El, Rl, Y, nu), 0.0, 0.0, 0.0, 0.0, Rl, 0.0))
 
 
 @jitable
@@ -314,7 +341,7 @@ def _critical(c):
 def _switch(law, c):
     """:func:`switch_approach` from :func:`law_constants`."""
     ac = _critical(c)
-    return JG_SWITCH * ac if law == JACKSON_GREEN else ac
+    return JG_SWITCH * ac if is_jackson_green(law) else ac
 
 
 @jitable
@@ -322,7 +349,7 @@ def _force(law, alpha, c):
     """:func:`loading_force` from :func:`law_constants`."""
     if alpha <= 0.0:
         return 0.0
-    if law == JACKSON_GREEN:
+    if is_jackson_green(law):
         return _jg_loading(c[0] * alpha, c[1], c[2], c[5])
     return ke_loading_force(c[0] * alpha, c[1], c[2], c[3], c[4])
 
@@ -353,7 +380,7 @@ def contact_radius(law, alpha, E, R, Y, nu, twin):
     El, Rl, s = frame(E, R, twin)
     if alpha <= switch_approach(law, E, R, Y, nu, twin):
         return math.sqrt(R * alpha)
-    if law == JACKSON_GREEN:
+    if is_jackson_green(law):
         return jg_contact_radius(s * alpha / jg_critical_interference(El, Rl, Y, nu), El, Rl, Y, nu)
     return math.sqrt(ke_contact_area(s * alpha, El, Rl, Y, nu) / math.pi)
 
@@ -386,7 +413,7 @@ def _step_work(law, lo, hi, E, R, Y, nu, twin, c):
     """``int_lo^hi P d alpha`` over a short step inside one smooth piece (``ln(hi/lo)`` below a
     fiftieth of a panel): 6-point Gauss-Legendre in ``ln alpha`` for Jackson & Green, else exact
     (``c``: :func:`law_constants`)."""
-    if law != JACKSON_GREEN or not lo >= _switch(law, c):
+    if not is_jackson_green(law) or not lo >= _switch(law, c):
         return loading_work(law, lo, hi, E, R, Y, nu, twin)
     u0 = math.log(lo)
     h = math.log(hi) - u0
@@ -410,7 +437,7 @@ def loading_work(law, lo, hi, E, R, Y, nu, twin):
         lo = top
     if not hi > lo:
         return total
-    if law == JACKSON_GREEN:
+    if is_jackson_green(law):
         return total + _gl_work(law, lo, hi, E, R, Y, nu, twin)
     El, Rl, s = frame(E, R, twin)
     for j in range(3):  # the regimes of Kogut & Etsion beyond omega_c: (1, 6], (6, 110], (110, inf)
@@ -429,7 +456,7 @@ def unloading(law, alpha_max, E, R, Y, nu, twin):
     """``(P_max, delta_bar, R_bar, a_max)`` of the published unloading from ``alpha_max`` [N, m, m, m]."""
     P = loading_force(law, alpha_max, E, R, Y, nu, twin)
     a = contact_radius(law, alpha_max, E, R, Y, nu, twin)
-    if law == JACKSON_GREEN:
+    if is_jackson_green(law):
         d, Rb = brake_unloading(alpha_max, P, E, R)
     else:
         d, Rb = ekk_unloading(alpha_max, P, a, E)
@@ -602,9 +629,9 @@ def plastic_loading_time(law, a1, astar, E, R, m, Y, nu, twin):
     half = 0.5 * astar
     total = 0.0
     lo = a1
-    nb = 1 if law == JACKSON_GREEN else 3
+    nb = 1 if is_jackson_green(law) else 3
     for j in range(nb):
-        if law == JACKSON_GREEN:
+        if is_jackson_green(law):
             top = astar
         else:
             top = a1 * KE_LIMITS[j + 1] if j < 2 else astar

@@ -54,7 +54,7 @@ from .. import hertz
 from .._jit import jitable
 from . import LIMIT_FORCE, Parameter, checks, deprecated_names
 from ._common import dem_outcome, in_bounds, nan_outcome
-from .hertz_viscoelastic import scaled_damped_hertz, scaled_restitution
+from .hertz_viscoelastic import reaches_bound, scaled_damped_hertz, scaled_restitution
 
 NAME = "hertz_tsuji"
 TITLE = "Hertz with Tsuji's nonlinear damping (LAMMPS damping tsuji/coeff_restitution, LIGGGHTS hertz)"
@@ -127,6 +127,17 @@ def outcome(V, E, R, m, p_y, params):
 
 
 @jitable
+def outside_validity(V, E, R, m, p_y, params):
+    """The contract's validity code: 4 where the integration reached its bounds before the contact
+    ended (``limit_force = 0`` only: the particle creeps out of a heavily damped contact, and ``e = 0``,
+    ``contact_time = inf`` are the limit returned; :data:`~microimpact.core.models.hertz_viscoelastic.MAX_STEPS`);
+    0 otherwise (and for invalid input)."""
+    if not in_bounds(params, BOUNDS) or not (V > 0.0 and V < math.inf):
+        return 0.0
+    return 4.0 if reaches_bound(restitution_group(V, E, R, m, p_y, params), params[1] == 1.0, 0.25) else 0.0
+
+
+@jitable
 def restitution_group(V, E, R, m, p_y, params):
     """The damping coefficient ``kappa`` of the scaled equation at speed ``V > 0`` [m/s]: ``alpha_T``
     up to rounding (module docstring), as :func:`outcome` computes it."""
@@ -134,6 +145,8 @@ def restitution_group(V, E, R, m, p_y, params):
     T = hertz.dem_time_scale(V, E, R, m)
     X = V * T
     # damping term alpha_T (m (4/3) E R^(1/2))^(1/2) alpha^(1/4) alpha_dot, scaled by m X / T^2:
+    if not X > 0.0:  # V so small that X = V T underflows: the same group as V^(1/4) T^(5/4) (rho/m)^(1/2)
+        return params[0] * math.sqrt(rho / m) * V**0.25 * T**1.25
     return params[0] * math.sqrt(m * rho) * X**0.25 * (X / T) / (m * X / (T * T))
 
 

@@ -40,7 +40,8 @@ times the time a point, ``e`` the same to 4e-12 with the force clipped, 6e-11 wi
     ``1`` (default): force clipped at zero, the contact ends when it vanishes (Poschel & Schwager
     2005; LAMMPS ``limit_damping``). ``0``: the force may become attractive, the contact ends when the
     approach returns to zero (LAMMPS without ``limit_damping``); at large ``kappa`` the particle
-    may then never leave (``e = 0``, ``contact_time = inf``).
+    may then never leave (``e = 0``, ``contact_time = inf``: the integration stops at its bounds,
+    :data:`MAX_STEPS`, :data:`T_MAX`, and the impact is flagged in ``outside_validity`` with a warning).
 
 Fields this model does not define (NaN): ``yield_velocity``, ``normalized_velocity``,
 ``unloading_radius``, ``elastic_stage_time``, ``plastic_stage_time``. ``plastic_approach`` is the
@@ -80,8 +81,16 @@ ZERO_FORCE_ORDER = 1.0
 
 _TOL = 2e-14
 _T0 = 1e-4
-_MAX_STEPS = 200000
-_T_MAX = 1e4
+#: The scaled integration's bounds: accepted or rejected steps, and scaled time. Every clipped
+#: contact ends within a few thousand steps and ``t`` of a few units. Without clipping the viscous
+#: force pulls the leaving particle in, and a heavily damped one (``kappa`` from about 500 at
+#: ``q = 1/2``, from about 3 at Tsuji's ``q = 1/4``) comes to creep, ``x' ~ -x^(3/2-q)/kappa``,
+#: which reaches ``x = 0`` only as ``t -> inf``: no integration ends it. At either bound the
+#: integration stops and returns that limit, ``e = 0`` and ``t_end = inf``; :func:`reaches_bound`
+#: tells such an impact, which the model's ``outside_validity`` flags (bit 4 of
+#: :data:`~microimpact.core.models.VALIDITY_REASONS`) with the pair's warning.
+MAX_STEPS = 200000
+T_MAX = 1e4
 
 
 @jitable
@@ -272,8 +281,10 @@ def scaled_damped_hertz(kappa, clip, q):
 
     Returns ``(e, x_max, t_max, p_max, t_end, x_end)``: restitution, maximum approach and its time,
     maximum scaled force ``x^(3/2) + kappa x^q x'``, and time and approach at the end of the
-    contact (``clip``: where the force vanishes; else where ``x`` returns to zero). A particle that
-    never leaves (possible without ``clip``) gives ``e = 0`` and ``t_end = inf``.
+    contact (``clip``: where the force vanishes; else where ``x`` returns to zero). A contact that has
+    not ended within the bounds :data:`MAX_STEPS` and :data:`T_MAX` (possible without ``clip``: a
+    particle creeping out, which reaches zero approach only as ``t -> inf``) gives that limit,
+    ``e = 0`` and ``t_end = inf``, and :func:`reaches_bound` is True.
     """
     return _integrate(kappa, clip, q, True)
 
@@ -306,7 +317,7 @@ def _integrate(kappa, clip, q, full):
     p_max = 0.0
     h_old = 0.0  # the last accepted step and its error (the predictive controller's memory)
     err_old = 0.0
-    for _ in range(_MAX_STEPS):
+    for _ in range(MAX_STEPS):
         xn, vn, err = _step(x, v, h, kappa, q)
         if err > 1.0:
             h *= max(0.2, 0.9 * err**-0.125)
@@ -335,7 +346,7 @@ def _integrate(kappa, clip, q, full):
         t += h
         x = xn
         v = vn
-        if t > _T_MAX:
+        if t > T_MAX:
             break
         # Gustafsson's predictive controller (Hairer & Wanner, *Solving ODEs II*, Sec. IV.8, as
         # scipy.integrate.Radau's predict_factor writes it): while the steps must shrink, as the
@@ -351,6 +362,14 @@ def _integrate(kappa, clip, q, full):
 
 
 @jitable
+def reaches_bound(kappa, clip, q):
+    """True where :func:`scaled_damped_hertz` reaches its bounds before the contact ends (``t_end = inf``)."""
+    if clip:
+        return False
+    return _integrate(kappa, clip, q, False)[4] == math.inf
+
+
+@jitable
 def outcome(V, E, R, m, p_y, params):
     """Outcome of one impact (see the module docstring; ``p_y`` unused)."""
     if not in_bounds(params, BOUNDS) or not (V >= 0.0 and V < math.inf):
@@ -363,6 +382,16 @@ def outcome(V, E, R, m, p_y, params):
     kappa = restitution_group(V, E, R, m, p_y, params)
     e, x_max, t_max, p_max, t_end, x_end = scaled_impact(kappa, params[1] == 1.0)
     return dem_outcome(V, e, X * x_max, X * x_end, rho * X * math.sqrt(X) * p_max, R, T * t_max, T * (t_end - t_max))
+
+
+@jitable
+def outside_validity(V, E, R, m, p_y, params):
+    """The contract's validity code: 4 where the integration reached its bounds before the contact
+    ended (``limit_force = 0`` only: ``e = 0`` and ``contact_time = inf`` are the limit returned); 0
+    otherwise (and for invalid input)."""
+    if not in_bounds(params, BOUNDS) or not (V > 0.0 and V < math.inf):
+        return 0.0
+    return 4.0 if reaches_bound(restitution_group(V, E, R, m, p_y, params), params[1] == 1.0, 0.5) else 0.0
 
 
 @jitable

@@ -21,13 +21,25 @@ contact") print it in their eqs. 5-30, read in ``tmd-lab/microslip-rough-contact
   Ghaednia et al.'s strain hardening (tangent modulus ``E_t``, eqs. 11, 21, 25, 26, 30) is left
   out: with ``E_t = 0`` their eq. 30 is eq. 27 and eq. 25 gives ``a = a_p``.
 
-**Hardness term.** Eq. 28's cosine form is the one both tmd-lab codes print (labelled "Eqn 28").
-It is Jackson & Green's *2006* hardness (Tribol. Int. 39:906, the rough-surface paper);
-the 2005 paper's own fit is ``H_G/S_y = 2.84 [1 - exp(-0.82 (a/R)^(-0.7))]``, the form a
-public ``JG.m`` is said to use. That script could not be found (the only public ``JG.m`` found is
-an unrelated clustering script), so the 2005 form is not implemented:
-this model follows Ghaednia et al. 2019 as printed. Both tend to 2.84 as ``a/R -> 0`` and differ by
-a few per cent at ``a/R ~ 0.3``.
+**Hardness term** (parameter ``hardness``). Two fits of the hardness ``H_G/S_y`` at the contact
+radius are offered:
+
+* ``hardness = 0`` (default): ``H_G/S_y = 2.84 - 0.92 (1 - cos(pi a/R))``, Ghaednia et al. 2019's
+  eq. 28, the form both tmd-lab codes print (labelled "Eqn 28" in ``GHAEDNIA_ET_AL_FLATTENING.m``).
+  It is Jackson & Green's later (2006, Tribol. Int. 39:906) hardness, the one Ghaednia et al.
+  (Jackson a co-author) carry into the law this model states, and it is the default because the
+  whole law here, eqs. 5-29, is theirs as printed and has been compared with their finite elements
+  in that form (their Figs. 8-12); the computed numbers of every earlier release are this form's.
+* ``hardness = 1``: the 2005 paper's own fit ``H_G/S_y = 2.84 [1 - exp(-0.82 (a/R)^(-0.7))]``,
+  the form the project's source list quotes from a public ``JG.m`` for Jackson & Green 2005
+  (J. Tribol. 127:343). That script could not be read here (the public files of that name found
+  are unrelated), nor the paper's equation itself: the attribution rests on the source list, and
+  on the paper's abstract (its hardness "varies with the deformed contact geometry", fitted for
+  the hemisphere it models). Use it to see how much the choice of hardness fit matters.
+
+Both are 2.84 at ``a/R -> 0`` and agree within 2 % up to ``a/R = 0.3`` (2.42 against 2.46 there);
+beyond it the cosine form falls faster (1.00 against 1.59 at ``a/R = 1``), where ``large_strain``
+flags the impact anyway.
 
 **Unloading** (Brake 2015, Int. J. Solids Struct., as ``SPHERE_PLASTIC_PRE.m`` and tmdsimpy's
 ``_normal_asperity_unloading`` write it; the paper's equation numbers are not given there):
@@ -70,6 +82,9 @@ the sphere's radius: eq. 23's ``a`` grows without bound, and ``e`` rises with th
     Poisson's ratio of the sphere, in ``C`` (eq. 6); default 0.3.
 ``identical_spheres`` [0 or 1]
     0 (default): a sphere on a flat with the pair's ``E*``, ``R*``; 1: two identical spheres.
+``hardness`` [0 or 1]
+    0 (default): eq. 28's cosine hardness (Jackson & Green 2006, as Ghaednia et al. print it);
+    1: the 2005 paper's exponential fit (see "Hardness term").
 
 ``yield_velocity`` is Hertz's impact speed reaching ``delta_c`` (yield inception); the loading
 leaves Hertz's curve only at ``1.9 delta_c``, so ``e = 1`` up to the speed reaching it.
@@ -115,6 +130,14 @@ PARAMETERS = (
         default=0.0,
         flag=True,
     ),
+    Parameter(
+        "hardness",
+        "1",
+        "0: H_G/S_y = 2.84 - 0.92 (1 - cos(pi a/R)) (Ghaednia et al. 2019 eq. 28, Jackson & Green 2006); "
+        "1: H_G/S_y = 2.84 [1 - exp(-0.82 (a/R)^-0.7)] (Jackson & Green 2005)",
+        default=0.0,
+        flag=True,
+    ),
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
 #: Cost class (the contract's ``COST``): ``e`` and the outcome take 0.14 and 0.85 ms a point in Python.
@@ -122,6 +145,12 @@ COST = "slow"
 
 #: Largest ``Delta/R`` of Ghaednia et al.'s comparisons with finite elements (Figs. 8-12).
 VALID_INTERFERENCE_RATIO = 0.05
+
+
+@jitable
+def _law(params):
+    """The law code of the chosen hardness fit (``params[3]``)."""
+    return fl.JACKSON_GREEN if params[3] == 0.0 else fl.JACKSON_GREEN_2005
 
 
 @jitable
@@ -136,7 +165,7 @@ def outcome(V, E, R, m, p_y, params):
     """Outcome of one impact (see the module docstring; ``p_y`` unused)."""
     if not in_bounds(params, BOUNDS):
         return nan_outcome(V)
-    return fl.impact(fl.JACKSON_GREEN, V, E, R, m, params[0], params[1], params[2], _limit(E, R, params))
+    return fl.impact(_law(params), V, E, R, m, params[0], params[1], params[2], _limit(E, R, params))
 
 
 @jitable
@@ -145,7 +174,7 @@ def restitution_only(V, E, R, m, p_y, params):
     without the contact times' quadrature."""
     if not in_bounds(params, BOUNDS):
         return math.nan
-    return fl.restitution(fl.JACKSON_GREEN, V, E, R, m, params[0], params[1], params[2])
+    return fl.restitution(_law(params), V, E, R, m, params[0], params[1], params[2])
 
 
 @jitable
@@ -155,7 +184,7 @@ def outside_validity(V, E, R, m, p_y, params):
     where ``a*`` exceeds the sphere's radius; 0 inside (and for invalid ``params``)."""
     if not in_bounds(params, BOUNDS):
         return 0.0
-    return fl.outside_validity(fl.JACKSON_GREEN, V, E, R, m, params[0], params[1], params[2])
+    return fl.outside_validity(_law(params), V, E, R, m, params[0], params[1], params[2])
 
 
 @jitable
@@ -163,7 +192,7 @@ def signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
     """The force law [N]: loading (eqs. 1, 27) while ``alpha >= alpha_max``, else Brake's unloading
     (negative below ``delta_bar``, where the contact has ended), or the loading curve where the
     unloading would create energy (module docstring)."""
-    return fl.signed_force(fl.JACKSON_GREEN, alpha, alpha_max, E, R, params[0], params[1], params[2])
+    return fl.signed_force(_law(params), alpha, alpha_max, E, R, params[0], params[1], params[2])
 
 
 @jitable
@@ -182,10 +211,10 @@ def ends_at_zero_force(params):
 @jitable
 def critical_interference(E, R, params):
     """``delta_c`` [m] in the pair's frame (eq. 5; two identical spheres: the same value)."""
-    return fl.critical_approach(fl.JACKSON_GREEN, E, R, params[0], params[1], params[2])
+    return fl.critical_approach(_law(params), E, R, params[0], params[1], params[2])
 
 
 @jitable
 def residual_interference(alpha_max, E, R, params):
     """Brake's residual interference ``delta_bar`` [m] after unloading from ``alpha_max`` (negative just past the jump)."""
-    return fl.unloading(fl.JACKSON_GREEN, alpha_max, E, R, params[0], params[1], params[2])[1]
+    return fl.unloading(_law(params), alpha_max, E, R, params[0], params[1], params[2])[1]
