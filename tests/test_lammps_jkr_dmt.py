@@ -140,7 +140,7 @@ def test_bad_parameters_are_named_and_unchecked_inputs_run_as_lammps_runs_them()
     assert math.isnan(lammps_jkr.outcome(1.0, E, R, M, 0.0, _tuple(0.05, 3.0, 0.5))[4])
     assert math.isnan(lammps_dmt.outcome(1.0, E, R, M, 0.0, _tuple(0.05, 2.0, 0.0))[4])
     for law in LAWS.values():
-        assert law.outside_validity(1.0, E, R, M, 0.0, _tuple(0.05, 2.0, 1.5)) == 5.0
+        assert law.outside_validity(1.0, E, R, M, 0.0, _tuple(0.05, 2.0, 1.5)) == 9.0
         assert law.outcome(2.0, E, R, M, 0.0, _tuple(0.05, 2.0, 1.5))[4] > 1.0
         assert (
             law.outcome(2.0, E, R, M, 0.0, _tuple(0.05, 1.5, 0.6))[4]
