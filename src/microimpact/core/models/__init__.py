@@ -411,6 +411,7 @@ _HOOKS = (
 VALIDITY_REASONS = {
     1: "the published unloading would return more work than the loading stored (e > 1; e = 1 is returned)",
     2: "the contact radius exceeds the sphere's radius (a* > R: the fit is extrapolated past the geometry)",
+    4: "the DEM code this law transcribes does not run this case (it stops with an error there)",
 }
 
 
