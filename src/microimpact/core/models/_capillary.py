@@ -121,8 +121,10 @@ def willett_analytic(d, gamma, theta, V_b, r):
 @jitable
 def rabinovich_yade(d, gamma, theta, V_b, r):
     """Rabinovich et al. 2005 eqs. 19, 20, A3 (the first term in Lambert 2008's eq. 65 form) as Yade's
-    ``Rabinovich_f`` writes them [N, attractive > 0]; at ``d = 0`` Yade takes ``2 pi r gamma
-    cos(theta)`` (its ``alpha = 0`` branch)."""
+    ``Rabinovich_f`` writes them [N, attractive > 0]. At ``d = 0`` exactly Yade takes ``2 pi r gamma
+    cos(theta)`` (its ``alpha = 0`` branch), though as ``d -> 0`` eq. A3 gives ``a -> (2 V_b/(pi r^3))^(1/4)``
+    and the force tends to ``2 pi r gamma (cos(theta) + sin(a) sin(a + theta))``: a jump at contact,
+    of no consequence for an impact (the point has no measure), kept as Yade writes it."""
     if d == 0.0:
         return 2.0 * math.pi * r * gamma * math.cos(theta)
     return rabinovich_code(d, gamma, theta, V_b, r)
@@ -293,15 +295,17 @@ def _step(kind, inside, x, v, h, E, R, m, q, xs, vs):
 
 
 @jitable
-def _land(kind, inside, x, v, h, xb, E, R, m, q, xs, vs):
-    """Shorten a step from ``(x, v)`` that crosses ``x = xb`` so that it ends on it: secant iteration on
-    the step length (each trial a full step from the same start). Returns ``(h, x_new, v_new)``."""
+def _land(kind, inside, x, v, h, which, target, E, R, m, q, xs, vs):
+    """Shorten a step from ``(x, v)`` that crosses ``x = target`` (``which`` 0) or ``v = target``
+    (``which`` 1) so that it ends on it: secant iteration on the step length, kept in its bracket
+    (each trial a full step from the same start). Returns ``(h, x_new, v_new)`` of the last trial."""
     lo = 0.0
-    flo = x - xb
+    flo = (x if which == 0 else v) - target
     hi = h
     xn, vn, _ = _step(kind, inside, x, v, hi, E, R, m, q, xs, vs)
-    fhi = xn - xb
-    hb, vb_n = hi, vn
+    fhi = (xn if which == 0 else vn) - target
+    hb, xb, vb = hi, xn, vn
+    tol = 1e-15 * (xs if which == 0 else vs)
     for _ in range(100):
         if fhi == flo:
             break
@@ -309,15 +313,15 @@ def _land(kind, inside, x, v, h, xb, E, R, m, q, xs, vs):
         if not (min(lo, hi) < hn < max(lo, hi)):
             hn = 0.5 * (lo + hi)
         xn, vn, _ = _step(kind, inside, x, v, hn, E, R, m, q, xs, vs)
-        f = xn - xb
-        hb, vb_n = hn, vn
-        if abs(f) <= 1e-15 * xs or hn == hi or hn == lo:
+        f = (xn if which == 0 else vn) - target
+        hb, xb, vb = hn, xn, vn
+        if abs(f) <= tol or hn == hi or hn == lo:
             break
         if (f > 0.0) == (flo > 0.0):
             lo, flo = hn, f
         else:
             hi, fhi = hn, f
-    return hb, xb, vb_n
+    return hb, xb, vb
 
 
 @jitable
@@ -348,7 +352,7 @@ def integrate(kind, V, E, R, m, q):
             continue
         # a step that leaves the contact, comes back into it or reaches rupture ends on that boundary
         if inside and xn < 0.0:
-            h, xn, vn = _land(kind, inside, x, v, h, 0.0, E, R, m, q, xs, vs)
+            h, xn, vn = _land(kind, inside, x, v, h, 0, 0.0, E, R, m, q, xs, vs)
             xn = 0.0
             t += h
             x, v = xn, vn
@@ -358,7 +362,7 @@ def integrate(kind, V, E, R, m, q):
             h = min(h, 0.01 * T) if h > 0.0 else 0.01 * T
             continue
         if not inside and xn > 0.0:
-            h, xn, vn = _land(kind, inside, x, v, h, 0.0, E, R, m, q, xs, vs)
+            h, xn, vn = _land(kind, inside, x, v, h, 0, 0.0, E, R, m, q, xs, vs)
             t += h
             x, v = 0.0, vn
             inside = True
@@ -367,8 +371,16 @@ def integrate(kind, V, E, R, m, q):
                 return 0.0, x_max, p_max, t_max, math.inf
             h = 0.01 * T
             continue
+        if not inside and v < 0.0 <= vn:
+            # the particle turned back within the step: where it turned decides whether it reached
+            # the rupture distance first (the step's end alone cannot tell)
+            ht, xt, vt = _land(kind, inside, x, v, h, 1, 0.0, E, R, m, q, xs, vs)
+            if xt <= -dr:
+                h, xn, vn = _land(kind, inside, x, v, ht, 0, -dr, E, R, m, q, xs, vs)
+                t += h
+                return -vn / V, x_max, p_max, t_max, t - t_max
         if not inside and xn <= -dr:
-            h, xn, vn = _land(kind, inside, x, v, h, -dr, E, R, m, q, xs, vs)
+            h, xn, vn = _land(kind, inside, x, v, h, 0, -dr, E, R, m, q, xs, vs)
             t += h
             return -vn / V, x_max, p_max, t_max, t - t_max
         t += h
