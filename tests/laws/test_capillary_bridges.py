@@ -104,7 +104,7 @@ def test_yade_laws_match_the_integration_of_their_force(name, log_v, theta, log_
     """e and V_s equal the integration and the quadrature of the law's own force to 1e-8; energy balance
     ``e^2 = 1 - (V_s/V)^2`` (no damping in the Hertz contact, none in Yade's bridge)."""
     p = _params(
-        name, liquid_volume=10.0**log_volume, surface_tension=0.072 * 10.0**log_v, contact_angle=theta, pair=pair
+        name, liquid_volume=10.0**log_volume, surface_tension=0.072 * 10.0**log_v, contact_angle=theta, two_spheres=pair
     )
     mod = get(name)
     Vs = mod.sticking_velocity(E, R, M, math.inf, p)
@@ -126,7 +126,9 @@ def test_yade_radius_and_rupture():
 
     th = math.radians(30.0)
     for pair, Ry in ((0.0, R), (1.0, 2.0 * R)):
-        p = _params("willett_capillary", liquid_volume=1e-11, surface_tension=0.072, contact_angle=30.0, pair=pair)
+        p = _params(
+            "willett_capillary", liquid_volume=1e-11, surface_tension=0.072, contact_angle=30.0, two_spheres=pair
+        )
         vs = 1e-11 / Ry**3
         s_c = (1.0 + 0.5 * th) * (vs ** (1 / 3) + 0.1 * vs ** (2 / 3)) * Ry
         a0 = (2.0 * vs / math.pi) ** 0.25
@@ -171,7 +173,7 @@ def test_liggghts_laws_match_the_integration_of_their_force(name, viscosity, e_n
         coefficient_restitution=e_n,
         contact_angle=theta,
         angle_mixing=mixing,
-        pair=pair,
+        two_spheres=pair,
         limit_force=limit,
     )
     mod = get(name)
@@ -192,7 +194,7 @@ def test_conservative_capture_velocity_is_the_bridge_work(name):
     from microimpact.core.models import _capillary as cap
 
     for pair in (0.0, 1.0):
-        p = _params(name, **LIQUID, contact_angle=20.0, pair=pair)
+        p = _params(name, **LIQUID, contact_angle=20.0, two_spheres=pair)
         mod = get(name)
         Vs = math.sqrt(2.0 * _work(name, p) / M)
         assert mod.work(E, R, M, p) == pytest.approx(0.5 * M * Vs**2, rel=1e-10)
@@ -229,7 +231,7 @@ def test_easo_at_a_wall_is_flagged_and_machinery_takes_the_laws():
         "rabinovich_capillary",
     } <= set(mi.models.available())
     mod = get("liggghts_easo_capillary")
-    wall, spheres = _params(mod.NAME, **LIQUID), _params(mod.NAME, **LIQUID, pair=1.0)
+    wall, spheres = _params(mod.NAME, **LIQUID), _params(mod.NAME, **LIQUID, two_spheres=1.0)
     assert mod.outside_validity(1.0, E, R, M, math.inf, wall) == 4.0
     assert mod.outside_validity(1.0, E, R, M, math.inf, spheres) == 0.0
     assert any("does not run" in t for t in mi.core.models.validity_reasons(4.0))
@@ -256,14 +258,14 @@ STEPS = 800
 def _deck(name, V, **given):
     p = dict(LIQUID, fluid_viscosity=1e-3, coefficient_restitution=0.9, **given)
     cal = Calibration.of(_Pair, name, p, velocity=V)
-    geometry = "sphere" if cal.as_dict()["pair"] == 1.0 else "wall"
+    geometry = "sphere" if cal.as_dict()["two_spheres"] == 1.0 else "wall"
     dt = 2.0 * hertz.half_period(V, E, R, M) / STEPS
     return cal, dem.deck(cal, "liggghts", V, geometry=geometry, time_step=dt)
 
 
 @needs_liggghts
 def test_liggghts_easo_between_spheres_and_its_angle_mixing():
-    cal, d = _deck("liggghts_easo_capillary", 0.2, contact_angle=40.0, pair=1.0)
+    cal, d = _deck("liggghts_easo_capillary", 0.2, contact_angle=40.0, two_spheres=1.0)
     measured = dem.run(d)["restitution"]
     mod = get(cal.model)
     assert measured == pytest.approx(d.predicted_restitution, abs=1e-3)
@@ -274,7 +276,7 @@ def test_liggghts_easo_between_spheres_and_its_angle_mixing():
 @needs_liggghts
 @pytest.mark.parametrize("pair,V", [(0.0, 0.15), (1.0, 0.15)])
 def test_liggghts_washino(pair, V):
-    _, d = _deck("liggghts_washino_capillary", V, contact_angle=30.0, pair=pair)
+    _, d = _deck("liggghts_washino_capillary", V, contact_angle=30.0, two_spheres=pair)
     assert dem.run(d)["restitution"] == pytest.approx(d.predicted_restitution, abs=1e-3)
 
 

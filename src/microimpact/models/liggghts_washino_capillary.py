@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from .liggghts_easo_capillary import calibrate_damping, capillary_lines
+from ._liquid_bridge import calibrate_damping, capillary_lines
 
 __all__ = ["STYLE", "calibrate", "liggghts", "params_for_work_of_adhesion"]
 
@@ -11,7 +11,7 @@ STYLE = {"color": "#009E73", "linestyle": (0, (5, 1))}
 
 
 def calibrate(pair_values, velocity, target_restitution, target_contact_time, **options):
-    """``coefficient_restitution`` for the target's mean ``e`` (the easo face's ``calibrate_damping``)."""
+    """``coefficient_restitution`` for the target's mean ``e`` (:func:`~microimpact.models._liquid_bridge.calibrate_damping`)."""
     from ..core.models import liggghts_washino_capillary as law
 
     return calibrate_damping(law, pair_values, velocity, target_restitution, **options)

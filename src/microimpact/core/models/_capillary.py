@@ -325,10 +325,54 @@ def _land(kind, inside, x, v, h, which, target, E, R, m, q, xs, vs):
 
 
 @jitable
+def _force_after(kind, x, v, s, E, R, m, q, xs, vs):
+    """The contact force [N] after a step of length ``s`` from ``(x, v)`` in contact."""
+    xn, vn, _ = _step(kind, True, x, v, s, E, R, m, q, xs, vs)
+    return contact_force(kind, xn, vn, E, R, m, q)
+
+
+@jitable
+def _peak(kind, x0, v0, h0, x1, v1, h1, E, R, m, q, xs, vs):
+    """The largest contact force [N] over two consecutive loading steps (from ``(x0, v0)`` of length
+    ``h0``, then from ``(x1, v1)`` of length ``h1``): golden-section search on the time, each trial a
+    step from the start of its own step (so as accurate as the integration)."""
+    g = 0.5 * (math.sqrt(5.0) - 1.0)
+    lo = 0.0
+    hi = h0 + h1
+    best = 0.0
+    for _ in range(200):
+        if hi - lo <= 1e-13 * (h0 + h1):
+            break
+        a = hi - g * (hi - lo)
+        b = lo + g * (hi - lo)
+        fa = (
+            _force_after(kind, x0, v0, a, E, R, m, q, xs, vs)
+            if a <= h0
+            else _force_after(kind, x1, v1, a - h0, E, R, m, q, xs, vs)
+        )
+        fb = (
+            _force_after(kind, x0, v0, b, E, R, m, q, xs, vs)
+            if b <= h0
+            else _force_after(kind, x1, v1, b - h0, E, R, m, q, xs, vs)
+        )
+        if fa > best:
+            best = fa
+        if fb > best:
+            best = fb
+        if fa > fb:
+            hi = b
+        else:
+            lo = a
+    return best
+
+
+@jitable
 def integrate(kind, V, E, R, m, q):
     """Integrate one impact at contact speed ``V`` [m/s]: ``(e, alpha_max, P_max, t_loading,
-    t_unloading)`` (``t_unloading`` from the maximum approach to rupture, ``inf`` and ``e = 0`` for a
-    captured particle). See the module docstring."""
+    t_unloading)``: the maximum approach and its time located on the step where the approach rate
+    changes sign, the largest force of the loading by :func:`_peak` around the best step,
+    ``t_unloading`` from the maximum approach to rupture (``inf`` and ``e = 0`` for a captured
+    particle). See the module docstring."""
     dr = q[7]
     am = hertz.max_approach(V, E, R, m)
     xs = 1e-3 * (am if am > dr else dr)
@@ -343,6 +387,11 @@ def integrate(kind, V, E, R, m, q):
     t_max = 0.0
     returns = 0
     inside = True
+    loading = True
+    # the best loading step: its start and length, and the step after it (where the peak may lie)
+    p_best = -math.inf
+    bx, bv, bh, nx, nv, nh = 0.0, V, 0.0, 0.0, V, 0.0
+    need_next = False
     t_limit = 1e4 * T + 1e3 * (dr / V)
     W = willett_work(q) if kind == WILLETT else bridge_work(kind, q)
     while t < t_limit:
@@ -350,12 +399,33 @@ def integrate(kind, V, E, R, m, q):
         if err > 1.0 and h > 1e-9 * T:
             h *= max(0.2, 0.9 * err ** (-1.0 / 8.0))
             continue
+        if loading and vn <= 0.0:  # the maximum approach lies in this step
+            ht, xt, vt = _land(kind, True, x, v, h, 1, 0.0, E, R, m, q, xs, vs)
+            x_max = xt
+            t_max = t + ht
+            if need_next:
+                nx, nv, nh = x, v, ht
+            elif contact_force(kind, xt, 0.0, E, R, m, q) > p_best:
+                bx, bv, bh, nx, nv, nh = x, v, ht, xt, 0.0, 0.0
+            p_max = _peak(kind, bx, bv, bh, nx, nv, nh, E, R, m, q, xs, vs)
+            pt = contact_force(kind, xt, 0.0, E, R, m, q)
+            if pt > p_max:
+                p_max = pt
+            loading = False
+        elif loading:
+            if need_next:
+                nx, nv, nh = x, v, h
+                need_next = False
+            pn = contact_force(kind, xn, vn, E, R, m, q)
+            if pn > p_best:
+                p_best = pn
+                bx, bv, bh = x, v, h
+                need_next = True
         # a step that leaves the contact, comes back into it or reaches rupture ends on that boundary
         if inside and xn < 0.0:
             h, xn, vn = _land(kind, inside, x, v, h, 0, 0.0, E, R, m, q, xs, vs)
-            xn = 0.0
             t += h
-            x, v = xn, vn
+            x, v = 0.0, vn
             inside = False
             if 0.5 * m * v * v < W:  # cannot climb out of the bridge's well: it comes back, poorer
                 return 0.0, x_max, p_max, t_max, math.inf
@@ -387,12 +457,6 @@ def integrate(kind, V, E, R, m, q):
         x, v = xn, vn
         if inside and 0.5 * m * v * v + contact_potential(kind, x, E, R, q) < 0.0:
             return 0.0, x_max, p_max, t_max, math.inf  # held in contact for good
-        if x > x_max:
-            x_max = x
-            t_max = t
-            p = signed_force(kind, x, v, E, R, m, q)
-            if p > p_max:
-                p_max = p
         h *= min(4.0, 0.9 * err ** (-1.0 / 8.0)) if err > 0.0 else 4.0
     return 0.0, x_max, p_max, t_max, math.inf
 

@@ -34,9 +34,9 @@ At a wall (``fix wall/gran ... cohesion easo/capillary/viscous``): the construct
 supports dry walls". In 3.8.0 ``surfacesClose`` reads the velocity ``v[j]`` of atom ``j``, which at a
 primitive wall is ``-(wall type)``: the run dies with a segmentation fault as soon as the particle
 leaves the wall with a bridge (reproduced in ``tests/laws/test_capillary_bridges.py``). Commit
-``ce1931e3`` (2019) reads the wall's velocity instead. ``pair = 0`` (the default, the wall) computes
+``ce1931e3`` (2019) reads the wall's velocity instead. ``two_spheres = 0`` (the default, the wall) computes
 what the fixed code computes there (``r_i = r_j = R*``: ``r_eff = R*/2``), flagged by
-:func:`outside_validity` as a law the released binary cannot run; ``pair = 1`` two equal spheres of
+:func:`outside_validity` as a law the released binary cannot run; ``two_spheres = 1`` two equal spheres of
 radius ``2 R*`` (mass ``2 m*``), which 3.8.0 runs.
 
 The force law and its integration are in :mod:`~microimpact.core.models._capillary`.
@@ -48,7 +48,7 @@ The force law and its integration are in :mod:`~microimpact.core.models._capilla
 ``fluid_viscosity`` ``eta`` [Pa s] (``fluidViscosity``), ``min_separation_ratio`` ``s_min``
 (``minSeparationDistanceRatio``), ``max_separation_ratio`` (``maxSeparationDistanceRatio`` >= 1),
 ``coefficient_restitution`` ``e_n`` (Hertz damping input), ``limit_force`` (``limitForce``),
-``angle_mixing`` (0 code, 1 mean), ``pair`` (0 wall, 1 two equal spheres).
+``angle_mixing`` (0 code, 1 mean), ``two_spheres`` (0 wall, 1 two equal spheres).
 
 Fields: ``plastic_approach`` is ``-d_r`` (the approach where the bridge breaks); ``unloading_time``
 runs from the maximum approach to rupture. ``p_y`` is not used.
@@ -76,41 +76,16 @@ COST = "slow"
 KIND = cap.EASO
 
 PARAMETERS = (
-    Parameter(
-        "surface_tension", "N/m", "surface tension of the liquid (surfaceTension)", 0.072, low=0.0, low_open=True
-    ),
-    Parameter(
-        "contact_angle",
-        "deg",
-        "contact angle of the liquid on the solid (contactAngle, degrees)",
-        0.0,
-        low=0.0,
-        high=90.0,
-    ),
-    Parameter(
-        "liquid_content",
-        "1",
-        "surfaceLiquidContentInitial: liquid over solid volume",
-        0.01,
-        low=0.0,
-        high=1.0,
-        low_open=True,
-    ),
-    Parameter("fluid_viscosity", "Pa s", "viscosity of the liquid (fluidViscosity)", 0.0, low=0.0),
-    Parameter("min_separation_ratio", "1", "minSeparationDistanceRatio", 1.01, low=0.0, low_open=True),
-    Parameter("max_separation_ratio", "1", "maxSeparationDistanceRatio (>= 1)", 1.1, low=1.0),
-    Parameter(
-        "coefficient_restitution",
-        "1",
-        "coefficientRestitution of the Hertz damping",
-        1.0,
-        low=0.0,
-        high=1.0,
-        low_open=True,
-    ),
+    Parameter.of("surface_tension", default=0.072, low=0.0, low_open=True),
+    Parameter.of("contact_angle", default=0.0, low=0.0, high=90.0),
+    Parameter.of("liquid_content", default=0.01, low=0.0, high=1.0, low_open=True),
+    Parameter.of("fluid_viscosity", default=0.0, low=0.0),
+    Parameter.of("min_separation_ratio", default=1.01, low=0.0, low_open=True),
+    Parameter.of("max_separation_ratio", default=1.1, low=1.0),
+    Parameter.of("coefficient_restitution", default=1.0, low=0.0, high=1.0, low_open=True),
     LIMIT_FORCE._replace(default=0.0),
-    Parameter("angle_mixing", "1", "0: theta_eff = 0.5 theta_i theta_j (3.8.0); 1: the mean", 0.0, flag=True),
-    Parameter("pair", "1", "0: sphere on a wall; 1: two equal spheres of radius 2 R*", 0.0, flag=True),
+    Parameter.of("angle_mixing", default=0.0, flag=True),
+    Parameter.of("two_spheres", default=0.0, flag=True),
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
 
@@ -200,6 +175,6 @@ def sticking_velocity(E, R, m, p_y, params):
 
 @jitable
 def outside_validity(V, E, R, m, p_y, params):
-    """4 at a wall (``pair = 0``): the released 3.8.0 binary crashes there once the bridge forms
+    """4 at a wall (``two_spheres = 0``): the released 3.8.0 binary crashes there once the bridge forms
     (module docstring); the law is what the fixed code computes."""
     return 4.0 if params[9] == 0.0 else 0.0

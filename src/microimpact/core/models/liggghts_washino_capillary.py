@@ -24,7 +24,7 @@ What the code computes (``r_i``, ``r_j`` the radii, ``r_eff = r_i r_j/(r_i + r_j
 At a wall (``fix wall/gran ... cohesion washino/capillary/viscous``, no warning): in contact the code
 takes ``radj`` from the wall's contact data, where it is never set (0), so ``r_eff = 0``: no capillary
 and no viscous force in contact; outside, ``surfacesClose`` sets ``radj = radi`` (``r_eff = R*/2``).
-``pair = 0`` (the default) computes this; ``pair = 1`` two equal spheres of radius ``2 R*``.
+``two_spheres = 0`` (the default) computes this; ``two_spheres = 1`` two equal spheres of radius ``2 R*``.
 
 Speed ``V`` is the speed at first touch, as for every law here: a particle that comes from beyond
 ``d_max`` has been pulled in by the bridge (and slowed by its viscous force) on the way; its speed far
@@ -33,7 +33,7 @@ away is ``(V^2 - 2 W/m*)^(1/2)`` without viscosity (``W`` :func:`work`).
 **Parameters of this model** (``params``, in this order): as
 :mod:`~microimpact.core.models.liggghts_easo_capillary` (``surface_tension``, ``contact_angle``,
 ``liquid_content``, ``fluid_viscosity``, ``min_separation_ratio``, ``max_separation_ratio``,
-``coefficient_restitution``, ``limit_force``, ``angle_mixing``, ``pair``) and ``volume_fraction``
+``coefficient_restitution``, ``limit_force``, ``angle_mixing``, ``two_spheres``) and ``volume_fraction``
 (``lbVolumeFraction``, used with ``modifyLbVolume on``; 0.05 otherwise).
 """
 

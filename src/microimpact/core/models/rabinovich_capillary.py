@@ -18,14 +18,13 @@ Energy balance: ``W = int_0^s_c F dH`` (Gauss-Legendre, :func:`microimpact.core.
 ``e = (1 - 2 W/(m* V^2))^(1/2)``, capture velocity ``(2 W/m*)^(1/2)``.
 
 **Parameters**: as :mod:`~microimpact.core.models.willett_capillary` (``liquid_volume``,
-``surface_tension``, ``contact_angle`` [deg], ``pair``).
+``surface_tension``, ``contact_angle`` [deg], ``two_spheres``).
 """
 
 from __future__ import annotations
 
 import math
 
-from .. import hertz
 from .._jit import jitable
 from . import _capillary as cap
 from . import checks
@@ -75,10 +74,9 @@ def outcome(V, E, R, m, p_y, params):
     e = restitution_only(V, E, R, m, p_y, params)
     if V == 0.0:
         return dem_outcome(V, 0.0, 0.0, -q[7], 0.0, R, 0.0, math.inf)
-    a_max = hertz.max_approach(V, E, R, m)
-    tL = 0.5 * hertz.half_period(V, E, R, m)
-    tU = cap.integrate(KIND, V, E, R, m, q)[4] if e > 0.0 else math.inf
-    return dem_outcome(V, e, a_max, -q[7], hertz.force(a_max, E, R), R, tL, tU)
+    run = cap.integrate(KIND, V, E, R, m, q)  # the times, and the maximum approach and force
+    tU = run[4] if e > 0.0 else math.inf
+    return dem_outcome(V, e, run[1], -q[7], run[2], R, run[3], tU)
 
 
 @jitable

@@ -22,7 +22,7 @@ capture velocity ``V_s = (2 W/m*)^(1/2)`` and 0 below. Yade's ``theta`` input is
 (converted with ``pi/180``), and so is ``contact_angle`` here.
 
 **Parameters** (``params``): ``liquid_volume`` ``V_b`` [m^3] (``Vb``), ``surface_tension`` ``gamma``
-[N/m] (``gamma``), ``contact_angle`` ``theta`` [deg] (Yade's ``theta``), ``pair`` (0: a
+[N/m] (``gamma``), ``contact_angle`` ``theta`` [deg] (Yade's ``theta``), ``two_spheres`` (0: a
 sphere on a wall, Yade's ``R = R*``; 1: two spheres, ``R = 2 R*``). ``p_y`` is not used.
 """
 
@@ -30,7 +30,6 @@ from __future__ import annotations
 
 import math
 
-from .. import hertz
 from .._jit import jitable
 from . import Parameter, checks
 from . import _capillary as cap
@@ -45,10 +44,10 @@ OUTCOME_COST = "slow"
 KIND = cap.WILLETT
 
 PARAMETERS = (
-    Parameter("liquid_volume", "m^3", "volume of the liquid bridge V_b (Yade's Vb)", 1e-18, low=0.0, low_open=True),
-    Parameter("surface_tension", "N/m", "surface tension of the liquid", 0.072, low=0.0, low_open=True),
-    Parameter("contact_angle", "deg", "contact angle (Yade's theta, degrees)", 0.0, low=0.0, high=90.0),
-    Parameter("pair", "1", "0: sphere on a wall (R = R*); 1: two spheres (R = 2 R*)", 0.0, flag=True),
+    Parameter.of("liquid_volume", default=1e-18, low=0.0, low_open=True),
+    Parameter.of("surface_tension", default=0.072, low=0.0, low_open=True),
+    Parameter.of("contact_angle", default=0.0, low=0.0, high=90.0),
+    Parameter.of("two_spheres", default=0.0, flag=True),
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
 
@@ -87,10 +86,9 @@ def outcome(V, E, R, m, p_y, params):
     e = restitution_only(V, E, R, m, p_y, params)
     if V == 0.0:
         return dem_outcome(V, 0.0, 0.0, -q[7], 0.0, R, 0.0, math.inf)
-    a_max = hertz.max_approach(V, E, R, m)
-    tL = 0.5 * hertz.half_period(V, E, R, m)
-    tU = cap.integrate(KIND, V, E, R, m, q)[4] if e > 0.0 else math.inf
-    return dem_outcome(V, e, a_max, -q[7], hertz.force(a_max, E, R), R, tL, tU)
+    run = cap.integrate(KIND, V, E, R, m, q)  # the times, and the maximum approach and force
+    tU = run[4] if e > 0.0 else math.inf
+    return dem_outcome(V, e, run[1], -q[7], run[2], R, run[3], tU)
 
 
 @jitable
