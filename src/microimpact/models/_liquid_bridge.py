@@ -1,46 +1,10 @@
-"""What the faces of LIGGGHTS' two capillary cohesion models share: their input lines and their calibration."""
+"""What the faces of LIGGGHTS' two capillary cohesion models share: their input lines."""
 
 from __future__ import annotations
 
 from ..core import hertz
 
-__all__ = ["calibrate_damping", "capillary_lines"]
-
-
-def calibrate_damping(law, pair_values, velocity, target_restitution, **options):
-    """The law's parameters (its defaults, ``options`` by name) with ``coefficient_restitution`` (the
-    Hertz damping input) chosen so that the mean ``e`` over ``velocity`` is the mean target: the bridge
-    is set by the liquid (surface tension, contact angle, volume), not by the solid's ``E*`` or ``p_y``."""
-    import math
-
-    import numpy as np
-    from scipy.optimize import brentq
-
-    from ..core.models import resolve_params
-
-    E, R, m, p_y = pair_values
-    values = list(resolve_params(law, dict(options)))
-    i = [p.name for p in law.PARAMETERS].index("coefficient_restitution")
-    speeds = [float(v) for v in np.atleast_1d(velocity)]
-    e_t = float(np.mean(target_restitution))
-
-    def miss(e_n):
-        values[i] = e_n
-        p = tuple(values)
-        return float(np.mean([law.outcome(v, E, R, m, p_y, p)[4] for v in speeds])) - e_t
-
-    hi = miss(1.0)
-    if hi <= 0.0:
-        if hi < 0.0:
-            raise ValueError(
-                f"target_restitution {e_t!r} is above what this law gives without damping ({hi + e_t:.6g})"
-            )
-        return tuple(values)
-    if miss(0.05) > 0.0:
-        raise ValueError(f"target_restitution {e_t!r} is below what this law can give in LIGGGHTS (e_n > 0.05)")
-    values[i] = brentq(miss, 0.05, 1.0, xtol=1e-14, rtol=1e-12, maxiter=200)
-    assert math.isfinite(values[i])
-    return tuple(values)
+__all__ = ["capillary_lines"]
 
 
 def capillary_lines(cal, poisson, wall, style, extra=()):

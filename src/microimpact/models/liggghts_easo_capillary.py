@@ -2,22 +2,14 @@
 
 from __future__ import annotations
 
-from ._liquid_bridge import calibrate_damping, capillary_lines
+from ._liquid_bridge import capillary_lines
 
-__all__ = ["STYLE", "calibrate", "liggghts", "params_for_work_of_adhesion"]
+__all__ = ["STYLE", "liggghts", "params_for_work_of_adhesion"]
 
 #: Matplotlib keywords of the model's line in comparison figures (Okabe-Ito colours).
 STYLE = {"color": "#56B4E9", "linestyle": (0, (5, 1))}
 
 STYLE_NAME = "easo/capillary/viscous"
-
-
-def calibrate(pair_values, velocity, target_restitution, target_contact_time, **options):
-    """``coefficient_restitution`` for the target's mean ``e`` (:func:`calibrate_damping`); the
-    liquid's inputs are options (``surface_tension=...``), their defaults otherwise."""
-    from ..core.models import liggghts_easo_capillary as law
-
-    return calibrate_damping(law, pair_values, velocity, target_restitution, **options)
 
 
 def liggghts(cal, poisson, wall):

@@ -2,19 +2,12 @@
 
 from __future__ import annotations
 
-from ._liquid_bridge import calibrate_damping, capillary_lines
+from ._liquid_bridge import capillary_lines
 
-__all__ = ["STYLE", "calibrate", "liggghts", "params_for_work_of_adhesion"]
+__all__ = ["STYLE", "liggghts", "params_for_work_of_adhesion"]
 
 #: Matplotlib keywords of the model's line in comparison figures (Okabe-Ito colours).
 STYLE = {"color": "#009E73", "linestyle": (0, (5, 1))}
-
-
-def calibrate(pair_values, velocity, target_restitution, target_contact_time, **options):
-    """``coefficient_restitution`` for the target's mean ``e`` (:func:`~microimpact.models._liquid_bridge.calibrate_damping`)."""
-    from ..core.models import liggghts_washino_capillary as law
-
-    return calibrate_damping(law, pair_values, velocity, target_restitution, **options)
 
 
 def liggghts(cal, poisson, wall):

@@ -78,7 +78,7 @@ KIND = cap.EASO
 PARAMETERS = (
     Parameter.of("surface_tension", default=0.072, low=0.0, low_open=True),
     Parameter.of("contact_angle", default=0.0, low=0.0, high=90.0),
-    Parameter.of("liquid_content", default=0.01, low=0.0, high=1.0, low_open=True),
+    Parameter.of("liquid_content", low=0.0, high=1.0, low_open=True),
     Parameter.of("fluid_viscosity", default=0.0, low=0.0),
     Parameter.of("min_separation_ratio", default=1.01, low=0.0, low_open=True),
     Parameter.of("max_separation_ratio", default=1.1, low=1.0),

@@ -44,7 +44,7 @@ OUTCOME_COST = "slow"
 KIND = cap.WILLETT
 
 PARAMETERS = (
-    Parameter.of("liquid_volume", default=1e-18, low=0.0, low_open=True),
+    Parameter.of("liquid_volume", low=0.0, low_open=True),
     Parameter.of("surface_tension", default=0.072, low=0.0, low_open=True),
     Parameter.of("contact_angle", default=0.0, low=0.0, high=90.0),
     Parameter.of("two_spheres", default=0.0, flag=True),
