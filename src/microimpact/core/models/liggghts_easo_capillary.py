@@ -16,9 +16,9 @@ What the code computes, for one pair (``r_i``, ``r_j`` the radii; at a wall the 
   volume, so ``c`` enters as a fraction of the solid volume, though the documentation says %).
   Two equal spheres: ``V_b = (4/3 pi r^3 c)(1 - 3^(1/2)/2)``; at a wall (dry: no wall liquid)
   ``V_b = 1/2 (4/3 pi r^3 c)``;
-* effective contact angle ``theta_eff = 0.5 * theta_i * theta_j`` in 3.8.0 (a product:
-  LIGGGHTS-PUBLIC issues #18, #19; fixed to ``0.5 (theta_i + theta_j)`` in ``9805a233``, 2021): the
-  parameter ``angle_mixing`` chooses (0: the code as released, 1: the mean its documentation states);
+* effective contact angle ``theta_eff = 0.5 * theta_i * theta_j`` in 3.8.0 (a product, in rad^2,
+  where the documentation states the mean; the code takes the mean ``0.5 (theta_i + theta_j)`` from
+  ``9805a233`` on): the parameter ``angle_mixing`` chooses (0: the code as released, 1: the mean);
 * in contact (``surfacesIntersect``) a constant attraction ``pi gamma (r_i r_j)^(1/2) (exp(B) + C)``
   (Soulie at zero separation) and the viscous force ``6 pi eta r_eff alpha_dot / s_min``,
   ``r_eff = r_i r_j/(r_i + r_j)``, ``s_min`` = ``minSeparationDistanceRatio``;
@@ -34,7 +34,7 @@ At a wall (``fix wall/gran ... cohesion easo/capillary/viscous``): the construct
 supports dry walls". In 3.8.0 ``surfacesClose`` reads the velocity ``v[j]`` of atom ``j``, which at a
 primitive wall is ``-(wall type)``: the run dies with a segmentation fault as soon as the particle
 leaves the wall with a bridge (reproduced in ``tests/laws/test_capillary_bridges.py``). Commit
-``ce1931e3`` (2019) reads the wall's velocity instead. ``two_spheres = 0`` (the default, the wall) computes
+``ce1931e3`` reads the wall's velocity instead. ``two_spheres = 0`` (the default, the wall) computes
 what the fixed code computes there (``r_i = r_j = R*``: ``r_eff = R*/2``), flagged by
 :func:`outside_validity` as a law the released binary cannot run; ``two_spheres = 1`` two equal spheres of
 radius ``2 R*`` (mass ``2 m*``), which 3.8.0 runs.

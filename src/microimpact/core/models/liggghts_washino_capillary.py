@@ -3,7 +3,7 @@ bridge with a viscous force, active out to its rupture distance.
 
 Source read: ``src/cohesion_model_washino_capillary_viscous.h`` of CFDEMproject/LIGGGHTS-PUBLIC at the
 3.8.0 release commit ``84ba3d76`` (what Debian's ``liggghts 3.8.0+repack1`` runs) and commit
-``dbf4eb82`` (2021, the contact-angle mixing). The code cites Rabinovich et al. 2005 (Langmuir
+``dbf4eb82`` (the contact-angle mixing). The code cites Rabinovich et al. 2005 (Langmuir
 21:10992) eq. A11 in contact and eqs. 19, 20, A3 outside, and Nase et al. 2001 as cited by Shi &
 McCarthy 2008 eqs. 40-41 for the viscous force.
 
@@ -12,8 +12,8 @@ What the code computes (``r_i``, ``r_j`` the radii, ``r_eff = r_i r_j/(r_i + r_j
 * bridge volume ``V_b = f (4/3 pi r_i^3 c_i + 4/3 pi r_j^3 c_j)`` with ``f`` = ``lbVolumeFraction``
   (default 0.05) and ``c`` = ``surfaceLiquidContentInitial`` (entering as a fraction, as in easo);
   at a primitive wall the wall holds no liquid (``V_b = f 4/3 pi r_i^3 c``);
-* ``theta_eff = 0.5 theta_i theta_j`` in 3.8.0 (LIGGGHTS-PUBLIC issues #18, #19; the mean after
-  ``dbf4eb82``): ``angle_mixing`` chooses;
+* ``theta_eff = 0.5 theta_i theta_j`` in 3.8.0, a product where the documentation states the mean
+  (the code's from ``dbf4eb82`` on): ``angle_mixing`` chooses;
 * in contact: ``2 pi r_eff gamma cos(theta_eff)(1 + alpha (pi r_eff/(2 V_b))^(1/2))`` (eq. A11 with the
   code's ``dist = -alpha``) and the viscous force ``6 pi eta r_eff alpha_dot / s_min``;
 * outside, while ``d < d_max = (1 + theta_eff/2) V_b^(1/3)`` and ``d < (maxSeparationDistanceRatio -
