@@ -237,8 +237,9 @@ class Calibration:
         defaults; a missing one without a default is a ValueError naming it); ``velocity`` [m/s]
         is where ``restitution`` and ``contact_time`` are evaluated (targets: the seed's there).
         """
-        if model not in DEM_MODELS:
-            raise ValueError(f"model must be one of {', '.join(DEM_MODELS)}; got {model!r}")
+        printable = _models.dem_line_models()
+        if model not in printable:
+            raise ValueError(f"model must be one of {', '.join(printable)}; got {model!r}")
         mod = _models.get(model)
         names = tuple(p[0] for p in mod.PARAMETERS)
         values = _models.resolve_params(mod, dict(params))

@@ -63,6 +63,16 @@ PARAMS = {
         {"surface_energy": 0.05, "viscoelastic_damping": 2e13},
         {"surface_energy": 0.05, "damping_model": 2, "normal_restitution": 0.6},
     ],
+    "liggghts_easo_capillary": [
+        {"liquid_content": 1e-3, "fluid_viscosity": 1e-3, "coefficient_restitution": 0.8, "contact_angle": 20.0},
+        {"liquid_content": 1e-3, "two_spheres": 1, "limit_force": 1, "coefficient_restitution": 0.8},
+    ],
+    "liggghts_washino_capillary": [
+        {"liquid_content": 1e-3, "fluid_viscosity": 1e-3, "coefficient_restitution": 0.8, "contact_angle": 20.0},
+        {"liquid_content": 1e-3, "two_spheres": 1, "angle_mixing": 1, "contact_angle": 20.0},
+    ],
+    "willett_capillary": [{"liquid_volume": 1e-19, "contact_angle": 20.0}, {"liquid_volume": 1e-19, "two_spheres": 1}],
+    "rabinovich_capillary": [{"liquid_volume": 1e-19, "contact_angle": 20.0}],
 }
 #: Models whose speed V is not the speed at first contact, which the generic integration starts from:
 #: Lethe's DMT attracts the particle before contact (V is the speed outside its cut-off); its outcome

@@ -27,7 +27,7 @@ def register(sub) -> None:
         "the installed code at each speed and print the law's e and contact time against the measured "
         "ones, with the time step used against the contact time.",
     )
-    laws = models.dem_models()  # the laws microimpact.calibrate calibrates (their faces; nothing heavy imported)
+    laws = models.dem_line_models()  # the laws with DEM lines (their faces; nothing heavy imported)
     p.add_argument("model", choices=laws, metavar="MODEL", help=f"the DEM law: {', '.join(laws)}")
     p.add_argument("--code", required=True, choices=("lammps", "liggghts"), help="the DEM code to run")
     p.add_argument("--speeds", nargs="+", metavar="V", help="impact speeds [m/s] (default: 10,30,100)")
@@ -62,6 +62,8 @@ def _calibration(args, pair, V):
                 raise ValueError(f"--param must be NAME=VALUE with NAME one of {', '.join(known)}; got {text!r}")
             given[name] = parse_float(value, f"--param {name}")
         return Calibration.of(pair, args.model, given, V)
+    if args.model not in models.dem_models():
+        raise ValueError(f"model {args.model!r} has no calibration: give its parameters with --param")
     ref = (
         float(np.median(V))
         if args.reference_velocity is None

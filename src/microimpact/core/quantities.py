@@ -319,6 +319,22 @@ QUANTITIES: dict[str, Quantity] = dict(
             "$e_n$",
             check="nonnegative",
         ),
+        # liquid bridges (the capillary laws of LIGGGHTS and Yade)
+        _q("surface_tension", "N/m", "surface tension of the liquid gamma", "", "gamma", r"$\gamma$"),
+        _q("contact_angle", "deg", "contact angle theta of the liquid on the solid, in degrees", "", "theta"),
+        _q("liquid_volume", "m^3", "volume of the liquid bridge V_b", "", "V_b", "$V_b$"),
+        _q("liquid_content", "1", "liquid volume over solid volume c (LIGGGHTS' surfaceLiquidContent)", "", "c"),
+        _q("fluid_viscosity", "Pa s", "viscosity of the liquid eta", "", "eta", r"$\eta$", check="nonnegative"),
+        _q("min_separation_ratio", "1", "LIGGGHTS' minSeparationDistanceRatio s_min (viscous force)", "", "s_min"),
+        _q("max_separation_ratio", "1", "LIGGGHTS' maxSeparationDistanceRatio (bridge cut-off)", "", "s_max"),
+        _q("coefficient_restitution", "1", "the DEM code's coefficientRestitution input e_n", "", "e_n"),
+        _q(
+            "angle_mixing",
+            "1",
+            "1: contact angles mixed as their mean; 0: as LIGGGHTS 3.8.0, 0.5 theta_i theta_j",
+            check="flag",
+        ),
+        _q("two_spheres", "1", "1: two equal spheres of radius 2 R*; 0: a sphere of radius R* on a wall", check="flag"),
         # text
         _q("model", "", "name of the impact model"),
         _q("series", "", "label of the curve"),

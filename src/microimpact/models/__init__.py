@@ -41,6 +41,7 @@ __all__ = [
     "face",
     "Face",
     "dem_models",
+    "dem_line_models",
     "OutsideValidityWarning",
     "outside_validity",
     "validity_codes",
@@ -130,6 +131,17 @@ def face(name: str = DEFAULT) -> Face:
 def dem_models() -> tuple:
     """Names of the models whose face has a calibration of its own (the DEM laws), in :func:`available` order."""
     return tuple(n for n in _core.available() if face(n).own_calibration)
+
+
+def dem_line_models() -> tuple:
+    """Names of the models whose face prints DEM input lines (its own ``lammps`` or ``liggghts``): the DEM
+    laws and the laws whose inputs are physics the user gives (a liquid bridge's liquid), which
+    :meth:`Calibration.of <microimpact.calibrate.Calibration.of>` takes with their parameters."""
+    from . import _base
+
+    return tuple(
+        n for n in _core.available() if face(n).lammps is not _base.lammps or face(n).liggghts is not _base.liggghts
+    )
 
 
 # ----------------------------------------------------------------------------- outside validity

@@ -427,7 +427,8 @@ VALIDITY_REASONS = {
     2: "the contact radius exceeds the sphere's radius (a* > R: the fit is extrapolated past the geometry)",
     4: "the integration reached its bound before the contact ended (e = 0 and contact_time = inf returned: "
     "the particle creeps out of an over-damped contact)",
-    8: "the DEM code refuses this input (the result is what the code's force routine would compute without the refusal)",
+    8: "the DEM code does not run this input (it refuses it, or stops with an error there): the result is what "
+    "its force routine computes where it would run",
 }
 
 
