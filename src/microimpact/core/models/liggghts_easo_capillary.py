@@ -175,6 +175,6 @@ def sticking_velocity(E, R, m, p_y, params):
 
 @jitable
 def outside_validity(V, E, R, m, p_y, params):
-    """4 at a wall (``two_spheres = 0``): the released 3.8.0 binary crashes there once the bridge forms
+    """8 at a wall (``two_spheres = 0``): the released 3.8.0 binary crashes there once the bridge forms
     (module docstring); the law is what the fixed code computes."""
     return 8.0 if params[9] == 0.0 else 0.0
