@@ -6,6 +6,7 @@ go to an open file such as standard output.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import sys
@@ -325,23 +326,64 @@ def write_netcdf(ds, path, *, engine=None, progress=False):
     from pathlib import Path
 
     check_output_path(path)
-    with replacing(resolve_link(Path(path))) as (fd, tmp):
+    target = resolve_link(Path(path))
+    with replacing(target) as (fd, tmp):
         os.close(fd)  # the NetCDF library writes the file by its name
-        if not ds.chunks:
-            ds.to_netcdf(tmp, engine=engine)
-        else:
-            delayed = ds.to_netcdf(tmp, engine=engine, compute=False)
-            if progress:
-                from .._optional import require
+        # computed by to_netcdf itself (not compute=False and a later compute): then xarray closes the
+        # file however the write ends, where a failed write left it open until the interpreter's exit
+        bar = contextlib.nullcontext()
+        if ds.chunks and progress:
+            from .._optional import require
 
-                diagnostics = require("dask.diagnostics", "progress bars")
-                with diagnostics.ProgressBar(out=sys.stderr):
-                    delayed.compute()
-            else:
-                delayed.compute()
+            bar = require("dask.diagnostics", "progress bars").ProgressBar(out=sys.stderr)
+        try:
+            with bar:
+                ds.to_netcdf(tmp, engine=engine)
+        except RuntimeError as exc:
+            if not str(exc).startswith("NetCDF:"):
+                raise
+            raise _netcdf_write_error(exc, tmp, target, ds.nbytes) from None
         with open(tmp, "rb+") as fh:
             os.fsync(fh.fileno())
     return Path(path)
+
+
+def _netcdf_write_error(exc, tmp, target, nbytes) -> OSError:
+    """The OSError naming ``target`` for a failed write of the NetCDF library (``netCDF4`` raises a
+    RuntimeError, ``"NetCDF: HDF error"``, that names neither the file nor the system's error).
+
+    The usual causes are told apart from what the system reports: the process's file-size limit
+    (``ulimit -f``, RLIMIT_FSIZE: the system refuses the write with EFBIG, Python ignoring SIGXFSZ)
+    and a full disk (ENOSPC). ``nbytes`` is the data's size, about the file's.
+    """
+    import errno
+
+    try:
+        written = os.stat(tmp).st_size
+    except OSError:
+        written = 0
+    try:
+        import resource
+
+        limit = resource.getrlimit(resource.RLIMIT_FSIZE)[0]
+        limit = None if limit == resource.RLIM_INFINITY else limit
+    except (ImportError, OSError, ValueError):  # pragma: no cover - not a POSIX system
+        limit = None
+    if limit is not None and max(written, nbytes) >= limit:
+        return OSError(
+            errno.EFBIG,
+            f"File too large: about {nbytes / 1e6:.3g} MB of data, more than the process's file-size limit "
+            f"(ulimit -f) of {limit} bytes",
+            os.fspath(target),
+        )
+    try:
+        st = os.statvfs(os.path.dirname(os.fspath(tmp)) or ".")
+        full = st.f_bavail * st.f_frsize < (1 << 20)
+    except OSError:
+        full = False
+    if full:
+        return OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), os.fspath(target))
+    return OSError(errno.EIO, f"the NetCDF library could not write the file ({exc})", os.fspath(target))
 
 
 def save_figure(fig, path, **kwargs):
