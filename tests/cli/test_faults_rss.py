@@ -3,7 +3,8 @@
 Each command runs at two sizes in a child of a small helper process, which reports
 ``resource.getrusage(RUSAGE_CHILDREN).ru_maxrss`` (a child forked from this large test process would
 report its size: Linux keeps a process's peak across exec). The growth per item between the two
-sizes is held to a bound that the code before failed by several times: ``fit --json`` wrote a
+sizes is held to a bound (the sweeps' one the code before failed; at these sizes the code before
+kept within the fit's and stick's, whose cost showed at 10^6-10^7 items): ``fit --json`` wrote a
 Python float per residual and the whole document as one string (about 200 bytes a row; 2.0 GB at
 10^7 rows), ``stick`` held a list of Python result pairs and the whole table's text (about 700
 bytes a diameter; 830 MB at 10^6), a sweep held three copies of its coordinate and read the flag
