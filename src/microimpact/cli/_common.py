@@ -10,7 +10,7 @@ import sys
 
 import numpy as np
 
-from .._validation import check_pair_scales, check_positive, parse_number
+from .._validation import check_pair_scales, check_positive, first_duplicate, parse_number
 from ..io import check_figure_path, check_input_file, check_memory, check_output_path
 from ..materials import DEFAULT_K, PAPER_CASES, limiting_pressure, list_materials, sphere_mass
 from ..pair import ContactPair
@@ -131,10 +131,9 @@ def parse_values(texts, name: str = "velocity", *, bytes_per_value: float = 8.0,
             out[i] = p
             i += 1
     if unique and out.size > 1:
-        s = np.sort(out)
-        dup = s[1:][s[1:] == s[:-1]]
-        if dup.size:
-            raise ValueError(f"{name} has the value {dup[0]:g} more than once (a sweep's values must be distinct)")
+        dup = first_duplicate(out)
+        if dup is not None:
+            raise ValueError(f"{name} has the value {dup:g} more than once (a sweep's values must be distinct)")
     return out
 
 

@@ -293,7 +293,7 @@ def run(args) -> int:
     if args.fig2:
         plot_fig2(fit, data, args.fig2)
     if args.json:
-        doc = {"data": args.data, **fit.to_dict()}
+        doc = {"data": args.data, **fit.to_dict(lists=False)}  # residuals written a block at a time
         if args.plot:
             doc["plot"] = args.plot
         if args.fig2:

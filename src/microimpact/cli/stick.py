@@ -88,22 +88,44 @@ def _f(x, fmt="{:.5g}"):
 
 def format_table(res, laws) -> str:
     """The capture velocities as an aligned text table, one row per diameter."""
+    return "\n".join(table_lines(res, laws))
+
+
+#: Rows of the table formatted at once (:func:`table_lines`).
+_ROWS = 1 << 14
+
+
+def table_lines(res, laws):
+    """The lines of :func:`format_table`, one at a time: the column widths are found in a first pass
+    over the rows and each row formatted again when written, so no text of the whole table is held
+    (a million diameters made some 5 million strings)."""
     header = [heading("diameter")]
     from ..stick import FULL_LAW
 
     for law in laws:
         short = {"additive": "additive", FULL_LAW: "whole law"}.get(law, law)
         header += [f"V_s {short} [m/s]", f"V_y {short} [m/s]"]
-    rows = [header]
-    for i, d in enumerate(res["diameter"]):
-        row = [f"{d * 1e6:.4g}"]
+    widths = [len(h) for h in header]
+    for rows in _row_blocks(res, laws):
+        for row in rows:
+            widths = [max(w, len(c)) for w, c in zip(widths, row)]
+    yield "  ".join(c.rjust(w) for c, w in zip(header, widths))
+    yield "  ".join("-" * w for w in widths)
+    for rows in _row_blocks(res, laws):
+        for row in rows:
+            yield "  ".join(c.rjust(w) for c, w in zip(row, widths))
+
+
+def _row_blocks(res, laws):
+    """The table's cells, :data:`_ROWS` rows at a time (lists of lists of str)."""
+    n = len(res["diameter"])
+    for start in range(0, n, _ROWS):
+        stop = min(start + _ROWS, n)
+        columns = [[f"{d * 1e6:.4g}" for d in res["diameter"][start:stop].tolist()]]
         for law in laws:
-            row += [_f(res[law]["capture_velocity"][i]), _f(res[law]["yield_velocity"][i])]
-        rows.append(row)
-    widths = [max(len(r[k]) for r in rows) for k in range(len(header))]
-    lines = ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in rows]
-    lines.insert(1, "  ".join("-" * w for w in widths))
-    return "\n".join(lines)
+            for q in ("capture_velocity", "yield_velocity"):
+                columns.append([_f(x) for x in np.asarray(res[law][q][start:stop], dtype=float).tolist()])
+        yield [list(row) for row in zip(*columns)]
 
 
 def run(args) -> int:
@@ -183,7 +205,8 @@ def run(args) -> int:
         )
         print("the particle sticks at and below V_s (V_y = 0: the contact yields at any speed)")
         print()
-        print(format_table(res, laws))
+        for line in table_lines(res, laws):
+            print(line)
         if both:
             print()
             print(

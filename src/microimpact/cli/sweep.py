@@ -142,17 +142,34 @@ def _chunks(text):
     return n
 
 
-def _count_large_strain(path, kind) -> int:
-    """Points flagged ``large_strain``, read back from the written file (no second evaluation)."""
+#: Points of ``large_strain`` read back at once (:func:`_count_large_strain`).
+_COUNT_POINTS = 1 << 20
+#: Rows of a CSV sweep read back at once (about 25 MB of text).
+_COUNT_ROWS = 1 << 16
+
+
+def _count_large_strain(path, kind, names) -> int:
+    """Points flagged ``large_strain``, read back from the written file (no second evaluation), a
+    block at a time: the whole flag, and the index xarray makes of each coordinate, cost 8 bytes a
+    point (170 MB at 10^7 speeds). ``names``: the file's variables (all but the flag are not read)."""
     if kind == ".nc":
         import xarray as xr
 
-        with xr.open_dataset(path) as back:
-            return int(back["large_strain"].sum())
+        drop = [n for n in names if n != "large_strain"]  # no coordinate read, so no index made
+        with xr.open_dataset(path, drop_variables=drop) as back:
+            flag = back["large_strain"]
+            if not flag.dims:
+                return int(flag.values)
+            first = flag.dims[0]
+            step = max(1, _COUNT_POINTS // max(1, flag.size // flag.sizes[first]))
+            return sum(
+                int(np.count_nonzero(flag.isel({first: slice(i, i + step)}).values))
+                for i in range(0, flag.sizes[first], step)
+            )
     import pandas as pd
 
     total = 0
-    for part in pd.read_csv(path, usecols=["large_strain [1]"], chunksize=1_000_000):
+    for part in pd.read_csv(path, usecols=["large_strain [1]"], chunksize=_COUNT_ROWS):
         total += int(part.iloc[:, 0].sum())
     return total
 
@@ -165,14 +182,7 @@ def run(args) -> int:
     check_outputs(files=[out])
     check_distinct_paths(outputs=[("--out", out)])  # no input files: nothing else to collide with
     chunks = _chunks(args.chunks)
-    values = {}
-    for dest in SWEEP_OPTIONS:
-        texts = getattr(args, dest)
-        if texts is None:
-            continue
-        v = parse_values(texts, "--" + dest.replace("_", "-"), unique=True)
-        # velocity always becomes a dimension; other inputs only when two or more values are given
-        values[dest] = v if (v.size > 1 or dest == "velocity") else float(v[0])
+    values = _swept_values(args)
     names = parse_models(args.model)
     params = parse_model_params(args.param, names or [models.DEFAULT])
     npoints = int(np.prod([np.size(v) for v in values.values()])) * len(names or [0])
@@ -189,10 +199,24 @@ def run(args) -> int:
     return _sweep_and_write(args, out, kind, values, pair, params, chunks, npoints)
 
 
+def _swept_values(args) -> dict:
+    """The swept options' values: an array for each dimension, a float for an input given once."""
+    values = {}
+    for dest in SWEEP_OPTIONS:
+        texts = getattr(args, dest)
+        if texts is None:
+            continue
+        v = parse_values(texts, "--" + dest.replace("_", "-"), unique=True)
+        # velocity always becomes a dimension; other inputs only when two or more values are given
+        values[dest] = v if (v.size > 1 or dest == "velocity") else float(v[0])
+    return values
+
+
 def _sweep_and_write(args, out, kind, values, pair, params, chunks, npoints) -> int:
     from ..sweep import sweep, sweep_to_csv, sweep_to_netcdf
 
     ds = sweep(**values, base=pair, model_params=params or None, chunks=chunks)
+    values.clear()  # the sweep keeps its own copy of each swept input: the parsed ones are let go
     progress = show_progress(args)
     if not args.no_progress:
         dims = " x ".join(f"{d} {n}" for d, n in ds.sizes.items())
@@ -201,7 +225,9 @@ def _sweep_and_write(args, out, kind, values, pair, params, chunks, npoints) -> 
         sweep_to_netcdf(ds, out, progress=progress)
     else:
         sweep_to_csv(ds, out, progress=progress)
-    n_large = _count_large_strain(out, kind)
+    names = list(ds.variables)
+    del ds  # its coordinates, and the graph's views of them, are not held while the file is read back
+    n_large = _count_large_strain(out, kind, names)
     if n_large:
         print(
             f"warning: {n_large} of {npoints} points reach a contact radius above 0.3 R*: outside the model's "

@@ -135,7 +135,7 @@ class ModelRanking:
         rows = [{**r, "free": list(r["free"])} for r in self.rows]
         fits = {}
         for label, fit in self.fits.items():
-            d = fit.to_dict()
+            d = fit.to_dict(lists=False)
             d.pop("residuals", None)
             fits[label] = d
         return {"ranking": rows, "caveat": self.caveat, "k_folds": self.k_folds, "fits": fits}

@@ -313,8 +313,13 @@ class FitResult:
         confidence = check_confidence(confidence)
         return t_quantile(confidence, self.dof, self.absolute_sigma and self.loss == "linear")
 
-    def to_dict(self) -> dict:
-        """Estimates, errors and fit statistics as plain Python values (SI units)."""
+    def to_dict(self, *, lists: bool = True) -> dict:
+        """Estimates, errors and fit statistics as plain Python values (SI units).
+
+        ``lists=False`` leaves the residuals the numpy array they are (one value a data point):
+        :func:`microimpact.io.write_json` writes it a block at a time, where a list holds a Python
+        float (32 bytes) per point.
+        """
         return {
             "model": self.model,
             "model_params": {k: float(v) for k, v in self.model_params.items()},
@@ -348,7 +353,7 @@ class FitResult:
                 "density": self.pair.density,
                 "limiting_pressure": self.pair.limiting_pressure,
             },
-            "residuals": np.asarray(self.residuals).tolist(),
+            "residuals": np.asarray(self.residuals).tolist() if lists else np.asarray(self.residuals),
         }
 
     def _display(self, name):

@@ -582,7 +582,11 @@ def owned_directory(path, command: str, *, inputs=()):
         old = None
         stage = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp"))
     try:
-        yield stage
+        try:
+            yield stage
+        except OSError as exc:  # a file written into the staging folder: name it where it was to go
+            _name_in_folder(exc, stage, shown)
+            raise
         names = sorted(e.name for e in os.scandir(stage))
         bad = [n for n in names if n == MANIFEST or not (stage / n).is_file() or (stage / n).is_symlink()]
         if bad:
@@ -602,6 +606,18 @@ def owned_directory(path, command: str, *, inputs=()):
     finally:
         if stage is not None:
             _remove_tree(stage)
+
+
+def _name_in_folder(exc: OSError, stage, shown: str) -> None:
+    """Make ``exc`` name the file of the output folder ``shown`` for a file of its staging folder (a full
+    disk or the file-size limit while a file is written there), not the staging folder's own path."""
+    for attr in ("filename", "filename2"):
+        name = getattr(exc, attr)
+        if name is None:
+            continue
+        rel = os.path.relpath(os.path.abspath(os.fsdecode(name)), stage)
+        if rel != ".." and not rel.startswith(".." + os.sep):
+            setattr(exc, attr, os.path.join(shown, rel) if rel != "." else shown)
 
 
 @contextlib.contextmanager

@@ -6,6 +6,7 @@ go to an open file such as standard output.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import sys
@@ -200,7 +201,10 @@ def write_json(obj, path=None, *, indent: int = 2):
 
     NaN and infinities, which JSON cannot represent, are written as ``null``
     (:func:`json_safe`); ``allow_nan=False`` guarantees no ``NaN``/``Infinity``
-    token is ever produced.
+    token is ever produced. The text is that of ``json.dumps(json_safe(obj), indent=indent,
+    allow_nan=False)`` and a line end, written piece by piece: a numpy array is written a block
+    of its values at a time, so a result of 10^7 values costs a block of text, not a Python
+    float per value and the whole document as one string (several GB).
 
     Parameters
     ----------
@@ -208,25 +212,94 @@ def write_json(obj, path=None, *, indent: int = 2):
         JSON-able data (numpy arrays and scalars allowed).
     path : str, os.PathLike, file object or None
         Destination; ``None`` or ``"-"``: :data:`sys.stdout`.
-    indent : int, optional
-        Indentation (default 2).
+    indent : int or None, optional
+        Indentation (default 2); None: one line.
     """
-    import json
     from pathlib import Path
 
-    text = json.dumps(json_safe(obj), indent=indent, allow_nan=False) + "\n"
+    def emit(fh):
+        for piece in _json_pieces(obj, indent, 0):
+            fh.write(piece)
+        fh.write("\n")
+
     if path is None or (isinstance(path, str) and path == "-"):
         with naming_errors(sys.stdout):
-            sys.stdout.write(text)
+            emit(sys.stdout)
             sys.stdout.flush()
         return None
     if hasattr(path, "write"):
         with naming_errors(path):
-            path.write(text)
+            emit(path)
         return None
     with atomic_write(path) as fh:
-        fh.write(text)
+        emit(fh)
     return Path(path)
+
+
+#: Values of a numpy array turned into text at once by :func:`write_json` (about 1 MB of text).
+_JSON_BLOCK = 1 << 15
+
+
+def _json_pieces(obj, indent, level):
+    """The text of ``json.dumps(json_safe(obj), indent=indent, allow_nan=False)`` in pieces.
+
+    Dicts, lists and arrays are laid out here as :mod:`json` lays them out (``indent`` spaces per
+    level, ``","`` and ``": "`` between items, ``", "`` on one line without indent); every scalar
+    and key is :func:`json.dumps` itself. A numeric numpy array of one dimension is turned into
+    text :data:`_JSON_BLOCK` values at a time with :func:`_json_numbers`.
+    """
+    import json
+
+    if isinstance(obj, np.ndarray) and not (obj.ndim >= 1 and obj.dtype.kind in "biuf"):
+        obj = json_safe(obj)  # a scalar, or text or objects: small, as lists
+    if isinstance(obj, np.ndarray):
+        items = (obj[i] for i in range(len(obj))) if obj.ndim > 1 else None
+        size = len(obj)
+    elif isinstance(obj, (list, tuple)):
+        items, size = iter(obj), len(obj)
+    elif isinstance(obj, dict):
+        items, size = None, len(obj)
+    else:
+        yield json.dumps(json_safe(obj), allow_nan=False)
+        return
+    opening, closing = ("{", "}") if isinstance(obj, dict) else ("[", "]")
+    if size == 0:
+        yield opening + closing
+        return
+    if indent is None:
+        first, sep, last = "", ", ", ""
+    else:
+        inner = "\n" + " " * (indent * (level + 1))
+        first, sep, last = inner, "," + inner, "\n" + " " * (indent * level)
+    yield opening + first
+    if isinstance(obj, dict):
+        for i, (key, value) in enumerate(obj.items()):
+            yield (sep if i else "") + json.dumps(str(key)) + ": "
+            yield from _json_pieces(value, indent, level + 1)
+    elif items is None:  # a 1-D numeric array
+        for start in range(0, size, _JSON_BLOCK):
+            yield (sep if start else "") + sep.join(_json_numbers(obj[start : start + _JSON_BLOCK]))
+    else:
+        for i, value in enumerate(items):
+            if i:
+                yield sep
+            yield from _json_pieces(value, indent, level + 1)
+    yield last + closing
+
+
+def _json_numbers(values):
+    """JSON's text of each value of a 1-D numeric array, as :func:`json.dumps` writes the Python
+    number :func:`json_safe` makes of it: ``float.__repr__`` (the shortest exact form), ``null``
+    where the value is not finite, ``int.__repr__``, ``true``/``false``."""
+    if values.dtype.kind == "b":
+        return ["true" if v else "false" for v in values.tolist()]
+    if values.dtype.kind in "iu":
+        return list(map(int.__repr__, values.tolist()))
+    text = list(map(float.__repr__, values.tolist()))
+    if not np.isfinite(values).all():
+        for i in np.flatnonzero(~np.isfinite(values)).tolist():
+            text[i] = "null"
+    return text
 
 
 # ----------------------------------------------------------------------------- NetCDF and figures
@@ -253,23 +326,64 @@ def write_netcdf(ds, path, *, engine=None, progress=False):
     from pathlib import Path
 
     check_output_path(path)
-    with replacing(resolve_link(Path(path))) as (fd, tmp):
+    target = resolve_link(Path(path))
+    with replacing(target) as (fd, tmp):
         os.close(fd)  # the NetCDF library writes the file by its name
-        if not ds.chunks:
-            ds.to_netcdf(tmp, engine=engine)
-        else:
-            delayed = ds.to_netcdf(tmp, engine=engine, compute=False)
-            if progress:
-                from .._optional import require
+        # computed by to_netcdf itself (not compute=False and a later compute): then xarray closes the
+        # file however the write ends, where a failed write left it open until the interpreter's exit
+        bar = contextlib.nullcontext()
+        if ds.chunks and progress:
+            from .._optional import require
 
-                diagnostics = require("dask.diagnostics", "progress bars")
-                with diagnostics.ProgressBar(out=sys.stderr):
-                    delayed.compute()
-            else:
-                delayed.compute()
+            bar = require("dask.diagnostics", "progress bars").ProgressBar(out=sys.stderr)
+        try:
+            with bar:
+                ds.to_netcdf(tmp, engine=engine)
+        except RuntimeError as exc:
+            if not str(exc).startswith("NetCDF:"):
+                raise
+            raise _netcdf_write_error(exc, tmp, target, ds.nbytes) from None
         with open(tmp, "rb+") as fh:
             os.fsync(fh.fileno())
     return Path(path)
+
+
+def _netcdf_write_error(exc, tmp, target, nbytes) -> OSError:
+    """The OSError naming ``target`` for a failed write of the NetCDF library (``netCDF4`` raises a
+    RuntimeError, ``"NetCDF: HDF error"``, that names neither the file nor the system's error).
+
+    The usual causes are told apart from what the system reports: the process's file-size limit
+    (``ulimit -f``, RLIMIT_FSIZE: the system refuses the write with EFBIG, Python ignoring SIGXFSZ)
+    and a full disk (ENOSPC). ``nbytes`` is the data's size, about the file's.
+    """
+    import errno
+
+    try:
+        written = os.stat(tmp).st_size
+    except OSError:
+        written = 0
+    try:
+        import resource
+
+        limit = resource.getrlimit(resource.RLIMIT_FSIZE)[0]
+        limit = None if limit == resource.RLIM_INFINITY else limit
+    except (ImportError, OSError, ValueError):  # pragma: no cover - not a POSIX system
+        limit = None
+    if limit is not None and max(written, nbytes) >= limit:
+        return OSError(
+            errno.EFBIG,
+            f"File too large: about {nbytes / 1e6:.3g} MB of data, more than the process's file-size limit "
+            f"(ulimit -f) of {limit} bytes",
+            os.fspath(target),
+        )
+    try:
+        st = os.statvfs(os.path.dirname(os.fspath(tmp)) or ".")
+        full = st.f_bavail * st.f_frsize < (1 << 20)
+    except OSError:
+        full = False
+    if full:
+        return OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), os.fspath(target))
+    return OSError(errno.EIO, f"the NetCDF library could not write the file ({exc})", os.fspath(target))
 
 
 def save_figure(fig, path, **kwargs):
