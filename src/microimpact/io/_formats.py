@@ -329,16 +329,21 @@ def write_netcdf(ds, path, *, engine=None, progress=False):
     target = resolve_link(Path(path))
     with replacing(target) as (fd, tmp):
         os.close(fd)  # the NetCDF library writes the file by its name
-        # computed by to_netcdf itself (not compute=False and a later compute): then xarray closes the
-        # file however the write ends, where a failed write left it open until the interpreter's exit
-        bar = contextlib.nullcontext()
-        if ds.chunks and progress:
-            from .._optional import require
-
-            bar = require("dask.diagnostics", "progress bars").ProgressBar(out=sys.stderr)
+        # A dask-backed dataset is written by a delayed write computed here: to_netcdf computing it
+        # itself closes the file in a finally that takes xarray's file lock again, and an interrupt
+        # that came while that lock was being taken left it held: the close then waited for ever.
         try:
-            with bar:
+            if not ds.chunks:
                 ds.to_netcdf(tmp, engine=engine)
+            else:
+                delayed = ds.to_netcdf(tmp, engine=engine, compute=False)
+                bar = contextlib.nullcontext()
+                if progress:
+                    from .._optional import require
+
+                    bar = require("dask.diagnostics", "progress bars").ProgressBar(out=sys.stderr)
+                with bar:
+                    delayed.compute()
         except RuntimeError as exc:
             if not str(exc).startswith("NetCDF:"):
                 raise
