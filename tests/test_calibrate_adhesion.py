@@ -38,6 +38,8 @@ def test_a_law_calibrated_to_itself_recovers_its_input(law):
     free = [n for n, a, b in zip(names, right, wrong) if a != b]
     start = {n: b for n, a, b in zip(names, right, wrong) if a != b}
     Vs = PAIR.sticking_velocity(model=law, **dict(zip(names, right)))
+    if Vs == 0.0:
+        pytest.skip(f"{law} captures nothing with its default inputs: no capture velocity to match")
     cal = calibrate_adhesive(PAIR, law, G, [2 * Vs, 5 * Vs], reference=law, params=start, free=free)
     assert cal.residual < 1e-9
     assert cal.capture_velocity == pytest.approx(cal.target_capture_velocity, rel=1e-9)

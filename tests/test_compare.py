@@ -48,6 +48,8 @@ def test_layout_units_and_coordinates(ds):
         "hertz_viscoelastic": True,
         "hertz_tsuji": True,
         "luding_hysteretic": True,
+        "lammps_jkr": True,
+        "lammps_dmt": True,
     }
     assert ds.attrs["reference_velocity"] == float(np.median(V)) == 30.0
     assert "calibrated to the seed's model (thornton_ning_2016) at V = 30 m/s" in ds.attrs["calibration"]

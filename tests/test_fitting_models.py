@@ -111,6 +111,8 @@ STICKING = {
         (200.0, 1000.0),
         {"loading_stiffness": 50.0, "unloading_stiffness": 200.0, "plasticity_depth": 0.01},
     ),
+    "lammps_jkr": ("surface_energy", (0.05, 0.2), {"viscoelastic_damping": 2e13}),
+    "lammps_dmt": ("surface_energy", (0.05, 0.2), {"viscoelastic_damping": 2e13}),
 }
 
 

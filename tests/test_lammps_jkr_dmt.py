@@ -114,12 +114,12 @@ def test_dmt_without_damping_never_captures_and_damping_does():
 
 
 def test_tsuji_and_coeff_restitution_are_flagged_and_switch_off_under_tension():
-    """Modes 1 and 2 carry the refusal code 4 (LAMMPS 22 Jul 2025 refuses them with cohesion); their
+    """Modes 1 and 2 carry the refusal code 8 (LAMMPS 22 Jul 2025 refuses them with cohesion); their
     damping vanishes where the cohesive force is tensile (``max(0, F_ne/delta)``) and beyond contact."""
     for name, law in LAWS.items():
         assert law.outside_validity(1.0, E, R, M, 0.0, _tuple(0.05, 0.0, 1e13)) == 0.0
         for mode in (1.0, 2.0):
-            assert law.outside_validity(1.0, E, R, M, 0.0, _tuple(0.05, mode, 0.5)) == 4.0
+            assert law.outside_validity(1.0, E, R, M, 0.0, _tuple(0.05, mode, 0.5)) == 8.0
             p = _tuple(0.05, mode, 0.5)
             tiny = 1e-14  # approach where the cohesive force is still tensile
             assert law.signed_force(tiny, 1.0, tiny, E, R, M, 0.0, p) == law.signed_force(
@@ -140,7 +140,7 @@ def test_bad_parameters_are_named_and_unchecked_inputs_run_as_lammps_runs_them()
     assert math.isnan(lammps_jkr.outcome(1.0, E, R, M, 0.0, _tuple(0.05, 3.0, 0.5))[4])
     assert math.isnan(lammps_dmt.outcome(1.0, E, R, M, 0.0, _tuple(0.05, 2.0, 0.0))[4])
     for law in LAWS.values():
-        assert law.outside_validity(1.0, E, R, M, 0.0, _tuple(0.05, 2.0, 1.5)) == 5.0
+        assert law.outside_validity(1.0, E, R, M, 0.0, _tuple(0.05, 2.0, 1.5)) == 9.0
         assert law.outcome(2.0, E, R, M, 0.0, _tuple(0.05, 2.0, 1.5))[4] > 1.0
         assert (
             law.outcome(2.0, E, R, M, 0.0, _tuple(0.05, 1.5, 0.6))[4]

@@ -418,7 +418,8 @@ _HOOKS = (
 VALIDITY_REASONS = {
     1: "the published unloading would return more work than the loading stored (e > 1; e = 1 is returned)",
     2: "the contact radius exceeds the sphere's radius (a* > R: the fit is extrapolated past the geometry)",
-    4: "the DEM code refuses this input (the result is what the code's force routine would compute without the refusal)",
+    8: "the DEM code does not run this input (it refuses it, or stops with an error there): the result is what "
+    "its force routine computes where it would run",
 }
 
 

@@ -498,11 +498,11 @@ def damping_input(params):
 
 @jitable
 def refused(params):
-    """The ``outside_validity`` code: 4 where LAMMPS 22 Jul 2025 refuses the damping keyword with a
+    """The ``outside_validity`` code: 8 where LAMMPS 22 Jul 2025 refuses the damping keyword with a
     cohesive normal model (tsuji, coeff_restitution), plus 1 where the damping factor is negative
     (an ``e_n > 1``, which LAMMPS does not check): the damping then feeds energy in."""
     mode, coeff = damping_input(params)
-    code = 4.0 if mode != 0.0 else 0.0
+    code = 8.0 if mode != 0.0 else 0.0
     if damping_factor(mode, coeff) < 0.0:
         code += 1.0
     return code

@@ -142,7 +142,7 @@ def sticking_velocity(E, R, m, p_y, params):
 
 @jitable
 def outside_validity(V, E, R, m, p_y, params):
-    """4 where LAMMPS 22 Jul 2025 refuses the input (damping tsuji or coeff_restitution with jkr), plus 1
+    """8 where LAMMPS 22 Jul 2025 refuses the input (damping tsuji or coeff_restitution with jkr), plus 1
     where a negative damping factor (``e_n > 1``) feeds energy in; else 0."""
     return lg.refused(params)
 
