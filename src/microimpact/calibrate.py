@@ -506,19 +506,12 @@ class AdhesiveCalibration(Calibration):
 
 def adhesion_inputs(model: str, work_of_adhesion, pair_values, given=None) -> tuple:
     """The parameter tuple of ``model`` for the work of adhesion ``G`` [J/m^2] and ``pair_values =
-    (E*, R*, m*, p_y)``: its adhesion input from its face (``params_for_work_of_adhesion``), the
-    others from ``given`` (name -> value) or their defaults (NaN where there is none)."""
-    mod = _core.get(model)
-    names = [p.name for p in mod.PARAMETERS]
+    (E*, R*, m*, p_y)``: :func:`microimpact.models.adhesion_inputs`, except that an input named in
+    ``given`` keeps its given value (a calibration's start)."""
     given = dict(given or {})
-    unknown = sorted(set(given) - set(names))
-    if unknown:
-        raise ValueError(f"model {model!r} has no parameter {unknown[0]!r}; its parameters: {', '.join(names)}")
-    start = tuple(float(given.get(n, d)) for n, d in zip(names, mod.DEFAULTS))
-    mapped = _models.face(model).params_for_work_of_adhesion(float(work_of_adhesion), tuple(pair_values), start)
-    if mapped is None:
-        return start
-    return tuple(float(given[n]) if n in given else float(v) for n, v in zip(names, mapped))
+    names = [p.name for p in _core.get(model).PARAMETERS]
+    mapped = _models.adhesion_inputs(model, work_of_adhesion, pair_values, given)
+    return tuple(float(given[n]) if n in given else v for n, v in zip(names, mapped))
 
 
 def _check_free(mod, free):
@@ -608,7 +601,7 @@ def calibrate_adhesive(
     names = [p.name for p in mod.PARAMETERS]
     if free is None:
         moved = adhesion_inputs(model, 2.0 * G + 1.0, pv, params)
-        free = tuple(n for n, a, b, s in zip(names, start, moved, start) if a != b or math.isnan(s))
+        free = tuple(n for n, a, b in zip(names, start, moved) if a != b or math.isnan(a))
         free = tuple(n for n in free if n not in (params or {}))
     free = _check_free(mod, tuple(free))
     if not free:

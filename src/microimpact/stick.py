@@ -64,20 +64,13 @@ def _law(name):
 
 
 def _law_params(law, G, pair_values, given):
-    """The parameter tuple of model ``law`` for the work of adhesion ``G`` at ``pair_values``: its
-    adhesion input from its face, the others from ``given`` (name -> value) or their defaults."""
-    from .models import face
+    """The checked parameter tuple of model ``law`` for the work of adhesion ``G`` at ``pair_values``
+    (:func:`microimpact.models.adhesion_inputs`: the work of adhesion sets its adhesion input)."""
+    from .models import adhesion_inputs
 
     model = _models.get(law)
-    names = [p.name for p in model.PARAMETERS]
-    unknown = sorted(set(given) - set(names))
-    if unknown:
-        raise ValueError(f"law {law!r} has no parameter {unknown[0]!r}; its parameters: {', '.join(names) or 'none'}")
-    start = tuple(float(given.get(n, d)) for n, d in zip(names, model.DEFAULTS))
-    mapped = face(law).params_for_work_of_adhesion(G, pair_values, start)
-    if mapped is None:
-        mapped = start  # no adhesion input of its own: the given parameters set it
-    return _models.resolve_params(model, dict(zip(names, mapped)))
+    values = adhesion_inputs(law, G, pair_values, given)
+    return _models.resolve_params(model, dict(zip([p.name for p in model.PARAMETERS], values)))
 
 
 def _check_pair(pair):

@@ -47,6 +47,7 @@ __all__ = [
     "validity_codes",
     "validity_text",
     "closed_form_histories",
+    "adhesion_inputs",
 ]
 
 _CORE_PACKAGE = "microimpact.core.models"
@@ -225,3 +226,22 @@ def outside_validity(pair, velocity, *, model, warn=True, **params):
 def closed_form_histories() -> tuple:
     """Names of the models whose face declares a ``closed_form_history``, in :func:`available` order."""
     return tuple(n for n in _core.available() if face(n).closed_form_history is not None)
+
+
+def adhesion_inputs(name: str, work_of_adhesion, pair_values, given=None) -> tuple:
+    """The parameter tuple of model ``name`` for the work of adhesion ``G`` [J/m^2] at ``pair_values =
+    (E*, R*, m*, p_y)``: its adhesion input set from ``G`` by its face (``params_for_work_of_adhesion``),
+    the others from ``given`` (name -> value) or their defaults (NaN where there is none); unchecked.
+    A law without such an input keeps what ``given`` and its defaults set. ValueError for a parameter
+    the model does not have."""
+    model = _core.get(name)
+    names = [p.name for p in model.PARAMETERS]
+    given = dict(given or {})
+    unknown = sorted(set(given) - set(names))
+    if unknown:
+        raise ValueError(
+            f"model {name!r} has no parameter {unknown[0]!r}; its parameters: {', '.join(names) or 'none'}"
+        )
+    start = tuple(float(given.get(n, d)) for n, d in zip(names, model.DEFAULTS))
+    mapped = face(name).params_for_work_of_adhesion(float(work_of_adhesion), tuple(pair_values), start)
+    return start if mapped is None else tuple(float(v) for v in mapped)
