@@ -19,8 +19,16 @@ Lethe, Yade), at a wall, with its inputs set as a user of the code would set the
 The whole law is drawn in every panel as the reference, each law's capture velocity ``V_s`` (the
 largest speed with ``e = 0``) as a marker on the speed axis, and a law that captures nothing at this
 ``G`` (``V_s = 0``: a conservative DMT force without damping, LAMMPS' ``mdr``, the EEPA law whose
-pull-off LIGGGHTS sets to zero at a wall) is named in its panel, not dropped. The speed axis is
-logarithmic; ``e`` is drawn on a linear axis, since ``e = 0`` (capture) is the point of the figure.
+pull-off LIGGGHTS sets to zero at a wall) is named in its panel, not dropped; a law that can capture
+at no ``G`` (``STICKS`` false: ``mdr``) is named there without its curve, which is no adhesion's and
+whose integration takes a minute to compile. The speed axis is logarithmic; ``e`` is drawn on a
+linear axis, since ``e = 0`` (capture) is the point of the figure.
+
+What it shows for the seed's pair at ``G`` = 0.1 J/m^2 (the gallery example): no two codes agree on the
+capture velocity (0.224 m/s for LAMMPS' undamped ``jkr``, none for the undamped DMT laws, 0.31 m/s for
+``sjkr`` with its fitted restitution, against the whole law's 0.318 m/s), and the liquid bridges,
+fitted to that capture velocity, all give ``e = (1 - V_s^2/V^2)^(1/2)``, the curve of any law that
+takes a fixed energy from the particle, which is the whole law's below its yield speed.
 
 The laws are found by their declarations, not by name: a law with a capture velocity whose ``TITLE``
 begins with the code running it (or says which code writes it, "as Yade writes it"); the panels are
