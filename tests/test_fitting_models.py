@@ -114,6 +114,11 @@ STICKING = {
     "lammps_jkr": ("surface_energy", (0.05, 0.2), {"viscoelastic_damping": 2e13}),
     "lammps_dmt": ("surface_energy", (0.05, 0.2), {"viscoelastic_damping": 2e13}),
     "lethe_dmt_vdw": ("effective_surface_energy", (0.05, 0.2), {"restitution": 0.6}),
+    # the liquid bridges: the liquid sets the adhesion (capture at 0.7-2.4 m/s for these amounts)
+    "willett_capillary": ("liquid_volume", (2e-21, 2e-20), {}),
+    "rabinovich_capillary": ("liquid_volume", (2e-21, 2e-20), {}),
+    "liggghts_easo_capillary": ("liquid_content", (1e-3, 1e-2), {}),
+    "liggghts_washino_capillary": ("liquid_content", (1e-3, 1e-2), {}),
 }
 #: Sticking models whose adhesion input a fit of positive parameters cannot recover here, and why.
 NOT_FITTED = {

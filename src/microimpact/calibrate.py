@@ -534,6 +534,7 @@ def calibrate_adhesive(
     params=None,
     free=None,
     capture_weight: float = 1.0,
+    reference_params=None,
 ) -> AdhesiveCalibration:
     """Inputs of the adhesive law ``model`` that give the reference law's capture velocity and ``e(V)``.
 
@@ -560,6 +561,10 @@ def calibrate_adhesive(
     capture_weight : float
         Weight ``w`` of the capture velocity's residual ``w log(V_s / V_s,ref)`` beside the ``e``
         residuals; positive.
+    reference_params : dict, optional
+        Values of the reference law's inputs other than its adhesion input (``{name: value}``), which
+        a reference needs where one has no default (LIGGGHTS' ``coefficientRestitution`` of the sjkr
+        law); the others take their defaults.
 
     Returns
     -------
@@ -591,7 +596,7 @@ def calibrate_adhesive(
     pv = _pair_values(pair)
     V = _speeds(velocity)
     ref_params = _core.resolve_params(
-        ref, dict(zip([q.name for q in ref.PARAMETERS], adhesion_inputs(reference, G, pv)))
+        ref, dict(zip([q.name for q in ref.PARAMETERS], _models.adhesion_inputs(reference, G, pv, reference_params)))
     )
     e_ref, _ = _run(reference, V, pv, ref_params)
     vs_ref = float(ref.sticking_velocity(*pv, ref_params))

@@ -16,7 +16,11 @@ Every other law that can capture a particle (a model declaring ``STICKS`` and it
 ``sticking_velocity``; :func:`adhesion_laws` lists them: JKR, DMT, the DEM codes' adhesive laws) is
 mapped the same way: its adhesion input is set from the work of adhesion by its face
 (``params_for_work_of_adhesion``, :mod:`microimpact.models._base`), its other parameters taken from
-``params`` or their defaults.
+``params`` or their defaults. A parameter without a default must be given in ``params`` (ValueError
+naming it otherwise): LIGGGHTS' ``coefficientRestitution`` of the sjkr law, whose damping alone
+captures. A law whose adhesion no work of adhesion sets (a liquid bridge: its liquid, surface tension
+and contact angle; its face's hook returns None) takes all of it from ``params``, and the work of
+adhesion does not act on its map.
 
 The pair's ``E*``, ``p_y`` and density are kept and its particle resized (a sphere on a flat).
 """
@@ -70,7 +74,22 @@ def _law_params(law, G, pair_values, given):
 
     model = _models.get(law)
     values = adhesion_inputs(law, G, pair_values, given)
-    return _models.resolve_params(model, dict(zip([p.name for p in model.PARAMETERS], values)))
+    names = [p.name for p in model.PARAMETERS]
+    missing = [n for n, v in zip(names, values) if math.isnan(v)]
+    if missing:
+        from .models import face
+
+        sets = face(law).params_for_work_of_adhesion(G, tuple(pair_values), tuple(model.DEFAULTS))
+        why = (
+            "the work of adhesion sets none of its inputs (its adhesion is its own parameters')"
+            if sets is None
+            else "the work of adhesion sets only its adhesion input"
+        )
+        raise ValueError(
+            f"law {law!r} needs {', '.join(repr(n) for n in missing)} (no default) in params "
+            f"({{{law!r}: {{{missing[0]!r}: value}}}}; --param {law}:{missing[0]}=VALUE): {why}"
+        )
+    return _models.resolve_params(model, dict(zip(names, values)))
 
 
 def _check_pair(pair):
@@ -110,7 +129,8 @@ def capture_velocities(pair, diameter, work_of_adhesion, laws=ADHESION_LAWS, par
         Names from :func:`adhesion_laws` (default :data:`ADHESION_LAWS`).
     params : dict, optional
         ``{law: {parameter: value}}``: a law's parameters other than its adhesion input (which the work
-        of adhesion sets), or all of them for a law without one.
+        of adhesion sets), or all of them for a law without one (a liquid bridge, on which the work of
+        adhesion does not act); required for a parameter without a default.
 
     Returns
     -------

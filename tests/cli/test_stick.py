@@ -74,3 +74,18 @@ def test_any_capturing_law_with_its_parameters(capsys, tmp_path, monkeypatch):
     assert "has no parameter 'nothing'" in capsys.readouterr().err
     assert main(["stick", "-G", "0.2", "--param", "additive:x=1", "1e-6"]) == 2
     assert "additive rule takes no parameters" in capsys.readouterr().err
+
+
+def test_a_law_with_an_input_without_default_needs_it(capsys, tmp_path, monkeypatch):
+    """A liquid bridge's liquid has no default and no work of adhesion sets it: refused naming it and
+    the option that gives it; given, the table holds the law's own capture velocity."""
+    monkeypatch.chdir(tmp_path)
+    assert main(["stick", "-G", "0.2", "--law", "willett_capillary", "1e-6"]) == 2
+    err = capsys.readouterr().err
+    assert "needs 'liquid_volume' (no default)" in err and "--param willett_capillary:liquid_volume=" in err
+    assert len(err.strip().splitlines()) == 1
+    argv = ["stick", "-G", "0.2", "--law", "willett_capillary", "--param", "liquid_volume=5e-22", "--json", "1e-6"]
+    assert main(argv) == 0
+    doc = json.loads(capsys.readouterr().out)
+    want = SILICON.resized(radius=0.5e-6).sticking_velocity(model="willett_capillary", liquid_volume=5e-22)
+    assert doc["laws"]["willett_capillary"]["capture_velocity"][0] == want
