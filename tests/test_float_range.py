@@ -114,6 +114,11 @@ MODEL_PARAMS = {
 }
 
 
+#: Fields a model's outcome may set infinite beyond TIMES: TN98's adhesive-plastic law yields at first
+#: touch where adhesion is strong (V_y = 0, its docstring), so V/V_y is infinite there, as it should be.
+MODEL_INFINITE = {"thornton_ning_1998_adhesive_plastic": ("normalized_velocity",)}
+
+
 def _model_cases():
     out = []
     for model, params in MODEL_PARAMS.items():
@@ -124,7 +129,7 @@ def _model_cases():
                 fn,
                 dict(velocity=10.0, **params),
                 ("velocity", *params),
-                infinite=TIMES,
+                infinite=TIMES + MODEL_INFINITE.get(model, ()),
                 draws=2,
             )
         )
@@ -389,7 +394,16 @@ CASES = [
     Case(
         "wall_interaction",
         lambda **kw: wall.wall_interaction([0.0, 0.0, -kw.pop("speed")], [0.0, 0.0, 1.0], **kw),
-        dict(speed=10.0, diameter=5e-6, density=RHO, work_of_adhesion=0.1, friction=0.3, k=2.2),
+        dict(
+            speed=10.0,
+            diameter=5e-6,
+            density=RHO,
+            work_of_adhesion=0.1,
+            friction=0.3,
+            k=2.2,
+            effective_modulus=E,
+            limiting_pressure=PY,
+        ),
         ("speed", "diameter", "density", "work_of_adhesion", "friction", "k"),
         names={"speed": ("velocity",)},
         draws=2,
@@ -459,40 +473,7 @@ KNOWN = {
     "impact[jackson_green_brake]:yield_strength": "tiny yield strength: math domain error not naming it",
     "impact[kogut_etsion_ekk]:velocity": "speed past 1e300: OverflowError (infinity to integer) in the quadrature",
     "impact[kogut_etsion_ekk]:yield_strength": "tiny yield strength: ZeroDivisionError",
-    "universal_curve:x": "universal_curve(x=5e-324): ZeroDivisionError",
-    "impact[thornton_ning_1998_adhesive_plastic]:work_of_adhesion": "work_of_adhesion=3.0: normalized_velocity infinite",
     # the first failing value of each, as this file found it
-    "yield_velocity_sphere_on_flat:effective_modulus": "yield_velocity_sphere_on_flat(effective_modulus=2.2250738585072014e-308): float division by zero",
-    "energy_loss_fraction:restitution": "energy_loss_fraction(restitution=1e+300): overflow encountered in multiply",
-    "normalized_unloading_force:max_alpha_hat": "normalized_unloading_force(max_alpha_hat=2.2250738585072014e-308): float division by zero",
-    "ning_loading_time:limiting_pressure": "ning_loading_time(limiting_pressure=5e-324): float division by zero",
-    "effective_modulus:E2": "effective_modulus(E2=5e-324): overflow encountered in divide",
-    "effective_radius:R1": "effective_radius(R1=5e-324): overflow encountered in divide",
-    "effective_radius:R2": "effective_radius(R2=5e-324): overflow encountered in divide",
-    "effective_mass:m1": "effective_mass(m1=5e-324): overflow encountered in divide",
-    "effective_mass:m2": "effective_mass(m2=5e-324): overflow encountered in divide",
-    "sticking_velocity:effective_modulus": "sticking_velocity(effective_modulus=2.2250738585072014e-308): float division by zero",
-    "whole_law_correction:yield_velocity": "whole_law_correction(yield_velocity=5e-324): overflow encountered in divide",
-    "whole_law_restitution:yield_velocity": "whole_law_restitution(yield_velocity=5e-324): overflow encountered in divide",
-    "cunningham_correction:diameter": "cunningham_correction(diameter=1e+308): overflow encountered in scalar divide",
-    "cunningham_correction:mean_free_path": "cunningham_correction(mean_free_path=1e+308): overflow encountered in multiply",
-    "relaxation_time:diameter": "relaxation_time(diameter=1e+300): overflow encountered in square",
-    "relaxation_time:viscosity": "relaxation_time(viscosity=1e+308): overflow encountered in multiply",
-    "relaxation_time:mean_free_path": "relaxation_time(mean_free_path=1e+308): overflow encountered in multiply",
-    "stokes_number:diameter": "stokes_number(diameter=1e+300): overflow encountered in square",
-    "stokes_number:viscosity": "stokes_number(viscosity=1e+308): overflow encountered in multiply",
-    "stokes_number:mean_free_path": "stokes_number(mean_free_path=1e+308): overflow encountered in multiply",
-    "flight_to_wall:x0": "flight_to_wall(x0=1e+308): overflow encountered in multiply",
-    "flight_to_wall:z0": "flight_to_wall(z0=1e+308): overflow encountered in multiply",
-    "flight_to_wall:u0": "flight_to_wall(u0=1.7976931348623157e+308): overflow encountered in scalar add",
-    "flight_to_wall:w0": "flight_to_wall(w0=inf): invalid value encountered in scalar multiply",
-    "flight_to_wall:strain_rate": "flight_to_wall(strain_rate=1e+308): overflow encountered in divide",
-    "flight_to_wall:tau": "flight_to_wall(tau=2.2250738585072014e-308): overflow encountered in divide",
-    "simulate_deposition:diameters": "simulate_deposition(diameters=2.2250738585072014e-308): ValueError not naming ('diameters',): tau must be posi",
-    "simulate_deposition:jet_speeds": "simulate_deposition(jet_speeds=1e+308): overflow encountered in divide",
-    "simulate_deposition:height": "simulate_deposition(height=2.2250738585072014e-308): overflow encountered in divide",
-    "simulate_deposition:jet_radius": "simulate_deposition(jet_radius=1e+308): overflow encountered in multiply",
-    "simulate_deposition:density": "simulate_deposition(density=2.2250738585072014e-308): ValueError not naming ('density',): tau must be a normal",
     "capture_velocities:diameter": "capture_velocities(diameter=1e+300): overflow encountered in power",
     "stick_map:diameter": "stick_map(diameter=1e+300): overflow encountered in power",
     "parting_diameter:lo": "parting_diameter(lo=0.0): float division by zero",
@@ -500,17 +481,8 @@ KNOWN = {
     "calibrate:velocity": "calibrate(velocity=5e-324): float division by zero",
     "oblique_impact:velocity": "oblique_impact(velocity=5e-324): overflow encountered in divide",
     "oblique_impact:friction": "oblique_impact(friction=0.0): normalized_angle is infinite: inf",
-    "universal_curve:psi": "universal_curve(psi=inf): invalid value encountered in subtract",
-    "universal_curve:kappa": "universal_curve(kappa=5e-324): overflow encountered in divide",
-    "wall_interaction:speed": "wall_interaction(speed=0.0): ValueError not naming ('velocity',): effective_modulus is needed (or give materia",
-    "wall_interaction:diameter": "wall_interaction(diameter=2.2250738585072014e-308): ValueError not naming ('diameter',): effective_modulus is ",
-    "wall_interaction:density": "wall_interaction(density=2.2250738585072014e-308): ValueError not naming ('density',): effective_modulus is ne",
-    "wall_interaction:work_of_adhesion": "wall_interaction(work_of_adhesion=0.0): ValueError not naming ('work_of_adhesion',): effective_modulus is need",
-    "wall_interaction:friction": "wall_interaction(friction=0.0): ValueError not naming ('friction',): effective_modulus is needed (or give mate",
-    "wall_interaction:k": "wall_interaction(k=0.0): ValueError not naming ('k',): effective_modulus is needed (or give material=... and w",
     "dem.deck:velocity": "dem.deck(velocity=5e-324): float division by zero",
     "dem.predict:velocity": "dem.predict(velocity=5e-324): float division by zero",
-    "restitution_table:v_over_vy": "restitution_table(v_over_vy=inf): ValueError not naming ('v_over_vy',): velocity must be finite, got inf",
     "fit_restitution:velocity": "fit_restitution(velocity=5e-324): ValueError not naming ('velocity',): Geometric sequence cannot include zero",
     "fit_restitution:restitution": "fit_restitution(restitution=1e+300): overflow encountered in square",
 }

@@ -21,7 +21,7 @@ import textwrap
 
 import numpy as np
 
-from ._validation import check_nonnegative, check_pair, check_positive, check_velocity
+from ._validation import check_nonnegative, check_pair, check_positive, check_velocity, describe_value
 from .core.quantities import DIMENSIONLESS_SHOWN, OUTCOME_FIELDS, QUANTITIES, unit_text
 from .engine import evaluate
 
@@ -105,6 +105,18 @@ def _docstring(summary, notes, parameters, returns, examples, source):
     return "\n\n".join(doc) + "\n"
 
 
+def _out_of_range(name: str, inputs: dict):
+    """Raise the ValueError of an array face whose formula divided by a zero that the inputs, each in
+    its range, made by underflow (``E*^4`` of a tiny modulus, ``p_y^2`` of a subnormal pressure): no
+    value is due there, and the message names every input with its value(s)."""
+    arrays = {k: np.asarray(v) for k, v in inputs.items()}
+    given = ", ".join(f"{k} {float(v)!r}" if v.ndim == 0 else f"{k} {describe_value(v)}" for k, v in arrays.items())
+    raise ValueError(
+        f"{name}: {given} leave the float range (a product of the inputs underflows to zero and the "
+        "formula divides by it): give inputs in range"
+    ) from None
+
+
 def array_function(
     namespace,
     name,
@@ -169,8 +181,14 @@ def array_function(
     checked = ", ".join(order or [p for p, _, _ in params])
     index, count = output
     nout = f", nout={count}" if count != 1 else ""
-    source = f"def {name}({args}):\n{checks}    return _evaluate(_core_{name}, {checked}{nout})[{index}]\n"
+    given = ", ".join(f"{p!r}: {p}" for p, _, _ in params)
+    source = (
+        f"def {name}({args}):\n{checks}    try:\n"
+        f"        return _evaluate(_core_{name}, {checked}{nout})[{index}]\n"
+        f"    except ZeroDivisionError:\n        _out_of_range({name!r}, {{{given}}})\n"
+    )
     namespace.setdefault("_evaluate", evaluate)
+    namespace.setdefault("_out_of_range", _out_of_range)
     namespace.setdefault("_checks", CHECKS)
     namespace[f"_core_{name}"] = core_function
     exec(compile(source, f"<microimpact array face: {name}>", "exec"), namespace)  # noqa: S102

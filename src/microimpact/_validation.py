@@ -31,6 +31,9 @@ __all__ = [
     "check_dem_words",
     "check_dem_lines",
     "first_duplicate",
+    "check_not_subnormal",
+    "check_in_range",
+    "describe_value",
 ]
 
 #: The bits of float64 ``+inf`` as an unsigned integer.
@@ -81,6 +84,11 @@ def _first_bad(arr: np.ndarray, bad: np.ndarray):
 def _describe(value) -> str:
     text = repr(value)
     return text if len(text) <= 60 else text[:57] + "..."
+
+
+def describe_value(value) -> str:
+    """``repr(value)`` cut to 60 characters: an input, maybe a long array, named in a one-line message."""
+    return _describe(value)
 
 
 _F64 = np.dtype(np.float64)
@@ -185,6 +193,32 @@ def check_positive(name: str, value, *, allow_inf: bool = False, scalar: bool = 
             f"{_first_bad(arr, arr < TINY_NORMAL)!r}: it has lost precision and its reciprocal overflows"
         )
     return _scalar(name, arr, value) if scalar else arr
+
+
+def check_not_subnormal(name: str, arr):
+    """``arr`` (already checked, float) unchanged; ``ValueError`` naming ``name`` where it holds a
+    nonzero subnormal: a quantity whose reciprocal enters a formula (``1/R1 + 1/R2``, ``V/V_y``)
+    overflows there. For the checks that admit ``inf`` or zero, which :func:`check_positive` leaves
+    to the caller."""
+    a = np.asarray(arr)
+    bad = (a != 0.0) & (np.abs(a) < TINY_NORMAL)
+    if bad.any():
+        raise ValueError(
+            f"{name} must be 0 or a normal float (at least {TINY_NORMAL!r}), got the subnormal "
+            f"{_first_bad(a, bad)!r}: it has lost precision and its reciprocal overflows"
+        )
+    return arr
+
+
+def check_in_range(result, what: str, **inputs):
+    """``result`` unchanged where every element is finite or NaN; else ``ValueError`` naming ``what``
+    and every input with its value: the inputs, each in range, give a quantity double precision cannot
+    hold (an overflow), which is no answer and must not pass as one."""
+    r = np.asarray(result)
+    if np.isinf(r).any():
+        given = ", ".join(f"{k} {_describe(v)}" for k, v in inputs.items())
+        raise ValueError(f"{given} give {what} beyond the largest double: give inputs in range")
+    return result
 
 
 def check_nonnegative(name: str, value, *, scalar: bool = False):

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validation import check_nonnegative, check_positive
+from ._validation import TINY_NORMAL, check_nonnegative, check_positive
 from .core import adhesion as _core
 from .core.adhesion import STICKING_CONSTANT  # noqa: F401  (its old home; the core's is the one)
 from .core.models import Parameter, declare
@@ -217,6 +217,13 @@ def sticking_velocity(work_of_adhesion, effective_modulus, effective_radius, eff
     E = check_positive("effective_modulus", effective_modulus)
     R = check_positive("effective_radius", effective_radius)
     m = check_positive("effective_mass", effective_mass)
+    small = np.asarray(E < math.sqrt(TINY_NORMAL)) & np.asarray(G > 0.0)
+    tiny = np.broadcast_to(E, small.shape)[small]
+    if tiny.size:  # the formula divides by E*^2, which underflows to zero
+        raise ValueError(
+            f"effective_modulus {float(tiny.flat[0])!r} Pa is so small that E*^2 underflows (below "
+            f"{math.sqrt(TINY_NORMAL):.4g} Pa): V_s = (C/m*)^(1/2) (G^5 R*^4/E*^2)^(1/6) has no value there"
+        )
     return evaluate(_core.sticking_velocity, G, E, R, m)[0]
 
 
@@ -412,7 +419,8 @@ def whole_law_correction(velocity, yield_velocity, sticking_velocity):
     (array([-0.0065,  0.0062,  0.0009]), array([False, False,  True]))
     """
     V, Vy, Vs = np.broadcast_arrays(*_checked_speeds(velocity, yield_velocity, sticking_velocity))
-    with np.errstate(divide="ignore", invalid="ignore"):
+    # a V_y so small that V/V_y overflows puts the point beyond the table's edge: flagged there (outside)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         x = np.where(Vy < math.inf, V / Vy, 0.0)
         y = np.where(Vy < math.inf, Vs / Vy, 0.0)
     return whole_law_table()(x, y)

@@ -43,7 +43,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._optional import require
-from ._validation import check_nonnegative, check_positive
+from ._validation import TINY_NORMAL, check_in_range, check_nonnegative, check_number, check_positive, describe_value
 from .wall import wall_interaction
 
 __all__ = [
@@ -100,8 +100,12 @@ def cunningham_correction(diameter, mean_free_path=AIR_MEAN_FREE_PATH):
     """
     d = check_positive("diameter", diameter)
     lam = check_positive("mean_free_path", mean_free_path)
-    kn = 2.0 * lam / d
-    return 1.0 + kn * (1.257 + 0.4 * np.exp(-1.1 / kn))
+    # a Knudsen number that underflows (d >> lambda) makes 1.1/Kn overflow and exp(-1.1/Kn) the 0 it
+    # rounds to anyway; one that overflows is refused below, naming the inputs
+    with np.errstate(over="ignore"):
+        kn = 2.0 * lam / d
+        cc = 1.0 + kn * (1.257 + 0.4 * np.exp(-1.1 / kn))
+    return check_in_range(cc, "the slip correction", diameter=diameter, mean_free_path=mean_free_path)
 
 
 def relaxation_time(diameter, density, viscosity=AIR_VISCOSITY, mean_free_path=AIR_MEAN_FREE_PATH):
@@ -136,7 +140,11 @@ def relaxation_time(diameter, density, viscosity=AIR_VISCOSITY, mean_free_path=A
     d = check_positive("diameter", diameter)
     rho = check_positive("density", density)
     mu = check_positive("viscosity", viscosity)
-    return rho * d**2 * cunningham_correction(d, mean_free_path) / (18.0 * mu)
+    cc = cunningham_correction(d, mean_free_path)
+    with np.errstate(over="ignore"):
+        tau = rho * d**2 * cc / (18.0 * mu)
+    names = dict(diameter=diameter, density=density, viscosity=viscosity, mean_free_path=mean_free_path)
+    return check_in_range(tau, "the relaxation time", **names)
 
 
 def stokes_number(diameter, density, strain_rate, viscosity=AIR_VISCOSITY, mean_free_path=AIR_MEAN_FREE_PATH):
@@ -166,7 +174,11 @@ def stokes_number(diameter, density, strain_rate, viscosity=AIR_VISCOSITY, mean_
         If an argument is not positive.
     """
     a = check_positive("strain_rate", strain_rate)
-    return a * relaxation_time(diameter, density, viscosity, mean_free_path)
+    tau = relaxation_time(diameter, density, viscosity, mean_free_path)
+    with np.errstate(over="ignore"):
+        stk = a * tau
+    names = dict(diameter=diameter, density=density, viscosity=viscosity, mean_free_path=mean_free_path)
+    return check_in_range(stk, "the Stokes number", strain_rate=strain_rate, **names)
 
 
 def _axial(z0, w0, a, tau):
@@ -225,10 +237,22 @@ def flight_to_wall(x0, z0, u0, w0, strain_rate, tau):
     a = check_positive("strain_rate", strain_rate)
     tau = check_positive("tau", tau)
     z0 = check_nonnegative("z0", z0)
-    t, w = _axial(z0, np.asarray(w0, float), a, tau)
-    tt = np.where(np.isfinite(t), t, 0.0)
-    x, u = _radial(np.asarray(x0, float), np.asarray(u0, float), a, tau, tt)
+    start = {"x0": check_number("x0", x0), "z0": z0, "u0": check_number("u0", u0), "w0": check_number("w0", w0)}
+    for k, v in start.items():
+        if not np.isfinite(v).all():
+            raise ValueError(f"{k} must be finite, got {float(np.asarray(v)[~np.isfinite(v)].flat[0])!r}")
+    inputs = dict(x0=x0, z0=z0, u0=u0, w0=w0, strain_rate=strain_rate, tau=tau)
+    # the flight's rates 1/(2 tau) and a/tau, and every state along it, must be doubles: an overflow
+    # there would turn into a NaN or a flight that never lands, which is no answer
+    with np.errstate(over="ignore", invalid="ignore"):
+        check_in_range(0.5 / tau + a / tau, "the flight's rates 1/(2 tau) + a/tau", strain_rate=strain_rate, tau=tau)
+        t, w = _axial(z0, start["w0"], a, tau)
+        tt = np.where(np.isfinite(t), t, 0.0)
+        x, u = _radial(start["x0"], start["u0"], a, tau, tt)
     hit = np.isfinite(t)
+    if np.isnan(t).any() or (hit & ~(np.isfinite(x) & np.isfinite(u) & np.isfinite(w))).any():
+        given = ", ".join(f"{k} {describe_value(v)}" for k, v in inputs.items())
+        raise ValueError(f"{given} give a landing time, place or velocity beyond the float range: give inputs in range")
     return {"time": t, "x": np.where(hit, x, np.nan), "u": np.where(hit, u, np.nan), "w": w}
 
 
@@ -440,8 +464,29 @@ def simulate_deposition(
         density = get_material(material).density
     rho = float(check_positive("density", density))
 
-    a_s = U / H
-    tau_d = relaxation_time(d, rho, viscosity, mean_free_path)
+    with np.errstate(over="ignore"):
+        a_s = U / H
+    if not np.isfinite(a_s).all():
+        raise ValueError(
+            f"jet_speeds {describe_value(U)} over height {H!r} m give a strain rate U/H beyond the largest double: "
+            "give them in range"
+        )
+    try:
+        tau_d = relaxation_time(d, rho, viscosity, mean_free_path)
+    except ValueError as exc:
+        raise ValueError(f"diameters and density: {exc}") from None
+    if (tau_d < TINY_NORMAL).any():  # the flight divides by tau: one that underflows has no flight
+        raise ValueError(
+            f"diameters {describe_value(d)} m and density {rho!r} kg/m^3 give a relaxation time "
+            f"{float(tau_d.min())!r} s below the smallest normal double: give them in range"
+        )
+    with np.errstate(over="ignore"):
+        rate = a_s[:, None] / tau_d[None, :]
+    if not np.isfinite(rate).all():  # the flight's rate a/tau (flight_to_wall)
+        raise ValueError(
+            f"jet_speeds {describe_value(U)} over height {H!r} m, with diameters {describe_value(d)} m and density {rho!r} "
+            "kg/m^3, give a flight rate a/tau beyond the largest double: give them in range"
+        )
     tau_rot_d = rho * d**2 / (60.0 * viscosity)
     S, D = U.size, d.size
     shape = (S, D, P)
@@ -452,8 +497,14 @@ def simulate_deposition(
     x_start = R_jet * np.sqrt((np.arange(P) + 0.5) / P)  # equal-area rings
     x = np.broadcast_to(x_start[None, None, :], shape).reshape(-1).copy()
     z = np.full(x.size, H)
-    u = 0.5 * a * x  # gas velocity at the start
-    w = -a * z
+    with np.errstate(over="ignore"):
+        u = 0.5 * a * x  # gas velocity at the start
+        w = -a * z
+    if not (np.isfinite(u).all() and np.isfinite(w).all()):
+        raise ValueError(
+            f"jet_speeds {describe_value(U)}, height {H!r} and jet_radius {R_jet!r} give a gas velocity at the start "
+            "beyond the largest double: give them in range"
+        )
     spin = np.zeros((x.size, 3))
 
     alive = np.ones(x.size, bool)

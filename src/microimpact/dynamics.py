@@ -367,6 +367,12 @@ class _Budget:
         return self.rhs(t, y)
 
 
+class _SpanBoundError(ValueError):
+    """The phase's terminal event did not occur within the tries' doubled spans. A ValueError for the
+    user (the integration cannot answer there); the unloading phase catches it by this class, where it
+    means that the particle does not separate within ~500 loading times: it sticks."""
+
+
 def _integrate_phase(rhs, t0, y0, span, events, method, rtol, atol, tries=60, limit=MAX_RHS_EVALUATIONS):
     """Integrate until a terminal event; extend the span if none occurred. At most ``limit``
     evaluations of ``rhs`` over all the tries (ValueError beyond).
@@ -389,7 +395,7 @@ def _integrate_phase(rhs, t0, y0, span, events, method, rtol, atol, tries=60, li
                 if te.size:
                     return pieces, i, float(te[0]), np.array(sol.y_events[i][0], dtype=float), nfev
         t0, y0, span = sol.t[-1], sol.y[:, -1], 2.0 * span
-    raise ValueError(
+    raise _SpanBoundError(
         f"the ODE integration reached its bound of {tries} extensions of the time span (to t/T = {t0:.6g}) "
         "before the phase of the impact ended (use method='closed', or other parameters)"
     )
@@ -470,7 +476,7 @@ def _run(mod, V, E, R, m, p_y, params, T, rtol, atol, method, counts=None, limit
         lim = limits.get(3, MAX_RHS_EVALUATIONS)
         pc, which, tc, y, nf = _integrate_phase(rhs2, tL, [x_star, 0.0], 2.0 * tL, events, method, rtol, atol, 8, lim)
         counts[3] = nf
-    except RuntimeError:  # no separation within ~500 loading times: the particle sticks
+    except _SpanBoundError:  # no separation within ~500 loading times: the particle sticks
         return pieces, t1, tL, x_star, None, None, 0.0, nfev
     if which == 0:
         y[0] = sep  # the event's own state, exactly on the boundary

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._validation import TINY_NORMAL as _TINY
-from ._validation import check_poisson, check_positive
+from ._validation import check_not_subnormal, check_poisson, check_positive
 from .core import hertz as _hertz
 from .core.constants import DEFAULT_K
 
@@ -291,7 +291,7 @@ def effective_modulus(E1, nu1, E2, nu2):
     1.309
     """
     E1 = check_positive("E1", E1)
-    E2 = check_positive("E2", E2, allow_inf=True)
+    E2 = check_not_subnormal("E2", check_positive("E2", E2, allow_inf=True))  # (1 - nu2^2)/E2 overflows
     nu1 = check_poisson("nu1", nu1)
     nu2 = check_poisson("nu2", nu2)
     return _hertz.effective_modulus(E1, nu1, E2, nu2)
@@ -326,8 +326,8 @@ def effective_radius(R1, R2=math.inf):
     >>> float(effective_radius(2e-6, 2e-6))  # two equal spheres: R/2
     1e-06
     """
-    R1 = check_positive("R1", R1, allow_inf=True)
-    R2 = check_positive("R2", R2, allow_inf=True)
+    R1 = check_not_subnormal("R1", check_positive("R1", R1, allow_inf=True))  # 1/R overflows
+    R2 = check_not_subnormal("R2", check_positive("R2", R2, allow_inf=True))
     return 1.0 / (1.0 / R1 + 1.0 / R2)
 
 
@@ -358,8 +358,8 @@ def effective_mass(m1, m2=math.inf):
     >>> round(float(effective_mass(3e-15, 3e-15)) * 1e15, 12)  # two equal particles: m/2, in 1e-15 kg
     1.5
     """
-    m1 = check_positive("m1", m1, allow_inf=True)
-    m2 = check_positive("m2", m2, allow_inf=True)
+    m1 = check_not_subnormal("m1", check_positive("m1", m1, allow_inf=True))  # 1/m overflows
+    m2 = check_not_subnormal("m2", check_positive("m2", m2, allow_inf=True))
     return 1.0 / (1.0 / m1 + 1.0 / m2)
 
 

@@ -65,7 +65,7 @@ from .core import wall as _wall
 from .core.tangential_laws import ALL_LAWS as LAWS
 from .engine import evaluate
 from .io import check_memory
-from .materials import DEFAULT_K, Material, get_material
+from .materials import DEFAULT_K, Material, get_material, sphere_mass
 from .materials import effective_modulus as _effective_modulus
 
 __all__ = ["REGIMES", "WallInteraction", "wall_interaction"]
@@ -325,6 +325,11 @@ def wall_interaction(
         rho = mats[2]
     else:
         rho = _per_particle("density", check_positive("density", density), N)
+
+    try:  # every law divides by the mass 4/3 pi (d/2)^3 rho: it must be a normal double
+        sphere_mass(0.5 * d, rho)
+    except ValueError as exc:
+        raise ValueError(f"diameter and density: {exc}") from None
 
     if effective_modulus is not None:
         E = _per_particle("effective_modulus", check_positive("effective_modulus", effective_modulus), N)

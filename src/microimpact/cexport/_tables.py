@@ -55,6 +55,8 @@ def restitution_table(v_over_vy, vs_over_vy_values, adhesion="additive"):
     """
     check_adhesion_rule(adhesion)
     v = np.atleast_1d(check_nonnegative("v_over_vy", v_over_vy)).reshape(-1)
+    if np.isinf(v).any():  # the restitution's own check would name the speed, which the caller did not give
+        raise ValueError("v_over_vy must be finite, got inf")
     s = np.atleast_1d(check_nonnegative("vs_over_vy_values", vs_over_vy_values)).reshape(-1)
     if adhesion == "additive":
         return adhesive_restitution(v[:, None], 1.0, s[None, :])

@@ -298,12 +298,14 @@ def _size_option(args) -> str:
 
 
 def _check_mass(radius, density, option, value):
-    m = float(sphere_mass(radius, density))
-    if not (m > 0 and math.isfinite(m)):
-        raise ValueError(
-            f"{option} {value:g} m is outside what double precision can model: the particle mass "
-            f"4/3 pi R^3 rho = {m:g} kg"
-        )
+    """Refuse, naming the command-line option, a size or density whose particle mass 4/3 pi R^3 rho
+    leaves the normal floats; :func:`~microimpact.materials.sphere_mass` refuses it naming its own
+    parameters (radius, density), which the user did not type."""
+    unit = "kg/m^3" if option == "--density" else "m"
+    try:
+        sphere_mass(radius, density)
+    except ValueError as exc:
+        raise ValueError(f"{option} {value:g} {unit} is outside what double precision can model: {exc}") from None
 
 
 def pair_from_args(args) -> ContactPair:

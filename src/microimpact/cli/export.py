@@ -197,12 +197,12 @@ def run(args) -> int:
         if pair.density is None:
             raise ValueError("--diameters needs the particle's density (--density, or a particle material)")
         for d in diameters:
-            m = float(sphere_mass(0.5 * float(d), pair.density))
-            if not (m > 0 and math.isfinite(m)):
+            try:  # sphere_mass names radius and density; the user typed a diameter
+                sphere_mass(0.5 * float(d), pair.density)
+            except ValueError as exc:
                 raise ValueError(
-                    f"--diameters {float(d):g} m is outside what double precision can model: the particle mass "
-                    f"is {m:g} kg"
-                )
+                    f"--diameters {float(d):g} m is outside what double precision can model: {exc}"
+                ) from None
     out = Path(args.out)
     c_kw = {"tangential": tangential, **kappa_kw} if tangential != "rigid" else {}
     decks = _dem_decks(args, pair, dem_codes) if dem_codes else None

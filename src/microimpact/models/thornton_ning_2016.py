@@ -20,7 +20,7 @@ import math
 import numpy as np
 
 from .._face import array_function, free_flight, outcome_arrays, outcome_function, scalar_pair, stage_of, time_grid
-from .._validation import check_nonnegative, check_pair, check_positive, check_velocity
+from .._validation import check_in_range, check_nonnegative, check_number, check_pair, check_positive, check_velocity
 from ..core import hertz
 from ..core import special as _special
 from ..core.models import thornton_ning_2016 as _seed
@@ -554,7 +554,10 @@ def energy_loss_fraction(restitution):
     >>> float(energy_loss_fraction(0.5))
     0.75
     """
-    return _seed.energy_loss(np.asarray(restitution, dtype=float))
+    e = check_number("restitution", restitution)
+    with np.errstate(over="ignore"):  # |e| past 1e154: e^2 leaves the float range, refused below
+        loss = _seed.energy_loss(e)
+    return check_in_range(loss, "the energy loss 1 - e^2", restitution=restitution)
 
 
 def impact_outcome(velocity, effective_modulus, effective_radius, effective_mass, limiting_pressure):

@@ -43,7 +43,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from .._validation import check_nonnegative, check_poisson, check_positive
+from .._validation import check_nonnegative, check_not_subnormal, check_poisson, check_positive
 from ..core import hertz
 from ..core import tangential as tg
 from ..core import tangential_laws as tl
@@ -155,16 +155,31 @@ def universal_curve(psi, kappa, x=1.0, *, steps=DEFAULT_STEPS, law="mindlin"):
     if law not in UNIVERSAL_LAWS:
         raise ValueError(f"law must be one of {UNIVERSAL_LAWS}, got {law!r}")
     psi = np.atleast_1d(check_nonnegative("psi", psi)).astype(float)
-    kappa = float(_check_kappa(kappa))
+    if np.isinf(psi).any():
+        raise ValueError("psi must be finite, got inf")
+    kappa = float(check_not_subnormal("kappa", _check_kappa(kappa)))  # u0 = psi/kappa overflows
     x = float(check_nonnegative("x", x))
     if not (x > 0.0):
         raise ValueError(f"x must be positive, got {x!r}")
-    one_e = 1.0 + float(tg.history_constants(x)[13])
+    check_not_subnormal("x", x)  # the history's scales divide by x = V_y/V_n
+    with np.errstate(over="ignore"):
+        u0 = psi / kappa
+    if np.isinf(u0).any():
+        raise ValueError(
+            f"psi {float(psi[np.isinf(u0)][0])!r} and kappa {kappa!r} give the slip u0 = psi/kappa beyond the "
+            "largest double: give psi and kappa in range"
+        )
     F = np.empty_like(psi)
     ratio = np.full_like(psi, np.nan)
     regime = np.empty(psi.shape, dtype=np.int8)
-    u0 = psi / kappa
-    ur, regime[...] = _integrate(u0, kappa, x, steps, law)
+    try:
+        one_e = 1.0 + float(tg.history_constants(x)[13])
+        ur, regime[...] = _integrate(u0, kappa, x, steps, law)
+    except ZeroDivisionError:  # a power of x or of psi/kappa underflowed to zero inside the law's scales
+        raise ValueError(
+            f"psi (up to {float(psi.max())!r}), kappa {kappa!r} and x {x!r} leave the float range: a scale "
+            "of the tangential history underflows to zero; give them in range"
+        ) from None
     F[...] = (u0 - ur) / tg.SLIP_FACTOR / one_e
     pos = u0 > 0.0
     ratio[pos] = ur[pos] / u0[pos]

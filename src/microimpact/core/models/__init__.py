@@ -226,7 +226,7 @@ class Parameter(NamedTuple):
     ``low`` is a number or the name of an earlier parameter (``unloading_stiffness >=
     loading_stiffness``); ``low_open``/``high_open`` make the bound strict; every value must be
     finite unless ``high`` is finite (``(0, 1]``). ``flag``: a 0/1 switch. ``default`` NaN: the user
-    must give a value. The first three fields are the old ``(name, unit, description)`` triple.
+    must give a value. ``normal``: a nonzero subnormal is refused (see :attr:`refuses_subnormal`). The first three fields are the old ``(name, unit, description)`` triple.
 
     A parameter that is a quantity of :data:`~microimpact.core.quantities.QUANTITIES` (a work of
     adhesion, a yield strength, a restitution, ...) is made with :meth:`of`, which takes its unit
@@ -242,6 +242,16 @@ class Parameter(NamedTuple):
     low_open: bool = False
     high_open: bool = False
     flag: bool = False
+    normal: bool = False
+
+    @property
+    def refuses_subnormal(self) -> bool:
+        """True where a nonzero subnormal value is refused: a parameter that must be positive (the law
+        divides by it, and a subnormal's reciprocal overflows), or one marked ``normal`` (the law's
+        search from it does not end: JKR's pull-off with ``pi gamma/E*`` underflowing to zero). Elsewhere
+        a subnormal is the value it is (a Poisson's ratio or an adhesive stiffness of 1e-310 is as good
+        as zero, and the laws compute with it)."""
+        return self.normal or (self.low_open and not isinstance(self.low, str) and self.low == 0.0)
 
     @classmethod
     def of(cls, quantity: str, description: str | None = None, **kwargs) -> Parameter:
@@ -279,9 +289,7 @@ class Parameter(NamedTuple):
         lo_ok = value > self.low if self.low_open else value >= self.low
         hi_ok = value < self.high if self.high_open else value <= self.high
         if lo_ok and hi_ok and math.isfinite(value):
-            if value != 0.0 and abs(value) < 2.2250738585072014e-308:
-                # a subnormal has lost precision, and the laws divide by their parameters (a JKR
-                # pull-off search with a subnormal surface energy did not end)
+            if self.refuses_subnormal and value != 0.0 and abs(value) < 2.2250738585072014e-308:
                 raise ValueError(
                     f"{name} must be 0 or a normal float (at least 2.2250738585072014e-308), got {value!r}"
                 )
@@ -312,8 +320,9 @@ LIMIT_FORCE = Parameter(
 
 
 def bounds(params_spec) -> tuple:
-    """The table :func:`in_bounds` reads, one row of six floats per parameter:
-    ``(low, high, low_open, high_open, index of the parameter low refers to or -1, flag)``."""
+    """The table :func:`in_bounds` reads, one row of seven floats per parameter:
+    ``(low, high, low_open, high_open, index of the parameter low refers to or -1, flag,
+    refuses_subnormal)``."""
     names = [p.name for p in params_spec]
     rows = []
     for p in params_spec:
@@ -322,7 +331,17 @@ def bounds(params_spec) -> tuple:
         if isinstance(low, str):
             ref = float(names.index(low))
             low = -math.inf
-        rows.append((float(low), float(p.high), float(p.low_open), float(p.high_open), ref, 1.0 if p.flag else 0.0))
+        rows.append(
+            (
+                float(low),
+                float(p.high),
+                float(p.low_open),
+                float(p.high_open),
+                ref,
+                1.0 if p.flag else 0.0,
+                1.0 if p.refuses_subnormal else 0.0,
+            )
+        )
     return tuple(rows)
 
 

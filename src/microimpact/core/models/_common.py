@@ -118,7 +118,7 @@ def dem_outcome(V, e, max_approach, plastic_approach, max_force, R, tL, tU):
 def in_bounds(params, bounds):
     """The compiled check of a model's ``params`` against its ``BOUNDS`` (made by
     :func:`microimpact.core.models.checks` from ``PARAMETERS``): right length, each value in its
-    interval and no subnormal, flags 0 or 1. False rather than an exception, so that ``outcome`` returns NaN."""
+    interval and no subnormal where it refuses one, flags 0 or 1. False rather than an exception, so that ``outcome`` returns NaN."""
     if len(params) != len(bounds):
         return False
     for i in range(len(bounds)):
@@ -133,6 +133,6 @@ def in_bounds(params, bounds):
             return False
         if not (x < b[1] if (b[3] == 1.0 or b[1] == math.inf) else x <= b[1]):
             return False
-        if b[4] < 0.0 and x != 0.0 and abs(x) < 2.2250738585072014e-308:  # a subnormal (Parameter.check)
+        if b[6] == 1.0 and x != 0.0 and abs(x) < 2.2250738585072014e-308:  # Parameter.refuses_subnormal
             return False
     return True

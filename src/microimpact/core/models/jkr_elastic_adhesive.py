@@ -58,7 +58,9 @@ TITLE = "JKR elastic adhesion, contact at zero approach, pull-off at -3 pi gamma
 CITATION = "Johnson, Kendall & Roberts, Proc. R. Soc. Lond. A 324:301 (1971); LAMMPS pair_style granular jkr"
 LABEL = "JKR adhesive"
 STICKS = True
-PARAMETERS = (Parameter.of("surface_energy", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)", low=0.0),)
+PARAMETERS = (
+    Parameter.of("surface_energy", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)", low=0.0, normal=True),
+)
 BOUNDS, validate = checks(NAME, PARAMETERS)
 __getattr__ = deprecated_names(__name__, NAME)  # released DEFAULTS: one release, with a warning
 #: Cost class of the outcome (the contract's ``OUTCOME_COST``): its contact times' quadrature, 1.0 ms a

@@ -70,7 +70,7 @@ STICKS = True
 COST = "slow"
 KIND = lg.JKR
 PARAMETERS = (
-    Parameter.of("surface_energy", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)", low=0.0),
+    Parameter.of("surface_energy", "gamma >= 0, LAMMPS' cohesion (work of adhesion 2 gamma)", low=0.0, normal=True),
     Parameter.of(
         "damping_model",
         default=0.0,

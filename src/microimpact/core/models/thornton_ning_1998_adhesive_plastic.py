@@ -113,7 +113,9 @@ STAGES = {1: "loading, JKR then plastic (eqs. 49-52, 69)", 3: "unloading, JKR on
 #: The wall's adhesion law (``adhesion=NAME`` of :func:`microimpact.wall.wall_interaction`), through the
 #: table of its correction :func:`microimpact.core.adhesion.whole_law_correction`.
 WALL_ADHESION = True
-PARAMETERS = (Parameter.of("work_of_adhesion", "G >= 0, interface energy (LIGGGHTS' surfaceEnergy)", low=0.0),)
+PARAMETERS = (
+    Parameter.of("work_of_adhesion", "G >= 0, interface energy (LIGGGHTS' surfaceEnergy)", low=0.0, normal=True),
+)
 BOUNDS, validate = checks(NAME, PARAMETERS)
 #: Cost class of the outcome (the contract's ``OUTCOME_COST``): its contact times' quadrature, 1.4 ms a
 #: point in Python (``e`` alone: 30 us).

@@ -82,7 +82,9 @@ TITLE = "Elastic adhesive spheres, JKR from first touch to snap-off (Thornton & 
 CITATION = "Thornton & Ning, Powder Technol. 99:154 (1998)"
 LABEL = "Thornton-Ning 1998 adhesive"
 STICKS = True
-PARAMETERS = (Parameter.of("work_of_adhesion", "G >= 0, interface energy (LIGGGHTS' surfaceEnergy)", low=0.0),)
+PARAMETERS = (
+    Parameter.of("work_of_adhesion", "G >= 0, interface energy (LIGGGHTS' surfaceEnergy)", low=0.0, normal=True),
+)
 BOUNDS, validate = checks(NAME, PARAMETERS)
 __getattr__ = deprecated_names(__name__, NAME)  # released DEFAULTS: one release, with a warning
 #: Cost class of the outcome (the contract's ``OUTCOME_COST``): its contact times' quadrature, 0.8 ms a
