@@ -166,6 +166,7 @@ def plot_capture_size(pair=None, velocity=1.0, work_of_adhesion=0.1, friction=0.
     the 0 deg axis, and the tangential restitution of the rebounds as grey contours.
     """
     from matplotlib.colors import ListedColormap
+    from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
     if data is None:
@@ -200,6 +201,8 @@ def plot_capture_size(pair=None, velocity=1.0, work_of_adhesion=0.1, friction=0.
             if (code == ad.OUTCOMES.index(o)).any()
         ]
         handles += ax.get_lines()[-2:] if math.isfinite(dc) else ax.get_lines()[-1:]
+        if np.isfinite(et).sum() > 3:  # the contours are read from their labels; the legend says of what
+            handles.append(Line2D([], [], color="0.45", linewidth=0.6, label=r"rebounds: $v_t'/v_t$ (labelled)"))
         ax.figure.legend(handles=handles, fontsize=6, loc="outside lower center", ncols=2, frameon=False)
         ax.set_title(
             f"{data['label']}: $V$ = {data['velocity']:g} m/s, $G$ = {data['work_of_adhesion']:g} J/m$^2$, "

@@ -61,7 +61,7 @@ from ._common import in_bounds
 NAME = "lammps_dmt"
 TITLE = "LAMMPS pair granular dmt with damping viscoelastic, tsuji or coeff_restitution (as LAMMPS computes it)"
 CITATION = "Derjaguin, Muller & Toporov, J. Colloid Interface Sci. 53:314 (1975); LAMMPS pair_style granular dmt"
-LABEL = "LAMMPS DMT damped"
+LABEL = "LAMMPS dmt"
 STICKS = True
 COST = "slow"
 KIND = lg.DMT

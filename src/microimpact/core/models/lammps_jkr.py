@@ -65,7 +65,7 @@ from ._common import in_bounds
 NAME = "lammps_jkr"
 TITLE = "LAMMPS pair granular jkr with damping viscoelastic, tsuji or coeff_restitution (as LAMMPS computes it)"
 CITATION = "Johnson, Kendall & Roberts, Proc. R. Soc. Lond. A 324:301 (1971); LAMMPS pair_style granular jkr"
-LABEL = "LAMMPS JKR damped"
+LABEL = "LAMMPS jkr"
 STICKS = True
 COST = "slow"
 KIND = lg.JKR
