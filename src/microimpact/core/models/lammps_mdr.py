@@ -46,7 +46,18 @@ an unloading (where ``a_na ~ delta_e^(1/2)`` falls fast): it vanishes as the ste
 t_H/20000), so the run converged in the step has no adhesion at all: the ``e(V)`` of ``gamma = 0``,
 no capture (``V_s = 0``). The one trace ``gamma > 0`` leaves at a converged step is in the damping:
 its contact radius is then the stored ``a_Adh = 0.99 a_na``. This model is that converged limit;
-``tests/laws/test_lammps_mdr.py`` reproduces the step dependence in LAMMPS.
+``tests/test_lammps_mdr.py`` reproduces the step dependence in LAMMPS.
+
+Past the wall plane (``alpha >= R``), what LAMMPS does not run. ``fix wall/gran ... zplane`` passes the
+signed distance ``dz`` of the centre from the plane to the contact (``src/GRANULAR/fix_wall_gran.cpp``,
+``post_force``, at ``7d53f8d1``), whose overlap is ``R - |dz|`` (``GranularModel::calculate_forces``,
+``delta = radsum - r`` with ``radsum = R`` at a wall): it can never exceed ``R``. A particle whose
+loading reaches ``alpha = R`` (its centre on the plane) sees the overlap fall again as the centre
+crosses, its normal flipped, and goes through the wall (a LAMMPS run at 300 m/s in the silicon case
+leaves below the wall at 136 m/s; ``tests/test_lammps_mdr.py``). :func:`outside_validity` flags such
+an impact (code 8); the outcome is what the force law gives with the overlap carried past ``R``, and
+NaN where that law has no unloading (:func:`geometry_lost`, beyond ``R`` only: ``c = 1 + 2 Delta_R/A
+<= 0``, where LAMMPS's ``delta_e`` would rise past ``A`` and its force turn NaN, "F_MDR is NaN").
 
 Not modelled (the single contact only): the apparent-radius update of ``fix GRANULAR/MDR`` (the
 volume displaced by the plastic cap redistributed over the free surface, which grows the radius and
@@ -201,7 +212,12 @@ def signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
     magnifier, plus the ``mdr 1`` damping (attractive while the overlap falls)."""
     amax = alpha_max if alpha_max > alpha else alpha
     A, B, ap, c = unloading_geometry(amax, E, R, params)
-    d = (alpha - ap) / c
+    if c > 0.0:
+        d = (alpha - ap) / c
+    elif alpha >= amax:
+        d = 0.5 * A  # loading: the code's quotient is A/2 for any c != 0 (0/0 at c = 0)
+    else:
+        return math.nan  # no unloading geometry (geometry_lost): the code's force turns NaN and the run stops
     if d <= 0.0:
         return 0.0
     f = indenter_force(d, E, A, B) * (1.0 + math.exp(10.7 * alpha / R - 10.0))
@@ -232,6 +248,35 @@ def separation_approach(E, R, m, p_y, params):
 def separation_approach_after(alpha_max, E, R, m, p_y, params):
     """``alpha_p`` [m]: where ``delta_e`` returns to zero after ``alpha_max`` (the dent)."""
     return unloading_geometry(alpha_max, E, R, params)[2]
+
+
+@jitable
+def geometry_lost(alpha_max, E, R, params):
+    """True where the code's unloading after ``alpha_max`` is undefined: a plastic contact whose
+    truncation radius ``a_max^2 = 2 alpha_max R - alpha_max^2 + c_A/pi`` is gone (the cap has passed
+    its widest section at ``alpha_max = R``) or whose correction ``Delta_R <= -A/2`` (``c <= 0``: the
+    dent would lie deeper than the largest overlap). LAMMPS's ``delta_e`` then rises above ``A/2``
+    as the overlap falls and passes ``A``, where ``calculate_nonadhesive_mdr_force`` takes the square
+    root of a negative number and the run stops ("F_MDR is NaN"). Both need ``alpha_max > R``."""
+    aY = yield_approach(E, R, params[1])
+    if not alpha_max > aY:
+        return False
+    cA = math.pi * (aY * aY - aY * R)
+    amax2 = 2.0 * alpha_max * R - alpha_max * alpha_max + cA / math.pi
+    if not amax2 > 0.0:
+        return True
+    return not unloading_geometry(alpha_max, E, R, params)[3] > 0.0
+
+
+@jitable
+def outside_validity(V, E, R, m, p_y, params):
+    """The contract's validity code: 8 where the loading reaches the wall plane (``alpha_max >= R``),
+    which LAMMPS's wall does not run (module docstring: its overlap is ``R - |z|``, the particle goes
+    through the wall); 0 otherwise and for invalid input."""
+    if not in_bounds(params, BOUNDS) or not (V > 0.0 and V < math.inf):
+        return 0.0
+    x, v, t, h, hit, f1, t1, elastic, L, c = _loading(V, E, R, m, params)
+    return 8.0 if hit and x * L >= R else 0.0
 
 
 @jitable
@@ -495,15 +540,14 @@ def _phase(x, v, t, h, amax, which, level, E, R, m, params, L, V, c):
 
 
 @jitable
-def outcome(V, E, R, m, p_y, params):
-    """Outcome of one impact at a wall (see the module docstring; ``p_y`` unused)."""
-    if not in_bounds(params, BOUNDS) or not (V > 0.0 and V < math.inf):
-        return nan_outcome(V)
+def _loading(V, E, R, m, params):
+    """The loading of an impact at ``V > 0`` to the largest overlap, in the scales of :func:`outcome`:
+    ``(x, v, t, h, hit, f1, t1, elastic, L, c)`` (``x = alpha_max/L``, the time ``t`` of the top and
+    ``t1`` of the yield, ``hit`` False where the top was not found, ``f1`` the largest scaled force)."""
     T = hertz.time_scale(V, E, R, m)
     L = V * T
     c = T / (m * V)
-    aY = yield_approach(E, R, params[1])
-    xY = aY / L
+    xY = yield_approach(E, R, params[1]) / L
     # loading: the elastic stage to the yield overlap, then the plastic stage, to the top
     x, v, t, h, hit, f1 = _phase(0.0, 1.0, 0.0, 1e-3, -1.0, 0, 0.0, E, R, m, params, L, V, c)
     t1 = t
@@ -515,10 +559,23 @@ def outcome(V, E, R, m, p_y, params):
             x, v, t, h, hit, f2 = _phase(xY, v, t, h, -1.0, 0, 0.0, E, R, m, params, L, V, c)
             f1 = max(f1, f2)
             elastic = 0.0
+    return x, v, t, h, hit, f1, t1, elastic, L, c
+
+
+@jitable
+def outcome(V, E, R, m, p_y, params):
+    """Outcome of one impact at a wall (see the module docstring; ``p_y`` unused): NaN where the
+    loading ends where the code has no unloading (:func:`geometry_lost`)."""
+    if not in_bounds(params, BOUNDS) or not (V > 0.0 and V < math.inf):
+        return nan_outcome(V)
+    T = hertz.time_scale(V, E, R, m)
+    x, v, t, h, hit, f1, t1, elastic, L, c = _loading(V, E, R, m, params)
     if not hit:
         return nan_outcome(V)
     tL = t
     amax = x * L
+    if geometry_lost(amax, E, R, params):
+        return nan_outcome(V)
     fmax = max(f1, loading_force(amax, E, R, params) * (1.0 + math.exp(10.7 * amax / R - 10.0)) * c)
     ap = separation_approach_after(amax, E, R, m, p_y, params)
     x, v, t, h, hit, f3 = _phase(x, 0.0, t, h, amax, 2, ap / L, E, R, m, params, L, V, c)
