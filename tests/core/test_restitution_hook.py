@@ -34,6 +34,11 @@ PARAMS: dict = {
     "jkr_elastic_adhesive": (0.05,),  # gamma [J/m^2]
     "thornton_ning_1998_elastic_adhesive": (0.05,),  # G [J/m^2]
     "hertz_viscoelastic": (1e-7, 1.0),  # A [s]: kappa from ~0 to beyond 1 in the boxes; force clipped
+    # e_n, k [J/m^3], sjkr, wall, not clipped: captured below ~1e-3..1 m/s over the boxes, leaves above
+    "liggghts_hertz_sjkr": (0.5, 1e5, 0.0, 1.0, 0.0),
+    # V_b [m^3], gamma [N/m], theta [deg], wall: a bridge of ~1 um^3 captures the lightest spheres only
+    "willett_capillary": (1e-18, 0.072, 20.0, 0.0),
+    "rabinovich_capillary": (1e-18, 0.072, 20.0, 0.0),
 }
 
 HOOKED = [name for name in zoo.available() if zoo.get(name).restitution_only is not None]
