@@ -273,7 +273,7 @@ def outside_validity(V, E, R, m, p_y, params):
     """The contract's validity code: 8 where the loading reaches the wall plane (``alpha_max >= R``),
     which LAMMPS's wall does not run (module docstring: its overlap is ``R - |z|``, the particle goes
     through the wall); 0 otherwise and for invalid input."""
-    if not in_bounds(params, BOUNDS) or not (V > 0.0 and V < math.inf):
+    if not in_bounds(params, BOUNDS) or not (V > 0.0 and V < math.inf) or not m * V > 0.0:
         return 0.0
     x, v, t, h, hit, f1, t1, elastic, L, c = _loading(V, E, R, m, params)
     return 8.0 if hit and x * L >= R else 0.0
@@ -567,6 +567,8 @@ def outcome(V, E, R, m, p_y, params):
     """Outcome of one impact at a wall (see the module docstring; ``p_y`` unused): NaN where the
     loading ends where the code has no unloading (:func:`geometry_lost`)."""
     if not in_bounds(params, BOUNDS) or not (V > 0.0 and V < math.inf):
+        return nan_outcome(V)
+    if not m * V > 0.0:  # a momentum below the smallest float: the scales of the integration do not exist
         return nan_outcome(V)
     T = hertz.time_scale(V, E, R, m)
     x, v, t, h, hit, f1, t1, elastic, L, c = _loading(V, E, R, m, params)
