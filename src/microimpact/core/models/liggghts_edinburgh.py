@@ -634,7 +634,8 @@ def energy_budget(V, E, R, m, p_y, params):
     if cap == 1.0 or not e == e:
         return n_, n_, n_, n_, n_
     inc = 0.5 * m * V * V
-    return inc, spring_work(amax, aend, E, R, params), wd, -params[_F0] * aend, 0.5 * m * (e * V) ** 2
+    eV = e * V
+    return inc, spring_work(amax, aend, E, R, params), wd, -params[_F0] * aend, 0.5 * m * (eV * eV)
 
 
 @jitable
