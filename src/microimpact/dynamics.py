@@ -564,6 +564,11 @@ def _integrate(mod, params, V, E, R, m, p_y, *, rtol, atol, method, n=None, time
     closed = dict(zip(quantities.OUTCOME_FIELDS, mod.outcome(V, E, R, m, p_y, params)))
     if closed["contact_time"] == np.inf:  # the model's own solution says it sticks
         raise _stuck_error(mod, V)
+    if math.isnan(closed["restitution"]):  # the law itself has no impact here: nothing to integrate
+        raise ValueError(
+            f"model {mod.NAME!r} gives no outcome at velocity {V:g} m/s (outside what its law can say: "
+            "see its outside_validity): there is no history"
+        )
     T0 = float(hertz.time_scale(V, E, R, m))
     counts = {}
     rough = _run(mod, V, E, R, m, p_y, params, T0, 1e-7, 1e-9, method, counts)

@@ -87,11 +87,19 @@ def test_every_model_is_covered():
     assert set(PARAMS) == set(models.available())
 
 
-def _check(pair, V, name, params):
+def _check(pair, V, name, params, o=None):
     if name in NOT_FROM_CONTACT:
         pytest.skip(f"{name}: V is the speed outside the cut-off, not at first contact")
+    if o is None:
+        o = pair.impact(V, model=name, warn=False, **params)
+    if math.isnan(float(o.restitution)):
+        # the law has no impact here (LAMMPS mdr past the wall plane: its unloading geometry is gone and
+        # the code's force turns NaN): flagged, never silent, and no history is made up for it
+        assert bool(o.outside_validity), f"{name} at V = {V}: a NaN outcome must be flagged"
+        with pytest.raises(ValueError, match="gives no outcome"):
+            pair.history(V, model=name, method="ode", n=201, **params)
+        return None
     h = pair.history(V, model=name, method="ode", n=201, **params)
-    o = pair.impact(V, model=name, warn=False, **params)
     assert h.method == "ode" and h.model == name
     assert abs(h.rebound_velocity / V - float(o.restitution)) < TOL
     assert abs(h.contact_time / float(o.contact_time) - 1.0) < TOL
@@ -144,11 +152,12 @@ def test_ode_history_ends_at_the_closed_form_wide(name, i, log_v, log_r, rho, lo
         for k in ("stiffness", "loading_stiffness", "unloading_stiffness", "adhesion_stiffness"):
             if k in params:
                 params[k] = params[k] * scale
+    o = None
     if "adhesive" in name or models.get(name).STICKS:  # keep the particle above its sticking speed
         o = pair.impact(10.0**log_v, model=name, warn=False, **params)
         if not o.restitution > 0.0:
             return
-    _check(pair, 10.0**log_v, name, params)
+    _check(pair, 10.0**log_v, name, params, o)
 
 
 def test_the_generic_integration_reproduces_the_seed_ode():

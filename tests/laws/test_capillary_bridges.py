@@ -157,7 +157,7 @@ LIQUID = dict(surface_tension=0.072, liquid_content=0.01, max_separation_ratio=1
     name=st.sampled_from(["liggghts_easo_capillary", "liggghts_washino_capillary"]),
     viscosity=st.sampled_from([0.0, 1e-3, 2e-2]),
     e_n=st.floats(0.3, 1.0),
-    theta=st.floats(0.0, 60.0),
+    theta=st.floats(0.0, 60.0, allow_subnormal=False),  # the laws refuse a subnormal angle (ValueError)
     mixing=st.sampled_from([0.0, 1.0]),
     pair=st.sampled_from([0.0, 1.0]),
     limit=st.sampled_from([0.0, 1.0]),

@@ -287,8 +287,12 @@ def _step(kind, inside, x, v, h, E, R, m, q, xs, vs):
     vn = v + h * bv
     scx = _RTOL * (xs + max(abs(x), abs(xn)))
     scv = _RTOL * (vs + max(abs(v), abs(vn)))
-    err5 = (e5x / scx) ** 2 + (e5v / scv) ** 2
-    err3 = (e3x / scx) ** 2 + (e3v / scv) ** 2
+    e5x /= scx  # squares as products: Python's ``** 2`` is libm's pow, not always x * x as compiled
+    e5v /= scv
+    e3x /= scx
+    e3v /= scv
+    err5 = e5x * e5x + e5v * e5v
+    err3 = e3x * e3x + e3v * e3v
     den = err5 + 0.01 * err3
     err = abs(h) * err5 / math.sqrt(0.5 * den) if den > 0.0 else 0.0
     return xn, vn, err

@@ -46,7 +46,18 @@ an unloading (where ``a_na ~ delta_e^(1/2)`` falls fast): it vanishes as the ste
 t_H/20000), so the run converged in the step has no adhesion at all: the ``e(V)`` of ``gamma = 0``,
 no capture (``V_s = 0``). The one trace ``gamma > 0`` leaves at a converged step is in the damping:
 its contact radius is then the stored ``a_Adh = 0.99 a_na``. This model is that converged limit;
-``tests/laws/test_lammps_mdr.py`` reproduces the step dependence in LAMMPS.
+``tests/test_lammps_mdr.py`` reproduces the step dependence in LAMMPS.
+
+Past the wall plane (``alpha >= R``), what LAMMPS does not run. ``fix wall/gran ... zplane`` passes the
+signed distance ``dz`` of the centre from the plane to the contact (``src/GRANULAR/fix_wall_gran.cpp``,
+``post_force``, at ``7d53f8d1``), whose overlap is ``R - |dz|`` (``GranularModel::calculate_forces``,
+``delta = radsum - r`` with ``radsum = R`` at a wall): it can never exceed ``R``. A particle whose
+loading reaches ``alpha = R`` (its centre on the plane) sees the overlap fall again as the centre
+crosses, its normal flipped, and goes through the wall (a LAMMPS run at 300 m/s in the silicon case
+leaves below the wall at 136 m/s; ``tests/test_lammps_mdr.py``). :func:`outside_validity` flags such
+an impact (code 8); the outcome is what the force law gives with the overlap carried past ``R``, and
+NaN where that law has no unloading (:func:`geometry_lost`, beyond ``R`` only: ``c = 1 + 2 Delta_R/A
+<= 0``, where LAMMPS's ``delta_e`` would rise past ``A`` and its force turn NaN, "F_MDR is NaN").
 
 Not modelled (the single contact only): the apparent-radius update of ``fix GRANULAR/MDR`` (the
 volume displaced by the plastic cap redistributed over the free surface, which grows the radius and
@@ -148,9 +159,15 @@ def unloading_geometry(alpha_max, E, R, params):
 
     Elastic (``alpha_max < alpha_Y``): ``(4R, 2R, 0, 1)``; plastic: the code's ``A``, ``B`` and
     ``alpha_p = alpha_max - A/2 - Delta_R``, ``c = 1 + 2 Delta_R/A`` (module docstring)."""
+    return _geometry(alpha_max, E, R, params, yield_approach(E, R, params[1]))
+
+
+@jitable
+def _geometry(alpha_max, E, R, params, aY):
+    """:func:`unloading_geometry` with the yield overlap ``aY`` (:func:`yield_approach`) given: an
+    integration computes that bisection once, not at each of its force evaluations."""
     nu = params[0]
     Y = params[1]
-    aY = yield_approach(E, R, Y)
     if not alpha_max > aY:
         return 4.0 * R, 2.0 * R, 0.0, 1.0
     cA = math.pi * (aY * aY - aY * R)
@@ -199,9 +216,20 @@ def loading_force(alpha, E, R, params):
 def signed_force(alpha, alpha_dot, alpha_max, E, R, m, p_y, params):
     """Normal force [N] of LAMMPS's wall contact at a converged step: indenter force times the wall
     magnifier, plus the ``mdr 1`` damping (attractive while the overlap falls)."""
+    return _signed_force(alpha, alpha_dot, alpha_max, E, R, m, params, yield_approach(E, R, params[1]))
+
+
+@jitable
+def _signed_force(alpha, alpha_dot, alpha_max, E, R, m, params, aY):
+    """:func:`signed_force` with the yield overlap ``aY`` given."""
     amax = alpha_max if alpha_max > alpha else alpha
-    A, B, ap, c = unloading_geometry(amax, E, R, params)
-    d = (alpha - ap) / c
+    A, B, ap, c = _geometry(amax, E, R, params, aY)
+    if c > 0.0:
+        d = (alpha - ap) / c
+    elif alpha >= amax:
+        d = 0.5 * A  # loading: the code's quotient is A/2 for any c != 0 (0/0 at c = 0)
+    else:
+        return math.nan  # no unloading geometry (geometry_lost): the code's force turns NaN and the run stops
     if d <= 0.0:
         return 0.0
     f = indenter_force(d, E, A, B) * (1.0 + math.exp(10.7 * alpha / R - 10.0))
@@ -235,6 +263,35 @@ def separation_approach_after(alpha_max, E, R, m, p_y, params):
 
 
 @jitable
+def geometry_lost(alpha_max, E, R, params):
+    """True where the code's unloading after ``alpha_max`` is undefined: a plastic contact whose
+    truncation radius ``a_max^2 = 2 alpha_max R - alpha_max^2 + c_A/pi`` is gone (the cap has passed
+    its widest section at ``alpha_max = R``) or whose correction ``Delta_R <= -A/2`` (``c <= 0``: the
+    dent would lie deeper than the largest overlap). LAMMPS's ``delta_e`` then rises above ``A/2``
+    as the overlap falls and passes ``A``, where ``calculate_nonadhesive_mdr_force`` takes the square
+    root of a negative number and the run stops ("F_MDR is NaN"). Both need ``alpha_max > R``."""
+    aY = yield_approach(E, R, params[1])
+    if not alpha_max > aY:
+        return False
+    cA = math.pi * (aY * aY - aY * R)
+    amax2 = 2.0 * alpha_max * R - alpha_max * alpha_max + cA / math.pi
+    if not amax2 > 0.0:
+        return True
+    return not unloading_geometry(alpha_max, E, R, params)[3] > 0.0
+
+
+@jitable
+def outside_validity(V, E, R, m, p_y, params):
+    """The contract's validity code: 8 where the loading reaches the wall plane (``alpha_max >= R``),
+    which LAMMPS's wall does not run (module docstring: its overlap is ``R - |z|``, the particle goes
+    through the wall); 0 otherwise and for invalid input."""
+    if not in_bounds(params, BOUNDS) or not (V > 0.0 and V < math.inf) or not m * V > 0.0:
+        return 0.0
+    x, v, t, h, hit, f1, t1, elastic, L, c, aY = _loading(V, E, R, m, params)
+    return 8.0 if hit and x * L >= R else 0.0
+
+
+@jitable
 def stage_two_approach(E, R, m, p_y, params):
     """``alpha_Y`` [m] (:func:`yield_approach`): the loading force changes law there."""
     return yield_approach(E, R, params[1])
@@ -254,53 +311,53 @@ def _weighted(w, y0, y5, y6, y7, y8, y9, y10, y11):
 
 
 @jitable
-def _acc(x, v, amax, E, R, m, params, L, V, c):
+def _acc(x, v, amax, E, R, m, params, L, V, c, aY):
     """Scaled acceleration ``-F c`` at ``x = alpha/L``, ``v = alpha'/V``; ``amax < 0``: loading."""
     if x <= 0.0:
         return 0.0
     al = x * L
     am = al if amax < 0.0 else amax
-    return -signed_force(al, v * V, am, E, R, m, 0.0, params) * c
+    return -_signed_force(al, v * V, am, E, R, m, params, aY) * c
 
 
 @jitable
-def _step(x, v, h, amax, E, R, m, params, L, V, c):
+def _step(x, v, h, amax, E, R, m, params, L, V, c, aY):
     """One step of length ``h`` of Hairer's DOP853 (:mod:`microimpact.core.dop853`): ``(x, v, error)``,
     the error measured as Hairer's code measures it (root mean square over ``x`` and ``x'``, each
     relative to ``_TOL (1e-3 + |new value|)``)."""
     v0 = v
-    a0 = _acc(x, v, amax, E, R, m, params, L, V, c)
+    a0 = _acc(x, v, amax, E, R, m, params, L, V, c, aY)
     x1 = x + h * (dp.A1_0 * v0)
     v1 = v + h * (dp.A1_0 * a0)
-    a1 = _acc(x1, v1, amax, E, R, m, params, L, V, c)
+    a1 = _acc(x1, v1, amax, E, R, m, params, L, V, c, aY)
     x2 = x + h * (dp.A2_0 * v0 + dp.A2_1 * v1)
     v2 = v + h * (dp.A2_0 * a0 + dp.A2_1 * a1)
-    a2 = _acc(x2, v2, amax, E, R, m, params, L, V, c)
+    a2 = _acc(x2, v2, amax, E, R, m, params, L, V, c, aY)
     x3 = x + h * (dp.A3_0 * v0 + dp.A3_2 * v2)
     v3 = v + h * (dp.A3_0 * a0 + dp.A3_2 * a2)
-    a3 = _acc(x3, v3, amax, E, R, m, params, L, V, c)
+    a3 = _acc(x3, v3, amax, E, R, m, params, L, V, c, aY)
     x4 = x + h * (dp.A4_0 * v0 + dp.A4_2 * v2 + dp.A4_3 * v3)
     v4 = v + h * (dp.A4_0 * a0 + dp.A4_2 * a2 + dp.A4_3 * a3)
-    a4 = _acc(x4, v4, amax, E, R, m, params, L, V, c)
+    a4 = _acc(x4, v4, amax, E, R, m, params, L, V, c, aY)
     x5 = x + h * (dp.A5_0 * v0 + dp.A5_3 * v3 + dp.A5_4 * v4)
     v5 = v + h * (dp.A5_0 * a0 + dp.A5_3 * a3 + dp.A5_4 * a4)
-    a5 = _acc(x5, v5, amax, E, R, m, params, L, V, c)
+    a5 = _acc(x5, v5, amax, E, R, m, params, L, V, c, aY)
     x6 = x + h * (dp.A6_0 * v0 + dp.A6_3 * v3 + dp.A6_4 * v4 + dp.A6_5 * v5)
     v6 = v + h * (dp.A6_0 * a0 + dp.A6_3 * a3 + dp.A6_4 * a4 + dp.A6_5 * a5)
-    a6 = _acc(x6, v6, amax, E, R, m, params, L, V, c)
+    a6 = _acc(x6, v6, amax, E, R, m, params, L, V, c, aY)
     x7 = x + h * (dp.A7_0 * v0 + dp.A7_3 * v3 + dp.A7_4 * v4 + dp.A7_5 * v5 + dp.A7_6 * v6)
     v7 = v + h * (dp.A7_0 * a0 + dp.A7_3 * a3 + dp.A7_4 * a4 + dp.A7_5 * a5 + dp.A7_6 * a6)
-    a7 = _acc(x7, v7, amax, E, R, m, params, L, V, c)
+    a7 = _acc(x7, v7, amax, E, R, m, params, L, V, c, aY)
     x8 = x + h * (dp.A8_0 * v0 + dp.A8_3 * v3 + dp.A8_4 * v4 + dp.A8_5 * v5 + dp.A8_6 * v6 + dp.A8_7 * v7)
     v8 = v + h * (dp.A8_0 * a0 + dp.A8_3 * a3 + dp.A8_4 * a4 + dp.A8_5 * a5 + dp.A8_6 * a6 + dp.A8_7 * a7)
-    a8 = _acc(x8, v8, amax, E, R, m, params, L, V, c)
+    a8 = _acc(x8, v8, amax, E, R, m, params, L, V, c, aY)
     x9 = x + h * (
         dp.A9_0 * v0 + dp.A9_3 * v3 + dp.A9_4 * v4 + dp.A9_5 * v5 + dp.A9_6 * v6 + dp.A9_7 * v7 + dp.A9_8 * v8
     )
     v9 = v + h * (
         dp.A9_0 * a0 + dp.A9_3 * a3 + dp.A9_4 * a4 + dp.A9_5 * a5 + dp.A9_6 * a6 + dp.A9_7 * a7 + dp.A9_8 * a8
     )
-    a9 = _acc(x9, v9, amax, E, R, m, params, L, V, c)
+    a9 = _acc(x9, v9, amax, E, R, m, params, L, V, c, aY)
     x10 = x + h * (
         dp.A10_0 * v0
         + dp.A10_3 * v3
@@ -321,7 +378,7 @@ def _step(x, v, h, amax, E, R, m, params, L, V, c):
         + dp.A10_8 * a8
         + dp.A10_9 * a9
     )
-    a10 = _acc(x10, v10, amax, E, R, m, params, L, V, c)
+    a10 = _acc(x10, v10, amax, E, R, m, params, L, V, c, aY)
     x11 = x + h * (
         dp.A11_0 * v0
         + dp.A11_3 * v3
@@ -344,7 +401,7 @@ def _step(x, v, h, amax, E, R, m, params, L, V, c):
         + dp.A11_9 * a9
         + dp.A11_10 * a10
     )
-    a11 = _acc(x11, v11, amax, E, R, m, params, L, V, c)
+    a11 = _acc(x11, v11, amax, E, R, m, params, L, V, c, aY)
     xn = x + h * _weighted(dp.B, v0, v5, v6, v7, v8, v9, v10, v11)
     vn = v + h * _weighted(dp.B, a0, a5, a6, a7, a8, a9, a10, a11)
     e5x = _weighted(dp.E5, v0, v5, v6, v7, v8, v9, v10, v11)
@@ -377,7 +434,7 @@ def _event(which, x, v, level):
 
 
 @jitable
-def _locate(which, level, x, v, h, xh, vh, amax, E, R, m, params, L, V, c):
+def _locate(which, level, x, v, h, xh, vh, amax, E, R, m, params, L, V, c, aY):
     """Step length ``0 < s <= h`` from ``(x, v)`` at which event ``which`` crosses zero (Illinois
     secant with bisection), to ``1e-14 s``."""
     a = 0.0
@@ -389,7 +446,7 @@ def _locate(which, level, x, v, h, xh, vh, amax, E, R, m, params, L, V, c):
         s = (a * gb - b * ga) / (gb - ga)
         if not (s > a and s < b):
             s = 0.5 * (a + b)
-        xs, vs, _ = _step(x, v, s, amax, E, R, m, params, L, V, c)
+        xs, vs, _ = _step(x, v, s, amax, E, R, m, params, L, V, c, aY)
         gs = _event(which, xs, vs, level)
         if gs == 0.0:
             return s
@@ -411,7 +468,7 @@ def _locate(which, level, x, v, h, xh, vh, amax, E, R, m, params, L, V, c):
 
 
 @jitable
-def _peak(xa, va, hh, amax, E, R, m, params, L, V, c):
+def _peak(xa, va, hh, amax, E, R, m, params, L, V, c, aY):
     """Largest scaled force on ``[0, hh]`` of the trajectory from ``(xa, va)`` (golden section over the
     length of one step from there: the bracket spans the two steps around the best step end)."""
     g = 0.6180339887498949
@@ -419,32 +476,32 @@ def _peak(xa, va, hh, amax, E, R, m, params, L, V, c):
     b = hh
     s1 = b - g * (b - a)
     s2 = a + g * (b - a)
-    x1, v1, _ = _step(xa, va, s1, amax, E, R, m, params, L, V, c)
-    x2, v2, _ = _step(xa, va, s2, amax, E, R, m, params, L, V, c)
-    f1 = -_acc(x1, v1, amax, E, R, m, params, L, V, c)
-    f2 = -_acc(x2, v2, amax, E, R, m, params, L, V, c)
+    x1, v1, _ = _step(xa, va, s1, amax, E, R, m, params, L, V, c, aY)
+    x2, v2, _ = _step(xa, va, s2, amax, E, R, m, params, L, V, c, aY)
+    f1 = -_acc(x1, v1, amax, E, R, m, params, L, V, c, aY)
+    f2 = -_acc(x2, v2, amax, E, R, m, params, L, V, c, aY)
     for _ in range(80):
         if f1 > f2:
             b = s2
             s2 = s1
             f2 = f1
             s1 = b - g * (b - a)
-            x1, v1, _ = _step(xa, va, s1, amax, E, R, m, params, L, V, c)
-            f1 = -_acc(x1, v1, amax, E, R, m, params, L, V, c)
+            x1, v1, _ = _step(xa, va, s1, amax, E, R, m, params, L, V, c, aY)
+            f1 = -_acc(x1, v1, amax, E, R, m, params, L, V, c, aY)
         else:
             a = s1
             s1 = s2
             f1 = f2
             s2 = a + g * (b - a)
-            x2, v2, _ = _step(xa, va, s2, amax, E, R, m, params, L, V, c)
-            f2 = -_acc(x2, v2, amax, E, R, m, params, L, V, c)
+            x2, v2, _ = _step(xa, va, s2, amax, E, R, m, params, L, V, c, aY)
+            f2 = -_acc(x2, v2, amax, E, R, m, params, L, V, c, aY)
         if b - a <= 1e-12 * hh:
             break
     return f1 if f1 > f2 else f2
 
 
 @jitable
-def _phase(x, v, t, h, amax, which, level, E, R, m, params, L, V, c):
+def _phase(x, v, t, h, amax, which, level, E, R, m, params, L, V, c, aY):
     """Integrate from ``(x, v)`` at scaled time ``t`` with first step ``h`` until event ``which``
     (at ``level``); returns ``(x, v, t, h, found, fmax)`` at the event, ``fmax`` the largest scaled
     force (``-acceleration``) of the phase: the best step end, refined by :func:`_peak` over the
@@ -457,20 +514,20 @@ def _phase(x, v, t, h, amax, which, level, E, R, m, params, L, V, c):
     h_old = 0.0
     err_old = 0.0
     for _ in range(_MAX_STEPS):
-        xn, vn, err = _step(x, v, h, amax, E, R, m, params, L, V, c)
+        xn, vn, err = _step(x, v, h, amax, E, R, m, params, L, V, c, aY)
         if err > 1.0:
             h *= max(0.2, 0.9 * err**-0.125)
             continue
         if _event(which, xn, vn, level) <= 0.0:
-            s = _locate(which, level, x, v, h, xn, vn, amax, E, R, m, params, L, V, c)
-            xs, vs, _ = _step(x, v, s, amax, E, R, m, params, L, V, c)
-            fs = -_acc(xs, vs, amax, E, R, m, params, L, V, c)
+            s = _locate(which, level, x, v, h, xn, vn, amax, E, R, m, params, L, V, c, aY)
+            xs, vs, _ = _step(x, v, s, amax, E, R, m, params, L, V, c, aY)
+            fs = -_acc(xs, vs, amax, E, R, m, params, L, V, c, aY)
             if hb < 0.0:
                 hb = s
             if ha > 0.0:
-                fmax = max(fmax, _peak(xa, va, ha + hb, amax, E, R, m, params, L, V, c))
+                fmax = max(fmax, _peak(xa, va, ha + hb, amax, E, R, m, params, L, V, c, aY))
             return xs, vs, t + s, h, True, max(fmax, fs)
-        f = -_acc(xn, vn, amax, E, R, m, params, L, V, c)
+        f = -_acc(xn, vn, amax, E, R, m, params, L, V, c, aY)
         if hb < 0.0:
             hb = h
         if f > fmax:
@@ -495,33 +552,49 @@ def _phase(x, v, t, h, amax, which, level, E, R, m, params, L, V, c):
 
 
 @jitable
-def outcome(V, E, R, m, p_y, params):
-    """Outcome of one impact at a wall (see the module docstring; ``p_y`` unused)."""
-    if not in_bounds(params, BOUNDS) or not (V > 0.0 and V < math.inf):
-        return nan_outcome(V)
+def _loading(V, E, R, m, params):
+    """The loading of an impact at ``V > 0`` to the largest overlap, in the scales of :func:`outcome`:
+    ``(x, v, t, h, hit, f1, t1, elastic, L, c, aY)`` (``x = alpha_max/L``, the time ``t`` of the top
+    and ``t1`` of the yield, ``hit`` False where the top was not found, ``f1`` the largest scaled
+    force, ``aY`` the yield overlap)."""
     T = hertz.time_scale(V, E, R, m)
     L = V * T
     c = T / (m * V)
     aY = yield_approach(E, R, params[1])
     xY = aY / L
     # loading: the elastic stage to the yield overlap, then the plastic stage, to the top
-    x, v, t, h, hit, f1 = _phase(0.0, 1.0, 0.0, 1e-3, -1.0, 0, 0.0, E, R, m, params, L, V, c)
+    x, v, t, h, hit, f1 = _phase(0.0, 1.0, 0.0, 1e-3, -1.0, 0, 0.0, E, R, m, params, L, V, c, aY)
     t1 = t
     elastic = 1.0
     if x > xY:  # the contact yielded inside the loading: redo it in two stages
-        x, v, t, h, hit, f1 = _phase(0.0, 1.0, 0.0, 1e-3, -1.0, 1, xY, E, R, m, params, L, V, c)
+        x, v, t, h, hit, f1 = _phase(0.0, 1.0, 0.0, 1e-3, -1.0, 1, xY, E, R, m, params, L, V, c, aY)
         t1 = t
         if v > 0.0:  # yielded (else the top came first: elastic after all)
-            x, v, t, h, hit, f2 = _phase(xY, v, t, h, -1.0, 0, 0.0, E, R, m, params, L, V, c)
+            x, v, t, h, hit, f2 = _phase(xY, v, t, h, -1.0, 0, 0.0, E, R, m, params, L, V, c, aY)
             f1 = max(f1, f2)
             elastic = 0.0
+    return x, v, t, h, hit, f1, t1, elastic, L, c, aY
+
+
+@jitable
+def outcome(V, E, R, m, p_y, params):
+    """Outcome of one impact at a wall (see the module docstring; ``p_y`` unused): NaN where the
+    loading ends where the code has no unloading (:func:`geometry_lost`)."""
+    if not in_bounds(params, BOUNDS) or not (V > 0.0 and V < math.inf):
+        return nan_outcome(V)
+    if not m * V > 0.0:  # a momentum below the smallest float: the scales of the integration do not exist
+        return nan_outcome(V)
+    T = hertz.time_scale(V, E, R, m)
+    x, v, t, h, hit, f1, t1, elastic, L, c, aY = _loading(V, E, R, m, params)
     if not hit:
         return nan_outcome(V)
     tL = t
     amax = x * L
+    if geometry_lost(amax, E, R, params):
+        return nan_outcome(V)
     fmax = max(f1, loading_force(amax, E, R, params) * (1.0 + math.exp(10.7 * amax / R - 10.0)) * c)
     ap = separation_approach_after(amax, E, R, m, p_y, params)
-    x, v, t, h, hit, f3 = _phase(x, 0.0, t, h, amax, 2, ap / L, E, R, m, params, L, V, c)
+    x, v, t, h, hit, f3 = _phase(x, 0.0, t, h, amax, 2, ap / L, E, R, m, params, L, V, c, aY)
     A, B, _, _ = unloading_geometry(amax, E, R, params)
     a_max = B * 0.5 if elastic == 0.0 else B * math.sqrt(amax / A * (1.0 - amax / A))
     if not hit:

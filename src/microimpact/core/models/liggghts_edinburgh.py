@@ -128,10 +128,9 @@ PARAMETERS = (
         low=1.0,
         high=3.0,
     ),
-    Parameter(
+    Parameter.of(
         "coefficient_restitution",
-        "1",
-        "LIGGGHTS' coefficientRestitution in (0.05, 1] (1: no damping)",
+        "e_n in (0.05, 1], LIGGGHTS' coefficientRestitution (1: no damping)",
         default=1.0,
         low=0.05,
         high=1.0,
@@ -155,8 +154,11 @@ PARAMETERS = (
         "fix_kc", "1", "1: k_adh = kn2kc k1 (fixKc on); 0: k_adh from the surface energy", default=0.0, flag=True
     ),
     LIMIT_FORCE,  # limitForce: on (1) is the code's default
-    Parameter(
-        "two_spheres", "1", "0: sphere on a wall (a = 0); 1: two equal spheres of radius 2 R*", default=0.0, flag=True
+    Parameter.of(
+        "two_spheres",
+        "1: two equal spheres of radius 2 R*; 0: a sphere of radius R* on a wall (option 1's pull-off radius a = 0)",
+        default=0.0,
+        flag=True,
     ),
 )
 BOUNDS, _validate_bounds = checks(NAME, PARAMETERS)
@@ -632,7 +634,8 @@ def energy_budget(V, E, R, m, p_y, params):
     if cap == 1.0 or not e == e:
         return n_, n_, n_, n_, n_
     inc = 0.5 * m * V * V
-    return inc, spring_work(amax, aend, E, R, params), wd, -params[_F0] * aend, 0.5 * m * (e * V) ** 2
+    eV = e * V
+    return inc, spring_work(amax, aend, E, R, params), wd, -params[_F0] * aend, 0.5 * m * (eV * eV)
 
 
 @jitable

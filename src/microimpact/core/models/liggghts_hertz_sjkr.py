@@ -533,7 +533,8 @@ def sticking_velocity(E, R, m, p_y, params):
     # speed at which the scaled cohesion c is 1: c = k pi c1 R*/(rho X^(1/2)), X = V^(4/5) (m/rho)^(2/5)
     rho = hertz.stiffness(E, R)
     c1 = area_coefficients(params)[0]
-    X1 = (params[1] * math.pi * c1 * R / rho) ** 2
+    s1 = params[1] * math.pi * c1 * R / rho
+    X1 = s1 * s1
     V1 = (X1 * (rho / m) ** 0.4) ** 1.25
     lo = V1
     flo = end_energy(lo, E, R, m, params)

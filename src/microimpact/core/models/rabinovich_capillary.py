@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import math
 
+from .. import hertz
 from .._jit import jitable
 from . import _capillary as cap
 from . import checks
@@ -56,24 +57,29 @@ def work(E, R, m, params):
 
 @jitable
 def restitution_only(V, E, R, m, p_y, params):
-    """``e = (1 - 2 W/(m* V^2))^(1/2)``, 0 at and below the capture velocity (energy balance)."""
-    if not in_bounds(params, BOUNDS) or not (V >= 0.0):
+    """``e = (1 - 2 W/(m* V^2))^(1/2)``, 0 at and below the capture velocity (energy balance): the
+    field ``restitution`` of :func:`outcome`, bit for bit (NaN where it is NaN, at ``V = inf`` too)."""
+    if not in_bounds(params, BOUNDS) or not (V >= 0.0 and V < math.inf):
         return math.nan
-    if V == math.inf:
-        return 1.0
-    x = 1.0 - 2.0 * work(E, R, m, params) / (m * V * V) if V > 0.0 else -1.0
+    mv2 = m * V * V  # 0 at a speed whose square underflows: captured, as at V = 0
+    x = 1.0 - 2.0 * work(E, R, m, params) / mv2 if mv2 > 0.0 else -1.0
     return math.sqrt(x) if x > 0.0 else 0.0
 
 
 @jitable
 def outcome(V, E, R, m, p_y, params):
-    """Outcome at contact speed ``V``: ``e`` by the energy balance, the times by integration."""
+    """Outcome at contact speed ``V``: ``e`` by the energy balance, the times by integration (a captured
+    particle: Hertz's loading in closed form, ``unloading_time = inf``)."""
     if not in_bounds(params, BOUNDS) or not (V >= 0.0 and V < math.inf):
         return nan_outcome(V)
     q = constants(E, R, m, params)
     e = restitution_only(V, E, R, m, p_y, params)
     if V == 0.0:
         return dem_outcome(V, 0.0, 0.0, -q[7], 0.0, R, 0.0, math.inf)
+    if e == 0.0:  # captured: the bridge acts outside the contact only, so the loading is Hertz's, in closed
+        # form (an integration in metres and seconds stalls at speeds near the smallest floats)
+        a_m = hertz.max_approach(V, E, R, m)
+        return dem_outcome(V, 0.0, a_m, -q[7], hertz.force(a_m, E, R), R, hertz.half_period(V, E, R, m), math.inf)
     run = cap.integrate(KIND, V, E, R, m, q)  # the times, and the maximum approach and force
     tU = run[4] if e > 0.0 else math.inf
     return dem_outcome(V, e, run[1], -q[7], run[2], R, run[3], tU)
