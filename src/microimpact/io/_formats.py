@@ -327,23 +327,34 @@ def write_netcdf(ds, path, *, engine=None, progress=False):
 
     check_output_path(path)
     target = resolve_link(Path(path))
+    # An uncompressed NetCDF file holds at least its data: a file-size limit it cannot fit under is
+    # refused before anything is written. A write the NetCDF library fails part way leaves its file
+    # open in xarray's file manager, which closes it again at garbage collection and prints there.
+    limit = _file_size_limit()
+    if limit is not None and ds.nbytes >= limit:
+        raise _too_large(ds.nbytes, limit, target)
     with replacing(target) as (fd, tmp):
         os.close(fd)  # the NetCDF library writes the file by its name
         # A dask-backed dataset is written by a delayed write computed here: to_netcdf computing it
         # itself closes the file in a finally that takes xarray's file lock again, and an interrupt
         # that came while that lock was being taken left it held: the close then waited for ever.
+        # Under dask's default scheduler the blocks are computed in this thread, one at a time (as the
+        # CSV writer does): no pool thread holds a block at an interrupt, and memory stays one block.
         try:
             if not ds.chunks:
                 ds.to_netcdf(tmp, engine=engine)
             else:
+                import dask
+
                 delayed = ds.to_netcdf(tmp, engine=engine, compute=False)
+                chosen = dask.config.get("scheduler", None)
                 bar = contextlib.nullcontext()
                 if progress:
                     from .._optional import require
 
                     bar = require("dask.diagnostics", "progress bars").ProgressBar(out=sys.stderr)
                 with bar:
-                    delayed.compute()
+                    delayed.compute() if chosen is not None else delayed.compute(scheduler="synchronous")
         except RuntimeError as exc:
             if not str(exc).startswith("NetCDF:"):
                 raise
@@ -351,6 +362,29 @@ def write_netcdf(ds, path, *, engine=None, progress=False):
         with open(tmp, "rb+") as fh:
             os.fsync(fh.fileno())
     return Path(path)
+
+
+def _file_size_limit():
+    """The process's file-size limit in bytes (``ulimit -f``, RLIMIT_FSIZE), or None where there is none."""
+    try:
+        import resource
+
+        limit = resource.getrlimit(resource.RLIMIT_FSIZE)[0]
+    except (ImportError, OSError, ValueError):  # pragma: no cover - not a POSIX system
+        return None
+    return None if limit == resource.RLIM_INFINITY else limit
+
+
+def _too_large(nbytes, limit, target) -> OSError:
+    """The EFBIG error naming ``target`` for about ``nbytes`` of data over the file-size limit."""
+    import errno
+
+    return OSError(
+        errno.EFBIG,
+        f"File too large: about {nbytes / 1e6:.3g} MB of data, more than the process's file-size limit "
+        f"(ulimit -f) of {limit} bytes",
+        os.fspath(target),
+    )
 
 
 def _netcdf_write_error(exc, tmp, target, nbytes) -> OSError:
@@ -367,20 +401,9 @@ def _netcdf_write_error(exc, tmp, target, nbytes) -> OSError:
         written = os.stat(tmp).st_size
     except OSError:
         written = 0
-    try:
-        import resource
-
-        limit = resource.getrlimit(resource.RLIMIT_FSIZE)[0]
-        limit = None if limit == resource.RLIM_INFINITY else limit
-    except (ImportError, OSError, ValueError):  # pragma: no cover - not a POSIX system
-        limit = None
+    limit = _file_size_limit()
     if limit is not None and max(written, nbytes) >= limit:
-        return OSError(
-            errno.EFBIG,
-            f"File too large: about {nbytes / 1e6:.3g} MB of data, more than the process's file-size limit "
-            f"(ulimit -f) of {limit} bytes",
-            os.fspath(target),
-        )
+        return _too_large(nbytes, limit, target)
     try:
         st = os.statvfs(os.path.dirname(os.fspath(tmp)) or ".")
         full = st.f_bavail * st.f_frsize < (1 << 20)
