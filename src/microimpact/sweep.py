@@ -31,7 +31,7 @@ from . import impact
 from ._optional import require
 from ._validation import check_pair, check_poisson, check_positive, check_velocity, first_duplicate
 from .core import models, quantities
-from .io import atomic_write, check_memory, progress_bar, write_netcdf
+from .io import atomic_write, check_memory, compute_here, progress_bar, write_netcdf
 from .pair import DEFAULT_POISSON, DEFAULT_SURFACE_MODULUS, RESULT_FIELDS, ContactPair
 
 __all__ = [
@@ -722,7 +722,7 @@ def sweep_to_csv(ds, path, *, progress=False, rows_per_block=None):
 
         def pieces():  # computed one block at a time, in the producer thread of _write_pieces
             for outer, inner in slabs:
-                part = _compute_block(ds.isel(outer))  # one block of the first dimension at a time
+                part = compute_here(ds.isel(outer))  # one block of the first dimension at a time
                 for sel in inner:
                     yield from _piece_columns(part.isel(sel), dims, variables)
                 part = None  # not held while the next block is computed
@@ -873,19 +873,6 @@ def _writeback_start(fh):
         return (fh.fileno() if hasattr(os, "posix_fadvise") else None), fh.tell()
     except (AttributeError, OSError, ValueError):  # not a file of the system (a BytesIO in tests)
         return None, 0
-
-
-def _compute_block(part):
-    """``part`` (a slice of a sweep) computed. Under dask's default scheduler, in this thread: a block of
-    the first dimension is mostly one task, which its thread pool would run on another thread, and
-    each thread's allocations stay in an arena of its own (with the formatting threads, about
-    160 MB more resident memory at 2e6 points). A scheduler the caller chose (a ``dask.distributed``
-    client sets one) is kept."""
-    import dask
-
-    if dask.config.get("scheduler", None) is None:
-        return part.compute(scheduler="synchronous")
-    return part.compute()
 
 
 def _piece_columns(sub, dims, variables, rows=None):

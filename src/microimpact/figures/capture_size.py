@@ -29,11 +29,13 @@ from ..oblique import adhesive as ad
 from ..oblique import stiffness_ratio_of
 from ..quantities import axis_label
 from . import style as _style
+from .oblique_adhesive import COLORS
 
 __all__ = ["capture_size_data", "plot_capture_size", "capture_diameter", "OUTCOME_COLORS"]
 
 #: Fill colour of each outcome of :data:`microimpact.oblique.adhesive.OUTCOMES` (Okabe & Ito).
-OUTCOME_COLORS = {"bounce": "#f2f2f2", "stick": "#000000", "captured rolling": "#56B4E9", "captured sliding": "#E69F00"}
+#: The outcomes' colours, those of the speed-angle capture map (one palette for the same four outcomes).
+OUTCOME_COLORS = COLORS
 
 
 def _default_pair():

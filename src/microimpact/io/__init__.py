@@ -60,6 +60,7 @@ from ._files import (
 )
 from ._formats import (
     check_figure_path,
+    compute_here,
     csv_header,
     csv_rows,
     json_safe,
@@ -88,6 +89,7 @@ __all__ = [
     "write_json",
     "json_safe",
     "write_netcdf",
+    "compute_here",
     "save_figure",
     "memory_budget",
     "check_memory",

@@ -21,6 +21,7 @@ if TYPE_CHECKING:
     from pathlib import Path
 
 __all__ = [
+    "compute_here",
     "check_figure_path",
     "csv_header",
     "csv_rows",
@@ -303,6 +304,22 @@ def _json_numbers(values):
 
 
 # ----------------------------------------------------------------------------- NetCDF and figures
+def compute_here(collection):
+    """``collection.compute()`` (a dask collection), in this thread under dask's default scheduler.
+
+    A sweep's block is mostly one task, which the default thread pool would run on another thread:
+    each thread's allocations stay in a malloc arena of its own (about 160 MB more resident memory at
+    2e6 points with the formatting threads), and a pool thread still computing a block at an
+    interrupt is joined at exit. A scheduler the caller chose (a ``dask.distributed`` client sets
+    one) is kept.
+    """
+    import dask
+
+    if dask.config.get("scheduler", None) is None:
+        return collection.compute(scheduler="synchronous")
+    return collection.compute()
+
+
 def write_netcdf(ds, path, *, engine=None, progress=False):
     """Write an :class:`xarray.Dataset` to NetCDF through a temporary file beside ``path``.
 
@@ -338,23 +355,19 @@ def write_netcdf(ds, path, *, engine=None, progress=False):
         # A dask-backed dataset is written by a delayed write computed here: to_netcdf computing it
         # itself closes the file in a finally that takes xarray's file lock again, and an interrupt
         # that came while that lock was being taken left it held: the close then waited for ever.
-        # Under dask's default scheduler the blocks are computed in this thread, one at a time (as the
-        # CSV writer does): no pool thread holds a block at an interrupt, and memory stays one block.
+        # Its blocks are computed one at a time in this thread (compute_here), as the CSV writer's are.
         try:
             if not ds.chunks:
                 ds.to_netcdf(tmp, engine=engine)
             else:
-                import dask
-
                 delayed = ds.to_netcdf(tmp, engine=engine, compute=False)
-                chosen = dask.config.get("scheduler", None)
                 bar = contextlib.nullcontext()
                 if progress:
                     from .._optional import require
 
                     bar = require("dask.diagnostics", "progress bars").ProgressBar(out=sys.stderr)
                 with bar:
-                    delayed.compute() if chosen is not None else delayed.compute(scheduler="synchronous")
+                    compute_here(delayed)
         except RuntimeError as exc:
             if not str(exc).startswith("NetCDF:"):
                 raise
