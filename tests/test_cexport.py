@@ -34,7 +34,6 @@ def mindlin_program(tmp_path_factory):
         tmp,
         effective_modulus=1.31e9,
         limiting_pressure=156e6,
-        work_of_adhesion=0.1,
         friction=0.3,
         tangential="mindlin",
         poisson_ratio=NU,
@@ -49,12 +48,19 @@ def _run(exe, rows):
 
 
 def test_mindlin_c_equals_python_wall_interaction(mindlin_program):
-    """Same table, same arithmetic: the C function equals wall_interaction(tangential='mindlin') to rounding."""
+    """Same table, same arithmetic: the C function equals wall_interaction(tangential='mindlin') to rounding
+    without adhesion; with it (a struct whose work of adhesion is positive) it refuses, -3 and outputs =
+    inputs, since Python integrates those impacts."""
     rng = np.random.default_rng(16)
     N = 3000
     v, n, w, d, rho, E, py, G, mu = _random_cases(rng, N)
     got = _run(mindlin_program, np.column_stack([v, n, w, d, rho, E, py, G, mu]))
     assert got.shape == (N, 8)
+    adhesive = G > 0.0
+    assert 0 < np.count_nonzero(adhesive) < N
+    assert np.all(got[adhesive, 0] == -3)
+    assert np.array_equal(got[adhesive, 1:4], v[adhesive]) and np.array_equal(got[adhesive, 4:7], w[adhesive])
+    got, v, n, w, d, rho, E, py, G, mu = (x[~adhesive] for x in (got, v, n, w, d, rho, E, py, G, mu))
     ref = wall_interaction(
         v,
         n,
@@ -70,8 +76,8 @@ def test_mindlin_c_equals_python_wall_interaction(mindlin_program):
     )
     flag = got[:, 0].astype(int)
     assert np.array_equal(flag, np.where(~ref.approaching, -1, np.where(ref.stuck, 1, 0)))
-    # stuck-at-some-time (F < 1), sliding throughout, stuck at the wall, not approaching
-    assert {"none", "stuck", "rolling", "sliding"} <= set(ref.regime)
+    # stuck-at-some-time (F < 1), sliding throughout, not approaching
+    assert {"none", "rolling", "sliding"} <= set(ref.regime)
     vscale = np.maximum(np.linalg.norm(v, axis=1), 1e-300)[:, None]
     wscale = np.maximum(np.linalg.norm(w, axis=1), np.linalg.norm(v, axis=1) / (0.5 * d))[:, None]
     err_v = np.max(np.abs(got[:, 1:4] - ref.velocity) / vscale)
@@ -115,8 +121,9 @@ def test_rigid_source_unchanged_and_options_checked():
     rigid = generate_c_source(pair, work_of_adhesion=0.05, friction=0.25)
     assert generate_c_source(pair, work_of_adhesion=0.05, friction=0.25, tangential="rigid") == rigid
     assert "microimpact_oblique" not in rigid and "MICROIMPACT_KAPPA" not in rigid
-    comp = generate_c_source(pair, work_of_adhesion=0.05, friction=0.25, tangential="mindlin", poisson_ratio=NU)
+    comp = generate_c_source(pair, friction=0.25, tangential="mindlin", poisson_ratio=NU)
     assert f"#define MICROIMPACT_KAPPA {KAPPA!r}" in comp
+    assert "return -3;" in comp and "return -3;" not in rigid
     assert "double microimpact_oblique_impulse_ratio(double psi, double x)" in comp
     assert "stop <= limit" not in comp
     # the table baked in is the one of the pair's kappa
@@ -138,6 +145,25 @@ def test_rigid_source_unchanged_and_options_checked():
         generate_c_source(pair, tangential="mindlin", poisson_ratio=0.7)
     with pytest.raises(ValueError, match="tangential"):
         generate_c_source(pair, tangential="coulomb")
+
+
+@pytest.mark.parametrize("law", ["mindlin", "lammps_mindlin", "liggghts_history"])
+def test_adhesion_with_a_compliant_law_is_not_exported(law, tmp_path, capsys):
+    """Python integrates these impacts (microimpact.oblique.adhesive); C would have to keep the old
+    approximation, so the export refuses, in one line naming the options and why, and writes nothing."""
+    pair = mi.ContactPair.paper_case("mica")
+    with pytest.raises(ValueError, match=r"work_of_adhesion=0\.05 with tangential=.* not exported") as err:
+        generate_c_source(pair, work_of_adhesion=0.05, friction=0.25, tangential=law, poisson_ratio=NU)
+    assert "\n" not in str(err.value) and "integrates" in str(err.value)
+    with pytest.raises(ValueError, match="not exported"):
+        write_c_source(tmp_path / "c", pair, work_of_adhesion=0.05, tangential=law, poisson_ratio=NU)
+    assert not (tmp_path / "c").exists()
+    args = ["export", "--out", str(tmp_path / "cli"), "--radius", "5e-6", "--density", "2500"]
+    args += ["--effective-modulus", "5e9", "--limiting-pressure", "1e8", "--poisson-ratio", "0.3"]
+    assert main([*args, "--work-of-adhesion", "0.1", "--tangential", law]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "--tangential" in err and "--work-of-adhesion" in err and "C" in err
+    assert not (tmp_path / "cli").exists()
 
 
 def test_mindlin_kappa_from_materials(monkeypatch):

@@ -266,7 +266,11 @@ def generate_c_source(
         tangential impulse is ``J_t = -F(psi, V_y/V) mu J_n u_t/|u_t|`` with
         ``psi = kappa |u_t| / (mu V)``, as the Python function computes it. ``kappa``
         is a compile-time constant (``MICROIMPACT_KAPPA``): a struct with another
-        ``E*`` keeps the ``kappa`` given here.
+        ``E*`` keeps the ``kappa`` given here. With adhesion (``work_of_adhesion > 0``) a compliant
+        law is refused (ValueError): Python integrates each adhesive
+        impact (:func:`~microimpact.oblique.adhesive.adhesive_oblique_impact`), which the C function does
+        not reproduce; the compliant function returns -3 (outputs = inputs) for a struct whose
+        ``work_of_adhesion`` is positive, rather than scale the non-adhesive table by the adhesive ``J_n``.
     poisson_ratio : float, optional
         ``"mindlin"`` only: one Poisson's ratio for particle and wall,
         ``kappa = 2(1 - nu)/(2 - nu)``.
@@ -301,7 +305,7 @@ def generate_c_source(
         are given, a value is out of range, or ``tangential="mindlin"`` has no way to
         ``kappa`` (or gets both ``poisson_ratio`` and ``effective_shear_modulus``);
         ``poisson_ratio`` or ``effective_shear_modulus`` with ``"rigid"`` is refused
-        too (it would be ignored).
+        too (it would be ignored); ``work_of_adhesion > 0`` with a compliant ``tangential``.
     """
     from .._version import __version__
     from ..adhesion import check_adhesion_rule
@@ -318,6 +322,12 @@ def generate_c_source(
     if math.isinf(G) or math.isinf(mu):
         raise ValueError("work_of_adhesion and friction must be finite")
     kappa = _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus)
+    if kappa is not None and G > 0.0:
+        raise ValueError(
+            f"work_of_adhesion={G!r} with tangential={tangential!r} is not exported to C: wall_interaction "
+            "integrates each adhesive impact (normal and tangential together, microimpact.oblique.adhesive), "
+            "which the C function does not reproduce; export tangential='rigid' or work_of_adhesion=0"
+        )
     label = f"{comment_text(pair.label)}; " if pair is not None and pair.label else ""
     desc = f"{label}E* = {E:.6g} Pa, p_y = {p_y:.6g} Pa, G = {G:.6g} J/m^2, mu = {mu:.6g}"
     if kappa is not None:
@@ -410,6 +420,19 @@ _MINDLIN_EDITS = (
         "        scale = microimpact_oblique_impulse_ratio(MICROIMPACT_KAPPA * ut_mag / (params->friction * V),\n"
         "                                                  V_y / V) * limit / ut_mag;\n"
         "    else scale = 0.0;\n",
+    ),
+    (
+        " *               -2 invalid input (diameter/density <= 0, zero normal): outputs = inputs.\n",
+        " *               -2 invalid input (diameter/density <= 0, zero normal): outputs = inputs,\n"
+        " *               -3 params->work_of_adhesion > 0: outputs = inputs. With adhesion microimpact\n"
+        " *                  integrates each impact of a compliant law (normal and tangential together,\n"
+        " *                  microimpact.oblique.adhesive), which this function does not; it refuses the\n"
+        " *                  adhesive struct rather than scale the non-adhesive table by the adhesive J_n.\n",
+    ),
+    (
+        "    for (i = 0; i < 3; i++) n[i] = n_in[i] / len;\n",
+        "    for (i = 0; i < 3; i++) n[i] = n_in[i] / len;\n"
+        "    if (params->work_of_adhesion > 0.0) return -3;  /* adhesion: not computed here (header) */\n",
     ),
     (_ROOT_OF_E2, _COMPLIANT_ROOT_OF_E2),  # last: the first edit's text is read for the header
 )

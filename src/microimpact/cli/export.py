@@ -181,6 +181,13 @@ def run(args) -> int:
         check_nonnegative(name, value)
         if math.isinf(value):
             raise ValueError(f"{name} must be finite, got {value!r}")
+    if tangential != "rigid" and G > 0.0:  # before anything is fitted or written
+        raise ValueError(
+            f"--tangential {tangential} with adhesion (--work-of-adhesion or --surface-energy: G = {G:g} J/m^2) is "
+            "not exported to C: microimpact integrates "
+            "each adhesive impact (normal and tangential together), which the C function does not reproduce; "
+            "use --tangential rigid or no adhesion"
+        )
     velocities = parse_values(args.velocities, "--velocities") if args.velocities is not None else None
     if velocities is not None:
         check_nonnegative("--velocities", velocities)

@@ -118,6 +118,13 @@ class AdhesiveObliqueImpact:
     pulloff_force : ndarray
         ``F_c`` [N] of the Coulomb limit.
     tangential, coulomb : str
+    sliding : ndarray of bool
+        True where the contact was sliding (at its Coulomb limit) at its last step: as it broke for a
+        bounce, at capture for a captured particle (the rigid law: where the impulse reached the limit).
+    held : ndarray of bool
+        True where the contact was within its Coulomb limit at some step (it stuck at some time: with
+        adhesion nearly always, from first touch, where the adhesive limit ``mu 2 F_c`` exceeds the
+        spring's force; the rigid law: where the slip was stopped).
     """
 
     angle: np.ndarray
@@ -135,6 +142,8 @@ class AdhesiveObliqueImpact:
     pulloff_force: np.ndarray
     tangential: str
     coulomb: str
+    sliding: np.ndarray | None = None
+    held: np.ndarray | None = None
 
     def to_dict(self) -> dict:
         return {f.name: getattr(self, f.name) for f in fields(self)}
@@ -196,6 +205,7 @@ def _integrator(model, fallback):
         acc = -F / m
         sliding = False
         slid = False
+        held = False
         unloading = False
         captured = False
         t = 0.0
@@ -245,6 +255,7 @@ def _integrator(model, fallback):
                 slid = True
             else:
                 sliding = False
+                held = True
             a_old = a
             acc = -F / m
             adot += 0.5 * dt * acc
@@ -257,7 +268,7 @@ def _integrator(model, fallback):
             elif unloading and adot > 0.0:  # pulled back before leaving: captured
                 captured = True
                 break
-        return -adot / Vn, v, w, captured, sliding, slid, t
+        return -adot / Vn, v, w, captured, sliding, slid, t, held
 
     return run
 
@@ -407,12 +418,14 @@ def adhesive_oblique_impact(
     res = {k: np.full(shape, np.nan) for k in ("e_int", "v", "w", "Fc")}
     captured = np.zeros(shape, dtype=bool)
     sliding = np.zeros(shape, dtype=bool)
+    held = np.zeros(shape, dtype=bool)
     elastic_fc = None
     if mod.separation_approach_after is None:  # the pull-off does not depend on the maximum approach
         elastic_fc = _pulloff(mod, params, float(np.nanmax(amax_all)) if amax_all.size else 0.0, E, R, m, p_y)
     if tangential == "rigid":
         _rigid(mod, params, pair, out, E, R, m, p_y, vt, R * w0, mu, captured_law, elastic_fc, amax_all, res, sliding)
         captured[...] = captured_law
+        held[...] = ~sliding
         res["e_int"][...] = e
     else:
         if kappa is None or not (0.0 < float(kappa) < math.inf):
@@ -435,13 +448,14 @@ def adhesive_oblique_impact(
             dt = min(_hertz_time(float(Vn[idx]), E, R, m), float(scale[idx])) / steps
             t_end = -1.0 if end_time is None else float(end_time)
             max_steps = int(MAX_CONTACT_TIMES * steps) if end_time is None else int(t_end / dt) + 2
-            ei, v, w, cap, sl, _, _ = run(float(Vn[idx]), float(vt[idx]), float(R * w0[idx]), E, R, m, p_y, params,
+            ei, v, w, cap, sl, _, _, hd = run(float(Vn[idx]), float(vt[idx]), float(R * w0[idx]), E, R, m, p_y, params,
                                           float(mu[idx]), kG, c_load, c_unload, linear, k_lin, lam, limit_mode,
                                           Fc, a_sep, zero_end, dt, max_steps, t_end)  # fmt: skip
             res["e_int"][idx] = 0.0 if cap else ei
             res["v"][idx], res["w"][idx], res["Fc"][idx] = v, w, Fc
             captured[idx] = cap if end_time is not None else bool(captured_law[idx])
             sliding[idx] = sl
+            held[idx] = hd
     v, wr = res["v"], res["w"]
     roll_v = (5.0 * v - 2.0 * wr) / 7.0
     # A captured contact that sticks rings on its tangential spring (undamped in these laws) about
@@ -474,6 +488,8 @@ def adhesive_oblique_impact(
         pulloff_force=res["Fc"],
         tangential=tangential,
         coulomb=coulomb,
+        sliding=sliding,
+        held=held,
     )
 
 
