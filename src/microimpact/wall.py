@@ -37,7 +37,8 @@ never adds energy.
 
 With adhesion (``G > 0``) and a compliant law (anything but ``"rigid"``), each particle's impact is
 integrated, normal and tangential together, under Thornton & Ning's whole adhesive law with the
-adhesive Coulomb limit ``mu |F_n + 2 F_c|`` (:func:`microimpact.oblique.adhesive.adhesive_oblique_impact`,
+adhesive Coulomb limit ``mu |F_n + 2 F_c|`` (``mu |F_n|`` of the whole normal force for
+``"liggghts_history"``, as LIGGGHTS; :func:`microimpact.oblique.adhesive.adhesive_oblique_impact`,
 called with the particle's own pair, speed, angle, friction and spin along its slip direction): the
 particle bounces or is captured, and a captured particle keeps the tangential velocity and spin the
 integration gives (it rolls or slides along the wall; :attr:`WallInteraction.outcome`). The normal
@@ -568,6 +569,9 @@ def _arm_law_ratios(vT, nT, wT, d, rho, E, V, Vy, mu, kappa, skip):
 
     vu, wu, sx, sy, sz = evaluate(_wall.slip_split, *vT, *nT, *wT, d, nout=5)
     active = (V > 0.0) & (mu > 0.0) & ((vu + wu) > 0.0) & ~skip
+    if np.all(skip):  # every particle integrated with adhesion: nothing to do (nor to compile) here
+        zero = np.zeros(V.shape)
+        return zero, zero, (sx, sy, sz)
     Vs = np.where(active, V, 1.0)
     scale = mu * Vs
     x = np.minimum(Vy / Vs, 1.0)
