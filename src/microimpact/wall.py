@@ -153,7 +153,7 @@ class WallInteraction:
     outside_table: np.ndarray | None = None
     adhesion: str = "additive"
     _single: bool = field(default=False, repr=False)
-    #: index into OUTCOMES of each particle's adhesive integration, -1 where it was not integrated
+    # index into OUTCOMES of each particle's adhesive integration, -1 where it was not integrated
     _outcome: np.ndarray | None = field(default=None, repr=False)
 
     @property

@@ -99,7 +99,8 @@ def register(sub) -> None:
         help="rigid: rigid-body Coulomb impulse (default); mindlin: compliant contact (Mindlin's no-slip spring "
         "with a Coulomb limit) through the universal table of kappa = 4 G*/E*, baked into the C file; the DEM "
         "codes' laws (lammps_mindlin, ..., liggghts_history, di_renzo_di_maio) likewise; needs "
-        "--poisson-ratio, --shear-modulus or --particle/--surface",
+        "--poisson-ratio, --shear-modulus or --particle/--surface; not with adhesion (G > 0: microimpact "
+        "integrates those impacts, which the C file does not reproduce)",
     )
     k = t.add_mutually_exclusive_group()
     k.add_argument("--poisson-ratio", metavar="NU", help="mindlin: one Poisson ratio of particle and wall")
