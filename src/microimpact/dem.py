@@ -66,6 +66,9 @@ __all__ = [
     "deck",
     "run",
     "check",
+    "capture",
+    "capture_velocity",
+    "CAPTURE_REL",
     "lines",
     "predict",
 ]
@@ -210,9 +213,11 @@ class Deck:
     radius, mass : float
         Radius [m] and mass [kg] of each particle.
     predicted_restitution, predicted_contact_time : float
-        The law's ``e`` [-] and contact time [s] at ``velocity``.
+        The law's ``e`` [-] and contact time [s] at ``velocity`` (0 and infinite: captured).
     record : str
         Name of the file the run writes its per-step record to (in its working directory).
+    sizing_contact_time : float
+        The law's contact time [s] that sized the time step and the run (at the deck's sizing speed).
     """
 
     text: str
@@ -228,6 +233,7 @@ class Deck:
     predicted_restitution: float
     predicted_contact_time: float
     record: str = "record.txt"
+    sizing_contact_time: float = math.nan
 
 
 def predict(calibration, velocity: float) -> tuple[float, float]:
@@ -244,15 +250,15 @@ def predict(calibration, velocity: float) -> tuple[float, float]:
     return float(row[_E]), float(row[_TC])
 
 
-def _speed(velocity):
+def _speed(velocity, name="velocity"):
     if isinstance(velocity, bool):
-        raise ValueError(f"velocity must be a positive finite number, got {velocity!r}")
+        raise ValueError(f"{name} must be a positive finite number, got {velocity!r}")
     try:
         v = float(velocity)
     except (TypeError, ValueError):
-        raise ValueError(f"velocity must be a positive finite number, got {velocity!r}") from None
+        raise ValueError(f"{name} must be a positive finite number, got {velocity!r}") from None
     if not (v > 0.0 and math.isfinite(v)):
-        raise ValueError(f"velocity must be a positive finite number, got {velocity!r}")
+        raise ValueError(f"{name} must be a positive finite number, got {velocity!r}")
     return v
 
 
@@ -265,6 +271,7 @@ def deck(
     time_step: float | None = None,
     steps_per_contact: int = _DEFAULT_STEPS,
     record: str = "record.txt",
+    sizing_velocity: float | None = None,
     **options,
 ) -> Deck:
     """A complete input deck of one impact that runs the printed lines of ``calibration`` in ``code``.
@@ -287,6 +294,12 @@ def deck(
         Steps per contact time when ``time_step`` is not given (default 5000).
     record : str
         File name of the per-step record the run writes (time, positions, velocities, force).
+    sizing_velocity : float, optional
+        The speed [m/s] whose predicted contact time sizes the time step and the run (default
+        ``velocity``; where the law captures the particle, which has no contact time then, its
+        capture velocity times ``1 +`` :data:`CAPTURE_REL`). A deck of a particle the law captures
+        runs four of those contact times, so that a particle the code lets go has left long before
+        its end.
     **options
         Passed to the printing method (e.g. ``damping="tsuji"`` for LAMMPS, ``wall="zplane 0.0 NULL"``:
         DEM input words only, see :func:`microimpact._validation.check_dem_words`).
@@ -312,16 +325,29 @@ def deck(
     ):
         raise ValueError(f"record must be a plain file name (ASCII letters, digits, '._-'), got {record!r}")
     V = _speed(velocity)
+    V_size = V if sizing_velocity is None else _speed(sizing_velocity, "sizing_velocity")
     if isinstance(steps_per_contact, bool) or not isinstance(steps_per_contact, (int, np.integer)):
         raise ValueError(f"steps_per_contact must be an integer >= 20, got {steps_per_contact!r}")
     if steps_per_contact < 20:
         raise ValueError(f"steps_per_contact must be an integer >= 20, got {steps_per_contact!r}")
     printed = lines(calibration, code, **options).splitlines()
     e_p, t_p = predict(calibration, V)
-    if not (math.isfinite(t_p) and t_p > 0.0):
-        raise ValueError(f"the law has no finite contact time at velocity {V!r}; cannot size the time step")
+    # the contact time that sizes the step, and the time the contact may last before the run ends: two
+    # of the law's contact times for a bounce, four at the sizing speed for a capture (a particle the
+    # code lets go leaves near the capture velocity in about one)
+    if sizing_velocity is None and not (math.isfinite(t_p) and t_p > 0.0) and capture_velocity(calibration) > 0.0:
+        V_size = capture_velocity(calibration) * (1.0 + CAPTURE_REL)
+    t_size = predict(calibration, V_size)[1]
+    if not (math.isfinite(t_size) and t_size > 0.0):
+        if sizing_velocity is None:
+            raise ValueError(
+                f"the law has no finite contact time at velocity {V!r} (e = {e_p!r}); cannot size the time "
+                "step: give sizing_velocity, a speed at which it bounces"
+            )
+        raise ValueError(f"the law has no finite contact time at sizing_velocity {V_size!r}; give one it bounces at")
+    t_run = 2.0 * t_p if math.isfinite(t_p) and t_p > 0.0 else 4.0 * t_size
     if time_step is None:
-        dt = t_p / steps_per_contact
+        dt = t_size / steps_per_contact
     else:
         dt = float(time_step)
         if not (dt > 0.0 and math.isfinite(dt)):
@@ -339,19 +365,20 @@ def deck(
     if not gap < 0.95 * room:
         raise ValueError(
             f"time_step {dt!r} s is too large: the free flight of 1.5 steps at {V!r} m/s puts the particle "
-            f"outside the deck's box; give at most {0.95 * room / (1.5 * V):.3g} s (the contact time is {t_p:.3g} s)"
+            f"outside the deck's box; give at most {0.95 * room / (1.5 * V):.3g} s (the contact time is {t_size:.3g} s)"
         )
-    n_steps = (gap / V + 2.0 * t_p) / dt + 20.0
+    n_steps = (gap / V + t_run) / dt + 20.0
     if not n_steps <= MAX_STEPS:
         if time_step is not None:
-            what, most = f"time_step {time_step!r}", f"at least {2.0 * t_p / MAX_STEPS:.3g} s a step"
+            what, most = f"time_step {time_step!r}", f"at least {t_run / MAX_STEPS:.3g} s a step"
         else:
-            what, most = f"steps_per_contact {steps_per_contact!r}", f"at most {MAX_STEPS // 2 - 20} per contact"
+            per = (MAX_STEPS // 2 if t_run == 2.0 * t_size else int(MAX_STEPS * t_size / t_run)) - 20
+            what, most = f"steps_per_contact {steps_per_contact!r}", f"at most {per} per contact"
         raise ValueError(
-            f"{what} needs {n_steps:.3g} steps for the contact time {t_p:.3g} s, more than a run can finish "
+            f"{what} needs {n_steps:.3g} steps for the contact time {t_size:.3g} s, more than a run can finish "
             f"(at most {MAX_STEPS} steps: {most})"
         )
-    steps = int(math.ceil((gap / V + 2.0 * t_p) / dt)) + 20
+    steps = int(math.ceil((gap / V + t_run) / dt)) + 20
     if geometry == "wall":
         z0 = radius + gap
         atoms = [(0.0, 0.0, z0, 0.0, 0.0, -V)]
@@ -397,7 +424,9 @@ def deck(
     head = [
         f"# microimpact: one {'sphere-wall' if geometry == 'wall' else 'sphere-sphere'} impact at {V!r} m/s, "
         f"{calibration.model} as printed by Calibration.{code}()",
-        f"# time step {dt!r} s = predicted contact time {t_p!r} s / {t_p / dt:.6g}; predicted e = {e_p!r}",
+        f"# time step {dt!r} s = predicted contact time {t_size!r} s / {t_size / dt:.6g}"
+        + ("" if V_size == V else f" at {V_size!r} m/s")
+        + (f"; predicted e = {e_p!r}" if math.isfinite(t_p) else "; predicted: captured"),
         f"# run: {'lmp' if code == 'lammps' else 'liggghts'} -in <this file>  (writes {record}: t, "
         + ", ".join(out_vars)
         + ")",
@@ -417,6 +446,7 @@ def deck(
         predicted_restitution=e_p,
         predicted_contact_time=t_p,
         record=record,
+        sizing_contact_time=t_size,
     )
 
 
@@ -437,8 +467,12 @@ def _analyse(d: Deck, rows: np.ndarray) -> dict:
             f"the contact time {d.predicted_contact_time:.3g} s in one"
         )
     last = int(nonzero[-1])
-    if last >= len(force) - 2:
-        raise DEMRunError(f"{d.code}: the contact had not ended when the run stopped (time step {d.time_step!r} s)")
+    if last >= len(force) - 2 or not closing[-1] < 0.0:
+        # still pulled or pushed, or not moving away, at the end of a run that outlasts the law's
+        # contact (twice), or four contact times near the capture velocity for a particle the law
+        # captures: the code holds it (the overlap alone does not tell: a plastic contact ends at a
+        # positive one, which the departing particle may not have left when the run ends)
+        return {"restitution": 0.0, "contact_time": math.inf, "steps_in_contact": int(nonzero.size), "captured": True}
     dt = d.time_step
     t_start = d.gap / d.velocity
     if overlap[last + 1] <= 0.0 < overlap[last]:
@@ -451,6 +485,7 @@ def _analyse(d: Deck, rows: np.ndarray) -> dict:
         "restitution": float(-closing[-1] / d.velocity),
         "contact_time": float(t[last] + frac * dt - t_start),
         "steps_in_contact": int(nonzero.size),
+        "captured": False,
     }
 
 
@@ -475,7 +510,10 @@ def run(
     dict
         ``restitution`` [-], ``contact_time`` [s], ``steps_in_contact``, ``time_step`` [s],
         ``version`` (the code's), with the deck's predictions (``predicted_restitution``,
-        ``predicted_contact_time``).
+        ``predicted_contact_time``), and ``captured``: True where the particle is still in contact, or
+        not moving away, when the run ends (then ``restitution`` is 0 and ``contact_time`` infinite; the run lasts
+        twice the law's contact time, or four contact times at the deck's sizing speed where the law
+        captures it).
 
     Raises
     ------
@@ -485,7 +523,7 @@ def run(
         (a ValueError and a RuntimeError) The code stopped with an error (its own ``ERROR`` line,
         the time step and the deck's file in one line: a time step so large that the particle
         leaves the box stops LAMMPS with "Lost atoms"), ran longer than ``timeout``, or the record
-        shows no finished contact.
+        shows no contact force.
     """
     if (
         isinstance(timeout, bool)
@@ -575,6 +613,118 @@ def check(
     for d in decks:
         r = run(d, exe)
         r["velocity"] = d.velocity
-        r["steps_per_contact"] = d.predicted_contact_time / d.time_step
+        r["steps_per_contact"] = d.sizing_contact_time / d.time_step
         rows.append(r)
     return rows
+
+
+#: Relative distance from the law's capture velocity of the two speeds :func:`capture` runs first.
+CAPTURE_REL = 1e-3
+
+
+def capture_velocity(calibration) -> float:
+    """The calibrated law's capture velocity [m/s]: the speed at and below which it keeps the particle
+    (the model's ``sticking_velocity``); 0 for a law that captures nothing."""
+    mod = _models.get(calibration.model)
+    if not (mod.STICKS and mod.sticking_velocity is not None):
+        return 0.0
+    return float(
+        mod.sticking_velocity(
+            calibration.effective_modulus,
+            calibration.effective_radius,
+            calibration.effective_mass,
+            math.inf,
+            tuple(float(p) for p in calibration.params),
+        )
+    )
+
+
+def capture(
+    calibration,
+    code: str,
+    *,
+    geometry: str = "wall",
+    rel: float = CAPTURE_REL,
+    steps_per_contact: int = _DEFAULT_STEPS,
+    time_step: float | None = None,
+    executable: str | None = None,
+    max_runs: int = 24,
+) -> dict:
+    """Measure the capture velocity of the calibrated law in ``code`` and set it beside the law's.
+
+    The code's capture velocity is bracketed by runs of one impact each (:func:`deck` and
+    :func:`run`; a run is a capture where the particle is still in contact at its end): first at
+    ``V_s (1 - rel)`` and ``V_s (1 + rel)`` around the law's ``V_s`` (the code agrees with the law to
+    ``rel`` where it keeps the first and lets the second go); where it does not, the bracket is
+    widened by factors of 2 and halved again to ``rel``. All runs share one time step: the law's
+    contact time at ``V_s (1 + rel)`` over ``steps_per_contact`` (or ``time_step``).
+
+    Returns
+    -------
+    dict
+        ``capture_velocity`` (the law's) and ``measured_capture_velocity`` (the middle of the final
+        bracket) [m/s], ``bracket`` (the highest speed the code kept and the lowest it let go),
+        ``agrees`` (the code keeps ``V_s (1 - rel)`` and lets ``V_s (1 + rel)`` go),
+        ``restitution`` measured and ``predicted_restitution`` at ``V_s (1 + rel)`` (where the code
+        lets it go), ``runs``, ``time_step`` [s] and the code's ``version``.
+
+    Raises
+    ------
+    ValueError
+        A law that captures nothing here (``V_s = 0``), a bad ``rel`` or ``max_runs``, or what
+        :func:`deck` and :func:`run` raise; the bracket not found within ``max_runs`` runs.
+    """
+    _check_code(code)
+    if isinstance(rel, bool) or not (isinstance(rel, (int, float)) and 0.0 < rel < 0.5):
+        raise ValueError(f"rel must be a number in (0, 0.5), got {rel!r}")
+    if isinstance(max_runs, bool) or not (isinstance(max_runs, int) and max_runs >= 2):
+        raise ValueError(f"max_runs must be an integer >= 2, got {max_runs!r}")
+    Vs = capture_velocity(calibration)
+    if not (Vs > 0.0 and math.isfinite(Vs)):
+        raise ValueError(
+            f"model {calibration.model!r} captures no particle with these inputs (capture velocity {Vs!r} m/s)"
+        )
+    exe = executable or find_code(code)
+    if exe is None:
+        raise ValueError(_not_installed(code))
+    above = Vs * (1.0 + rel)
+    dt = time_step
+    if dt is None:
+        dt = predict(calibration, above)[1] / steps_per_contact
+    runs = {}
+
+    def kept(v):
+        d = deck(calibration, code, v, geometry=geometry, time_step=dt, sizing_velocity=above)
+        runs[v] = run(d, exe)
+        return runs[v]["captured"]
+
+    lo, hi = Vs * (1.0 - rel), above
+    lo_kept, hi_kept = kept(lo), kept(hi)
+    agrees = lo_kept and not hi_kept
+    while hi_kept and len(runs) < max_runs:  # the code keeps more: widen upwards
+        lo, hi = hi, 2.0 * hi
+        hi_kept = kept(hi)
+    while not lo_kept and len(runs) < max_runs:  # the code lets slower ones go: widen downwards
+        hi, lo = lo, 0.5 * lo
+        lo_kept = kept(lo)
+    if hi_kept or not lo_kept:
+        what = f"kept every particle up to {hi!r} m/s" if hi_kept else f"let every particle go down to {lo!r} m/s"
+        raise DEMRunError(f"{code} {what} in {len(runs)} runs (the law's capture velocity is {Vs!r} m/s)")
+    while hi - lo > 2.0 * rel * Vs * (1.0 + 1e-9) and len(runs) < max_runs:  # to the width of the first bracket
+        mid = math.sqrt(lo * hi)
+        if kept(mid):
+            lo = mid
+        else:
+            hi = mid
+    r_above = runs[above]
+    return {
+        "capture_velocity": Vs,
+        "measured_capture_velocity": 0.5 * (lo + hi),
+        "bracket": (lo, hi),
+        "agrees": bool(agrees),
+        "restitution": r_above["restitution"],
+        "predicted_restitution": predict(calibration, above)[0],
+        "runs": len(runs),
+        "time_step": dt,
+        "version": r_above["version"],
+    }

@@ -217,3 +217,24 @@ def test_run_is_bounded_in_wall_time():
     for bad in (0, -1.0, float("nan"), True, "5"):
         with pytest.raises(ValueError, match="timeout"):
             dem.run(d, timeout=bad)
+
+
+def test_dem_check_of_an_adhesive_law_prints_the_capture_velocity(capsys):
+    """A speed the law captures is a row of "captured" for the law and the run; the capture velocity's
+    line gives the law's and the bracket the code kept and let go (the law's to 1e-3 here)."""
+    if dem.find_code("liggghts") is None:
+        pytest.skip("liggghts is not installed")
+    argv = ["liggghts_hertz_sjkr", "--code", "liggghts", "--speeds", "0.02,0.2", "--steps-per-contact", "2000"]
+    argv += ["--param", "restitution=0.6", "--param", "cohesion_energy_density=4e7"]
+    argv += ["--effective-modulus", "2e10", "--density", "3000", "--radius", "4e-6", "--limiting-pressure", "1e12"]
+    assert main(["dem-check", *argv]) == 0
+    out = capsys.readouterr().out
+    captured = [ln.split() for ln in out.splitlines() if "captured" in ln and "capture velocity" not in ln]
+    assert len(captured) == 1 and captured[0][:4] == ["0.02", "captured", "captured", "same"]
+    pair = mi.ContactPair.sphere_on_flat(4e-6, 3000.0, 2e10, 1e12)
+    cal = Calibration.of(pair, "liggghts_hertz_sjkr", {"restitution": 0.6, "cohesion_energy_density": 4e7}, 1.0)
+    line = next(ln for ln in out.splitlines() if ln.startswith("capture velocity:"))
+    Vs, lo, hi = (float(x) for x in re.findall(r"([0-9.]+(?:e-?\d+)?) m/s", line))
+    assert Vs == pytest.approx(dem.capture_velocity(cal), rel=1e-5)
+    assert lo == pytest.approx(Vs * (1 - 1e-3), rel=1e-5) and hi == pytest.approx(Vs * (1 + 1e-3), rel=1e-5)
+    assert "(the law's to 0.001)" in line

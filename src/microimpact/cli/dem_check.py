@@ -25,7 +25,8 @@ def register(sub) -> None:
         description="Bounce check for DEM users: calibrate MODEL to the seed's model (or take its "
         "parameters from --param), write a one-impact deck with the printed input lines, run it in "
         "the installed code at each speed and print the law's e and contact time against the measured "
-        "ones, with the time step used against the contact time.",
+        "ones, with the time step used against the contact time; for a law that captures particles, "
+        "the capture velocity the code gives beside the law's.",
     )
     laws = models.dem_line_models()  # the laws with DEM lines (their faces; nothing heavy imported)
     p.add_argument("model", choices=laws, metavar="MODEL", help=f"the DEM law: {', '.join(laws)}")
@@ -116,6 +117,18 @@ def run(args) -> int:
     print(head)
     worst = 0.0
     for r in rows:
+        law_kept = not math.isfinite(r["predicted_contact_time"])
+        if law_kept or r["captured"]:  # a captured particle has no e to compare: say who kept it
+            e_law, t_law = ("captured", "") if law_kept else (f"{r['predicted_restitution']:.6f}", "")
+            e_run = "captured" if r["captured"] else f"{r['restitution']:.6f}"
+            same = "same" if law_kept == r["captured"] else "DIFFERS"
+            print(
+                f"{r['velocity']:8.4g} {e_law:>10s} {e_run:>10s} {same:>9s} {t_law:>12s} {'':>12s} {'':>9s} "
+                f"{r['time_step']:10.3e} {r['steps_per_contact']:8.0f}"
+            )
+            if law_kept != r["captured"]:
+                worst = math.inf
+            continue
         de = r["restitution"] / r["predicted_restitution"] - 1.0
         dtc = r["contact_time"] / r["predicted_contact_time"] - 1.0
         worst = max(worst, abs(de), abs(dtc))
@@ -125,8 +138,25 @@ def run(args) -> int:
             f"{r['steps_per_contact']:8.0f}"
         )
     print()
-    print(
-        f"largest relative difference {worst:.1e}; for the damped laws both codes' error falls as the "
-        "step, below about t_c/dt steps^-1 for e >= 0.3 (see ContactPair.dem_time_step)"
-    )
+    if math.isinf(worst):
+        print("the code and the law disagree on capture at a speed above (see the rows marked DIFFERS)")
+    else:
+        print(
+            f"largest relative difference {worst:.1e}; for the damped laws both codes' error falls as the "
+            "step, below about t_c/dt steps^-1 for e >= 0.3 (see ContactPair.dem_time_step)"
+        )
+    if dem.capture_velocity(cal) > 0.0:
+        c = dem.capture(cal, args.code, geometry=args.geometry, steps_per_contact=n, time_step=dt, executable=exe)
+        lo, hi = c["bracket"]
+        print(
+            f"capture velocity: the law's {c['capture_velocity']:.6g} m/s; {args.code} keeps the particle at "
+            f"{lo:.6g} m/s and lets it go at {hi:.6g} m/s"
+            + (
+                f" (the law's to {dem.CAPTURE_REL:g})"
+                if c["agrees"]
+                else f": its capture velocity {c['measured_capture_velocity']:.6g} m/s, "
+                f"{c['measured_capture_velocity'] / c['capture_velocity'] - 1.0:+.2e} relative to the law's"
+            )
+            + f"; {c['runs']} runs at time step {c['time_step']:.3e} s"
+        )
     return 0

@@ -448,6 +448,8 @@ VALIDITY_REASONS = {
     "the particle creeps out of an over-damped contact)",
     8: "the DEM code does not run this input (it refuses it, or stops with an error there): the result is what "
     "its force routine computes where it would run",
+    16: "the DEM code applies no adhesion here (its source skips the cohesive force below a threshold): the "
+    "result is what the code computes, without the adhesion the physics has",
 }
 
 

@@ -54,6 +54,22 @@ _E5 = tuple(float(getattr(dp, f"E5_{j}", 0.0)) for j in range(12))
 _E3 = tuple(float(getattr(dp, f"E3_{j}", 0.0)) for j in range(12))
 _RTOL = 1e-13
 
+#: LIGGGHTS' floor on 1000 times the bridge volume [m^3]: both capillary models return before adding
+#: any cohesive force (capillary or viscous, in contact or outside) where ``volBond1000 < 1e-14``
+#: (``src/cohesion_model_easo_capillary_viscous.h`` and ``..._washino_...``, "skip if bond volume too
+#: small", 3.8.0 ``84ba3d76``): a bridge below 1e-17 m^3 does nothing in the code, which for a liquid
+#: content of 1 % of the solid volume is every sphere below about 20 um in diameter.
+LIGGGHTS_VOLUME_FLOOR = 1e-14
+
+
+@jitable
+def liggghts_floor(q):
+    """``q`` without its capillary and viscous forces where the bridge is below LIGGGHTS' floor
+    (:data:`LIGGGHTS_VOLUME_FLOOR`; ``q[2]`` the bridge volume [m^3]), else ``q`` unchanged."""
+    if not q[2] * 1000.0 < LIGGGHTS_VOLUME_FLOOR:
+        return q
+    return (0.0, q[1], q[2], q[3], q[4], q[5], q[6], q[7], q[8], q[9], 0.0)
+
 
 @jitable
 def liggghts_viscous(d, r_eff, s_min, viscosity):
@@ -471,6 +487,8 @@ def capture_speed(kind, E, R, m, q):
     1e-10 relative, on the verdict of :func:`integrate` (leaves or not). Needed where the law
     dissipates (damping, viscosity); without dissipation the energy balance gives it directly."""
     W = bridge_work(kind, q) if kind != WILLETT else willett_work(q)
+    if not W > 0.0:  # no bridge pulls the particle back (LIGGGHTS' floor): every impact leaves
+        return 0.0
     lo = 0.0
     hi = math.sqrt(2.0 * W / m)
     while integrate(kind, hi, E, R, m, q)[0] == 0.0:

@@ -329,6 +329,13 @@ def impact(kind, mode, factor, V, E, R, m, gamma):
         elif phase == 1 and vn >= 0.0 and x < x_max:
             s = _locate(0, -1.0, x, v, w, h, xn, vn, kind, mode, factor, E, R, m, gamma, sx, sv, x_sep)
             done = -1.0
+            # a particle that barely leaves turns within the step that carries it past the separation
+            # approach, where the force's continuation still pulls (DMT's constant pull, JKR's end
+            # value): the step ends in contact again, but it left at the crossing before the turn
+            xs, vs, _, _ = _step(x, v, w, s, kind, mode, factor, E, R, m, gamma, sx, sv)
+            if xs <= x_sep:
+                s = _locate(1, 1.0, x, v, w, s, xs, vs, kind, mode, factor, E, R, m, gamma, sx, sv, x_sep)
+                done = 1.0
         if s != h:
             xn, vn, wn, _ = _step(x, v, w, s, kind, mode, factor, E, R, m, gamma, sx, sv)
         xp, vp = x, v

@@ -39,6 +39,11 @@ what the fixed code computes there (``r_i = r_j = R*``: ``r_eff = R*/2``), flagg
 :func:`outside_validity` as a law the released binary cannot run; ``two_spheres = 1`` two equal spheres of
 radius ``2 R*`` (mass ``2 m*``), which 3.8.0 runs.
 
+Below a bridge volume of 1e-17 m^3 the code adds no cohesive force at all ("skip if bond volume too
+small", ``volBond1000 < 1e-14``, in both ``surfacesIntersect`` and ``surfacesClose``): a 6 um sphere
+with 1 % liquid bounces in LIGGGHTS as if dry. The law does the same (and flags it, bit 16 of
+:func:`outside_validity`); :mod:`~microimpact.core.models.willett_capillary` gives the bridge's physics.
+
 The force law and its integration are in :mod:`~microimpact.core.models._capillary`.
 
 **Parameters of this model** (``params``, in this order; the code's own inputs):
@@ -121,7 +126,7 @@ def constants(E, R, m, params):
     d_r = d_max if d_max < cut else cut
     r_eff = 0.5 * r
     a_T = alpha_coeff_restitution(params[6]) if params[6] < 1.0 else 0.0
-    return (gamma, th, vol1000 * 0.001, r, r_eff, r_eff, s_min, d_r, a_T, params[7], eta)
+    return cap.liggghts_floor((gamma, th, vol1000 * 0.001, r, r_eff, r_eff, s_min, d_r, a_T, params[7], eta))
 
 
 @jitable
@@ -176,5 +181,9 @@ def sticking_velocity(E, R, m, p_y, params):
 @jitable
 def outside_validity(V, E, R, m, p_y, params):
     """8 at a wall (``two_spheres = 0``): the released 3.8.0 binary crashes there once the bridge forms
-    (module docstring); the law is what the fixed code computes."""
-    return 8.0 if params[9] == 0.0 else 0.0
+    (module docstring); the law is what the fixed code computes. 16 where the bridge is below the
+    code's volume floor, which leaves it without any cohesive force (:data:`~microimpact.core.models._capillary.LIGGGHTS_VOLUME_FLOOR`)."""
+    code = 8.0 if params[9] == 0.0 else 0.0
+    if constants(E, R, m, params)[0] == 0.0:
+        code += 16.0
+    return code

@@ -26,6 +26,10 @@ takes ``radj`` from the wall's contact data, where it is never set (0), so ``r_e
 and no viscous force in contact; outside, ``surfacesClose`` sets ``radj = radi`` (``r_eff = R*/2``).
 ``two_spheres = 0`` (the default) computes this; ``two_spheres = 1`` two equal spheres of radius ``2 R*``.
 
+Below a bridge volume of 1e-17 m^3 the code adds no cohesive force at all (``volBond1000 < 1e-14``,
+"skip if bond volume too small", as in easo): the law does the same and flags it (bit 16 of
+:func:`outside_validity`).
+
 Speed ``V`` is the speed at first touch, as for every law here: a particle that comes from beyond
 ``d_max`` has been pulled in by the bridge (and slowed by its viscous force) on the way; its speed far
 away is ``(V^2 - 2 W/m*)^(1/2)`` without viscosity (``W`` :func:`work`).
@@ -95,7 +99,7 @@ def constants(E, R, m, params):
     d_max = (1.0 + 0.5 * th) * vol1000 ** (1.0 / 3.0) * 0.1
     d_r = d_max if d_max < cut else cut
     a_T = alpha_coeff_restitution(params[6]) if params[6] < 1.0 else 0.0
-    return (gamma, th, vol1000 * 0.001, r, r_eff_contact, 0.5 * r, s_min, d_r, a_T, params[7], eta)
+    return cap.liggghts_floor((gamma, th, vol1000 * 0.001, r, r_eff_contact, 0.5 * r, s_min, d_r, a_T, params[7], eta))
 
 
 @jitable
@@ -132,6 +136,13 @@ def separation_approach(E, R, m, p_y, params):
 def work(E, R, m, params):
     """The work [J] the bridge does from contact to rupture (without the viscous part)."""
     return cap.bridge_work(KIND, constants(E, R, m, params))
+
+
+@jitable
+def outside_validity(V, E, R, m, p_y, params):
+    """16 where the bridge is below the code's volume floor, which leaves it without any cohesive force
+    (:data:`~microimpact.core.models._capillary.LIGGGHTS_VOLUME_FLOOR`, the same in this model's source)."""
+    return 16.0 if constants(E, R, m, params)[0] == 0.0 else 0.0
 
 
 @jitable
