@@ -7,7 +7,8 @@ adhesive Coulomb limit), not the non-adhesive table scaled by the adhesive norma
 * without adhesion the path is today's, bit for bit, and vanishing adhesion approaches it;
 * energy is never created; capture is the normal law's (its sticking speed, head on and oblique);
 * a captured particle keeps the motion the integration gives (rolling on the wall), not zero;
-* what cannot be integrated (the additive rule, laws the integration does not run) is refused.
+* what cannot be integrated (laws the integration does not run) is refused; the additive rule, which has
+  no force history, gets the whole law in its place with a DeprecationWarning.
 """
 
 from __future__ import annotations
@@ -197,11 +198,16 @@ def test_other_laws_are_the_module_s_impact(law):
     assert wall.stuck.tolist() == [False, True]
 
 
-def test_what_cannot_be_integrated_is_refused():
+def test_what_cannot_be_integrated_is_refused_and_the_additive_rule_is_deprecated_there():
     vel, w = _vectors(np.array([0.5]), np.array([40.0]), np.array([0.0]))
     kw = dict(effective_modulus=E, limiting_pressure=1e8, friction=MU, poisson_ratio=NU)
-    with pytest.raises(ValueError, match=r"adhesion='additive'.*no force history.*" + WHOLE_LAW):
-        wall_interaction(vel, [0, 0, 1], 2 * R, RHO, work_of_adhesion=G, tangential="mindlin", **kw)
+    with pytest.warns(DeprecationWarning, match=r"adhesion='additive'.*no force history.*" + WHOLE_LAW):
+        old = wall_interaction(vel, [0, 0, 1], 2 * R, RHO, work_of_adhesion=G, tangential="mindlin", **kw)
+    whole = wall_interaction(
+        vel, [0, 0, 1], 2 * R, RHO, work_of_adhesion=G, tangential="mindlin", adhesion=WHOLE_LAW, **kw
+    )
+    assert old.adhesion == WHOLE_LAW and old.outcome[0] == whole.outcome[0]
+    assert np.array_equal(old.velocity, whole.velocity) and np.array_equal(old.spin, whole.spin)
     for law in ("stronge", "mindlin_deresiewicz"):
         with pytest.raises(ValueError, match=f"tangential='{law}' with work_of_adhesion > 0"):
             wall_interaction(vel, [0, 0, 1], 2 * R, RHO, work_of_adhesion=G, tangential=law, adhesion=WHOLE_LAW, **kw)

@@ -44,7 +44,9 @@ particle bounces or is captured, and a captured particle keeps the tangential ve
 integration gives (it rolls or slides along the wall; :attr:`WallInteraction.outcome`). The normal
 restitution and the capture are the law's own, exact (not its table). This needs
 ``adhesion=`` the whole law: the additive rule is a rule for ``e`` with no force history to integrate
-along, so it is refused there. The rigid impulse and ``G = 0`` are unchanged.
+along, so the whole law is integrated in its place, with a DeprecationWarning (the additive rule is
+the default, and calls of the releases before keep running this release). The rigid impulse and
+``G = 0`` are unchanged.
 
 The DEM codes' laws of :mod:`microimpact.core.tangential_laws` (``"lammps_mindlin"``,
 ``"lammps_mindlin_force"``, ``"lammps_mindlin_rescale"``, ``"lammps_mindlin_rescale_force"`` (=
@@ -336,8 +338,9 @@ def wall_interaction(
         positive; points beyond the table are flagged in ``outside_table``). Anything else is refused
         (:func:`~microimpact.adhesion.check_adhesion_rule`), the DMT elastic adhesive law with its
         reason: it is conservative (``e = 1`` at every speed), so at the wall it would never capture.
-        With ``G > 0`` and a compliant ``tangential`` the additive rule is refused (it has no force
-        history to integrate the tangential contact along): pass the whole law.
+        With ``G > 0`` and a compliant ``tangential`` the additive rule has no force history to
+        integrate the tangential contact along: the whole law is integrated in its place, with a
+        DeprecationWarning (pass it; the additive rule will be refused there in the next release).
 
     Returns
     -------
@@ -411,7 +414,7 @@ def wall_interaction(
         raise ValueError("work_of_adhesion and friction must be finite")
     adhesive_oblique = tangential != "rigid" and bool(np.any(G > 0.0))
     if adhesive_oblique:
-        _check_adhesive_oblique(tangential, adhesion)
+        adhesion = _check_adhesive_oblique(tangential, adhesion)
         per += _BYTES_ADHESIVE_OBLIQUE  # known once G is: still before anything of size N is made
         check_memory(N * per, f"wall_interaction of {N} particles", "pass the particles in blocks")
     has_spin = spin is not None
@@ -633,21 +636,31 @@ def _compliant_impulse_ratio(ut_mag, V, Vy, mu, kappa, law, skip):
 
 
 def _check_adhesive_oblique(tangential, adhesion):
-    """Refuse, before anything of size N is made, what the adhesive integration cannot run."""
+    """Refuse, before anything of size N is made, what the adhesive integration cannot run; the
+    adhesion rule it integrates. The additive rule gives ``e`` but no force history to integrate the
+    tangential contact along: the whole law it approximates is integrated in its place, with a
+    DeprecationWarning (the default rule, so a call of the releases before keeps running)."""
+    import warnings
+
     from .adhesion import ADDITIVE_RULE, WHOLE_LAW
     from .oblique.adhesive import ADHESIVE_LAWS
 
-    if adhesion == ADDITIVE_RULE:
-        raise ValueError(
-            f"adhesion={adhesion!r} with work_of_adhesion > 0 and tangential={tangential!r}: the additive rule "
-            f"gives e but no force history to integrate the tangential contact along; pass adhesion={WHOLE_LAW!r} "
-            "(the law it approximates) or tangential='rigid'"
-        )
     if tangential not in ADHESIVE_LAWS:
         raise ValueError(
             f"tangential={tangential!r} with work_of_adhesion > 0: the adhesive integration runs "
             f"{', '.join(repr(x) for x in ADHESIVE_LAWS if x != 'rigid')} (or 'rigid')"
         )
+    if adhesion == ADDITIVE_RULE:
+        warnings.warn(
+            f"adhesion={adhesion!r} with work_of_adhesion > 0 and tangential={tangential!r}: the additive rule "
+            f"gives e but no force history to integrate the tangential contact along, so the whole law it "
+            f"approximates is integrated instead; pass adhesion={WHOLE_LAW!r} to say so (the additive rule "
+            "will be refused here in the next release), or tangential='rigid' for the additive rule",
+            DeprecationWarning,
+            stacklevel=3,
+        )
+        return WHOLE_LAW
+    return adhesion
 
 
 def _adhesive_oblique(table, vT, nT, wT, d, rho, E, p_y, G, mu, kappa, tangential, adhesion):
