@@ -187,6 +187,9 @@ def parting_diameter(pair, work_of_adhesion, ratio=1.1, *, lo=1e-9, hi=1e-3) -> 
 
     Where the sticking velocity is below the yield velocity the two laws capture at the same speed
     (to the rounding of TN98's 14.18); they part once the contact yields before it can stick.
+
+    ``lo`` and ``hi`` [m] must be positive and finite, ``lo < hi``, and both sizes whose mass and yield
+    velocity double precision holds (ValueError naming them otherwise).
     """
     _check_pair(pair)
     G = float(check_nonnegative("work_of_adhesion", work_of_adhesion))
