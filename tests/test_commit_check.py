@@ -61,6 +61,7 @@ def test_without_a_check_outputs_are_committed(tmp_path):
     assert target.read_text() == "again\n"
 
 
+@pytest.mark.needs_sigint
 def test_an_interrupt_swallowed_in_a_finalizer_stops_the_commit(tmp_path):
     """The signal's exception raised inside ``__del__`` is dropped by Python; the pending interrupt
     still stops the output (the command line's own check, as :func:`microimpact.cli.main` sets it)."""

@@ -217,7 +217,13 @@ def _started_worker(mark) -> bool:
 
 @pytest.mark.skipif(not Path("/proc/self/environ").exists(), reason="needs /proc")
 @pytest.mark.parametrize("group", [False, True], ids=["to-the-command", "to-the-group"])
-@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+@pytest.mark.parametrize(
+    "sig",
+    [
+        pytest.param(signal.SIGINT, id="SIGINT", marks=pytest.mark.needs_sigint),
+        pytest.param(signal.SIGTERM, id="SIGTERM"),
+    ],
+)
 def test_an_interrupt_ends_the_worker_with_the_command(tmp_path, sig, group):
     """SIGINT or SIGTERM to the command (a process manager) or to its whole process group (a Ctrl-C
     at a terminal): exit 128 + signal, one line, nothing written, and no worker left running."""

@@ -98,9 +98,30 @@ def _check_pair(pair):
 
 
 def _sizes(pair, diameter):
-    """``(R, m)`` arrays of the pair resized to each diameter [m]."""
+    """``(R, m)`` arrays of the pair resized to each diameter [m]; a mass beyond the doubles is ``inf``
+    or 0, which :func:`_check_sizes` names."""
     R = 0.5 * np.asarray(diameter, dtype=float)
-    return R, 4.0 / 3.0 * math.pi * R**3 * pair.density
+    with np.errstate(over="ignore", under="ignore"):
+        return R, 4.0 / 3.0 * math.pi * R**3 * pair.density
+
+
+def _check_sizes(pair, name, d):
+    """ValueError naming ``name`` and the diameter where the particle of diameter ``d`` (1-D, positive
+    and finite) cannot be modelled in double precision: its mass ``4/3 pi R^3 rho`` not a normal
+    double, or its yield velocity out of range (:func:`~microimpact._validation.check_pair_scales`)."""
+    E, p_y = pair.effective_modulus, pair.limiting_pressure
+    R, m = _sizes(pair, d)
+    for dd, r, mm in zip(d, R, m):  # 4/3 pi R^3 rho and the yield velocity must be numbers double precision holds
+        if not (TINY_NORMAL <= mm < math.inf):
+            raise ValueError(
+                f"{name} {float(dd)!r} m is outside what double precision can model: the particle mass "
+                f"4/3 pi R^3 rho is {float(mm)!r} kg"
+            )
+        try:
+            check_pair_scales(E, float(r), float(mm), p_y)
+        except ValueError as exc:
+            raise ValueError(f"{name} {float(dd)!r} m: {exc}") from None
+    return R, m
 
 
 def _one(law, E, R, m, p_y, G, given=None):
@@ -144,17 +165,7 @@ def capture_velocities(pair, diameter, work_of_adhesion, laws=ADHESION_LAWS, par
     G = float(check_nonnegative("work_of_adhesion", work_of_adhesion))
     laws = [_law(n) for n in laws]
     E, p_y = pair.effective_modulus, pair.limiting_pressure
-    R, m = _sizes(pair, d)
-    for dd, r, mm in zip(d, R, m):  # 4/3 pi R^3 rho and the yield velocity must be numbers double precision holds
-        if not (TINY_NORMAL <= mm < math.inf):
-            raise ValueError(
-                f"diameter {float(dd)!r} m is outside what double precision can model: the particle mass "
-                f"4/3 pi R^3 rho is {float(mm)!r} kg"
-            )
-        try:
-            check_pair_scales(E, float(r), float(mm), p_y)
-        except ValueError as exc:
-            raise ValueError(f"diameter {float(dd)!r} m: {exc}") from None
+    R, m = _check_sizes(pair, "diameter", d)
     out = {"diameter": d}
     for law in laws:
         given = _given(params, law)
@@ -176,10 +187,20 @@ def parting_diameter(pair, work_of_adhesion, ratio=1.1, *, lo=1e-9, hi=1e-3) -> 
 
     Where the sticking velocity is below the yield velocity the two laws capture at the same speed
     (to the rounding of TN98's 14.18); they part once the contact yields before it can stick.
+
+    ``lo`` and ``hi`` [m] must be positive and finite, ``lo < hi``, and both sizes whose mass and yield
+    velocity double precision holds (ValueError naming them otherwise).
     """
     _check_pair(pair)
     G = float(check_nonnegative("work_of_adhesion", work_of_adhesion))
     E, p_y = pair.effective_modulus, pair.limiting_pressure
+    lo = check_positive("lo", lo, scalar=True)
+    hi = check_positive("hi", hi, scalar=True)
+    if not lo < hi:
+        raise ValueError(f"lo must be below hi, got lo {lo!r} m and hi {hi!r} m")
+    # every diameter the bisection tries lies in [lo, hi]: both ends must be sizes double precision can model
+    _check_sizes(pair, "lo", np.array([lo]))
+    _check_sizes(pair, "hi", np.array([hi]))
 
     def parted(d):
         R, m = _sizes(pair, d)

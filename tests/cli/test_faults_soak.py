@@ -21,7 +21,7 @@ import time
 
 import pytest
 
-from .test_faults import ROOT, _env
+from .test_faults import ROOT, SIGNALS, _env
 
 _spec = importlib.util.spec_from_file_location("interrupt_soak", ROOT / "benchmarks" / "interrupt_soak.py")
 soak = importlib.util.module_from_spec(_spec)
@@ -34,6 +34,7 @@ RUNS = int(os.environ.get("MICROIMPACT_SOAK_RUNS", "105"))
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc/PID/status")
+@pytest.mark.needs_sigint
 def test_interrupt_soak():
     results = soak.soak(RUNS, workers=2, seed=24)
     s = soak.summary(results)
@@ -47,7 +48,7 @@ def test_interrupt_soak():
     assert s["slowest_end_after_signal_s"] <= soak.LIMIT
 
 
-@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+@pytest.mark.parametrize("sig", SIGNALS)
 def test_a_signal_at_the_first_moment(tmp_path, sig):
     # the moment microimpact's handlers are installed (the first lines of the package): one line, 128 + signal
     proc = subprocess.Popen(
@@ -67,6 +68,7 @@ def test_a_signal_at_the_first_moment(tmp_path, sig):
     assert len(err.strip().splitlines()) == 1 and "interrupted" in err and "Traceback" not in err, err
 
 
+@pytest.mark.needs_sigint
 def test_a_second_signal_ends_a_stuck_command_at_once(tmp_path):
     # a command stuck where KeyboardInterrupt cannot reach it (a C-level wait, a library's cleanup waiting on
     # its own lock): the first signal is swallowed, the second ends the process with one line and 130
@@ -119,6 +121,7 @@ print("unchanged")
 """
 
 
+@pytest.mark.needs_sigint
 def test_importing_the_package_changes_nothing_of_the_process():
     # the library installs no signal handler and replaces no hook, not even in the command's process:
     # the command line installs its handlers when main() starts
@@ -126,7 +129,7 @@ def test_importing_the_package_changes_nothing_of_the_process():
     assert proc.returncode == 0 and proc.stdout.split() == ["unchanged"], proc.stderr
 
 
-@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+@pytest.mark.parametrize("sig", SIGNALS)
 def test_a_signal_while_the_command_imports_its_modules(tmp_path, sig):
     # the signal arrives while main() imports the command's module (its own imports: scipy, xarray...):
     # one line and 128 + signal, no traceback
@@ -179,7 +182,7 @@ SWALLOWING = {
 
 
 @pytest.mark.parametrize("how", sorted(SWALLOWING))
-@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+@pytest.mark.parametrize("sig", SIGNALS)
 def test_an_interrupt_a_library_swallows_or_converts_still_ends_the_run(tmp_path, how, sig):
     driver = (
         f"import os, sys, time, weakref\nSIG = {int(sig)}\n"
@@ -252,6 +255,7 @@ sys.exit(cli.console_main())
 """
 
 
+@pytest.mark.needs_sigint
 def test_what_an_interrupt_cut_short_is_not_reported(tmp_path):
     # CI's soak once printed "Exception ignored in: ObjectRef.__del__ ... AttributeError: 'PassBuilder' object has
     # no attribute '_as_parameter_'" after the interrupt line: an object the interrupt left half built, freed by
@@ -295,7 +299,7 @@ sys.exit(main(["impact", "50"]))
 
 
 @pytest.mark.parametrize("delay", [0.01, 0.05, 0.1])
-@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+@pytest.mark.parametrize("sig", SIGNALS)
 def test_a_signal_inside_numbas_compiler_is_one_line(tmp_path, sig, delay):
     # an interrupt raised inside numba's compiler leaves llvmlite objects half built: freeing them printed
     # "Exception ignored in: ... PassBuilder.__del__" after the interrupt line. The command says nothing of
@@ -325,7 +329,7 @@ sys.exit(main(sys.argv[1:]))
 """
 
 
-@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+@pytest.mark.parametrize("sig", SIGNALS)
 def test_a_signal_once_the_output_is_in_place(tmp_path, sig):
     # a signal just after an output was renamed into place: the run stops there (128 + signal, one line);
     # what is in place is whole (the new output; a figure written before it, whole), no temporary file is left

@@ -8,6 +8,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._validation import TINY_NORMAL
+
+#: The largest speed [m/s] a fit takes: its search for the yield velocity runs to twice the largest speed.
+_LARGEST_SPEED = 0.5 * float(np.finfo(float).max)
+
 
 class FitWarning(UserWarning):
     """Something in the data or the fit the user should look at (points far above 1, ...)."""
@@ -41,6 +46,15 @@ def check_data(velocity, restitution, sigma, line_numbers):
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
         raise ValueError(f"velocity must be positive and finite, got {float(V[i])!r} ({point_name(i, line_numbers)})")
+    # the start's search for V_y runs from 1e-3 of the smallest speed to twice the largest: both in the doubles
+    bad = (V < TINY_NORMAL) | (V > _LARGEST_SPEED)
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise ValueError(
+            f"velocity {float(V[i])!r} ({point_name(i, line_numbers)}) is outside what double precision can fit: "
+            f"speeds must lie in [{TINY_NORMAL!r}, {_LARGEST_SPEED!r}] m/s (a subnormal speed has lost its precision, "
+            "and the search for the yield velocity runs to twice the largest speed)"
+        )
     bad = ~(np.isfinite(e) & (e >= 0))
     if bad.any():
         i = int(np.flatnonzero(bad)[0])

@@ -50,28 +50,32 @@ _GATHER = 1 << 18
 # ---------------------------------------------------------------------- losses
 def loss_psi(loss, r, f_scale):
     """``psi(r) = dL/dr`` and ``psi'(r)`` of the loss ``L(r) = f^2/2 rho((r/f)^2)`` of least_squares."""
-    z = (r / f_scale) ** 2
-    if loss == "linear":
-        d1, d2 = np.ones_like(z), np.zeros_like(z)
-    elif loss == "soft_l1":
-        d1 = 1.0 / np.sqrt(1.0 + z)
-        d2 = -0.5 * (1.0 + z) ** -1.5
-    elif loss == "huber":
-        small = z <= 1.0
-        d1 = np.where(small, 1.0, 1.0 / np.sqrt(np.where(small, 1.0, z)))
-        d2 = np.where(small, 0.0, -0.5 * np.where(small, 1.0, z) ** -1.5)
-    elif loss == "cauchy":
-        d1 = 1.0 / (1.0 + z)
-        d2 = -1.0 / (1.0 + z) ** 2
-    else:  # arctan
-        d1 = 1.0 / (1.0 + z**2)
-        d2 = -2.0 * z / (1.0 + z**2) ** 2
-    return r * d1, d1 + 2.0 * z * d2
+    # a residual past 1e154 squares to inf (and 0 * inf is NaN): Q, g and H are then not finite, which
+    # minimise reports at the start and refuses as a step
+    with np.errstate(over="ignore", invalid="ignore"):
+        z = (r / f_scale) ** 2
+        if loss == "linear":
+            d1, d2 = np.ones_like(z), np.zeros_like(z)
+        elif loss == "soft_l1":
+            d1 = 1.0 / np.sqrt(1.0 + z)
+            d2 = -0.5 * (1.0 + z) ** -1.5
+        elif loss == "huber":
+            small = z <= 1.0
+            d1 = np.where(small, 1.0, 1.0 / np.sqrt(np.where(small, 1.0, z)))
+            d2 = np.where(small, 0.0, -0.5 * np.where(small, 1.0, z) ** -1.5)
+        elif loss == "cauchy":
+            d1 = 1.0 / (1.0 + z)
+            d2 = -1.0 / (1.0 + z) ** 2
+        else:  # arctan
+            d1 = 1.0 / (1.0 + z**2)
+            d2 = -2.0 * z / (1.0 + z**2) ** 2
+        return r * d1, d1 + 2.0 * z * d2
 
 
 def loss_terms(loss, r, f_scale):
     """``2 L(r_i) = f^2 rho((r_i/f)^2)`` per point (``r_i^2`` for least squares)."""
-    z = (r / f_scale) ** 2
+    with np.errstate(over="ignore"):  # as in loss_psi: an infinite Q
+        z = (r / f_scale) ** 2
     if loss == "linear":
         rho = z
     elif loss == "soft_l1":

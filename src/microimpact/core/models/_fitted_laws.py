@@ -29,6 +29,7 @@ operations as :func:`loading_force`.
 from __future__ import annotations
 
 import math
+import sys
 
 from .. import hertz
 from .._jit import jitable
@@ -52,6 +53,9 @@ PANEL = 0.5
 #: Relative Newton step of :func:`max_approach` after which the iterate is exact to rounding: the
 #: next step would be about ``STEP_DONE^2``.
 STEP_DONE = 1e-12
+
+#: The smallest normal double.
+_NORMAL = sys.float_info.min
 
 #: Jackson & Green's switch from Hertz to the elastic-plastic law, ``delta/delta_c`` (Ghaednia et al.
 #: 2019 Sec. 3.2: Hertz while ``Delta <= 1.9 delta_c``).
@@ -505,6 +509,18 @@ def signed_force(law, alpha, alpha_max, E, R, Y, nu, twin):
 
 
 @jitable
+def computable(a1, V1, V, m):
+    """False where an impact at ``V`` leaves what double precision can compute, so that the outcome is
+    NaN (the law cannot say) instead of a division by zero or an overflow in the quadrature: the
+    switch approach ``a1`` or the speed ``V1`` reaching it not a normal double (a yield strength so
+    small beside ``E*`` that ``delta_c ~ (S_y/E*)^2 R`` underflows), or, beyond ``V1``, ``V^2`` or the
+    kinetic energy ``m* V^2/2`` that the loading work must balance overflowing (speeds past 1e154)."""
+    if not (a1 >= _NORMAL and V1 >= _NORMAL):
+        return False
+    return V <= V1 or (V * V < math.inf and 0.5 * m * V * V < math.inf)
+
+
+@jitable
 def max_approach(law, V, E, R, m, Y, nu, twin):
     """Maximum approach [m] of an impact at ``V`` beyond the switch: ``int_0^alpha* P = m* V^2/2``.
 
@@ -658,6 +674,8 @@ def restitution(law, V, E, R, m, Y, nu, twin):
         return math.nan
     a1 = switch_approach(law, E, R, Y, nu, twin)
     V1 = math.sqrt(0.8 * hertz.force(a1, E, R) * a1 / m)
+    if not computable(a1, V1, V, m):
+        return math.nan
     if V <= V1:  # Hertz
         return 1.0
     astar = max_approach(law, V, E, R, m, Y, nu, twin)
@@ -666,7 +684,19 @@ def restitution(law, V, E, R, m, Y, nu, twin):
     WL = 0.5 * m * V * V  # the loading work to alpha*: the energy balance max_approach solves
     if Wu > WL:  # retraces the loading: e = 1
         return 1.0
+    if not rebound_resolved(astar, d, Rb, E, m):
+        return math.nan
     return math.sqrt(Wu / WL)
+
+
+@jitable
+def rebound_resolved(astar, d, Rb, E, m):
+    """False where the elastic rebound ``y = alpha* - delta_bar`` lost every digit to the rounding of
+    ``alpha*`` (``delta_bar = alpha* (1 - P*/F_e)`` with ``P*/F_e`` below the rounding: speeds past
+    about 1e35 m/s, the contact far wider than the sphere), so that the Hertz speed reaching it is 0:
+    the outcome is NaN there, the law cannot say (its unloading time would divide by that speed)."""
+    y = astar - d
+    return math.sqrt(0.8 * hertz.force(y, E, Rb) * y / m) >= _NORMAL
 
 
 @jitable
@@ -680,7 +710,7 @@ def outside_validity(law, V, E, R, m, Y, nu, twin):
         return 0.0
     a1 = switch_approach(law, E, R, Y, nu, twin)
     V1 = math.sqrt(0.8 * hertz.force(a1, E, R) * a1 / m)
-    if V <= V1:  # Hertz: reversible, inside
+    if V <= V1 or not computable(a1, V1, V, m):  # Hertz: reversible, inside; or no outcome to flag
         return 0.0
     astar = max_approach(law, V, E, R, m, Y, nu, twin)
     P, d, Rb, a = unloading(law, astar, E, R, Y, nu, twin)
@@ -707,6 +737,8 @@ def impact(law, V, E, R, m, Y, nu, twin, a_limit):
     a1 = switch_approach(law, E, R, Y, nu, twin)
     Vy = math.sqrt(0.8 * hertz.force(ac, E, R) * ac / m)  # Hertz's impact speed reaching alpha_c
     V1 = math.sqrt(0.8 * hertz.force(a1, E, R) * a1 / m)
+    if not (computable(a1, V1, V, m) and Vy >= _NORMAL):
+        return nan_outcome(V)
     if V <= V1:  # Hertz
         astar = hertz.max_approach(V, E, R, m)
         half = 0.4 * BETA_25_12 * hertz.time_scale(V, E, R, m)
@@ -726,6 +758,8 @@ def impact(law, V, E, R, m, Y, nu, twin, a_limit):
     y = astar - d
     y0 = -d if d < 0.0 else 0.0
     Vfull = math.sqrt(0.8 * hertz.force(y, E, Rb) * y / m)  # the speed of a Hertz impact reaching y
+    if not Vfull >= _NORMAL:  # y lost every digit to the rounding of alpha* (:func:`rebound_resolved`)
+        return nan_outcome(V)
     V0 = math.sqrt(0.8 * hertz.force(y0, E, Rb) * y0 / m)
     tU = 0.4 * BETA_25_12 * y / Vfull - elastic_stage_time(Vfull, E, Rb, m, y0, V0)
     return pack_beyond(V, Vy, V / Vy, 0.0, e, e * V, astar, max(d, 0.0), P, Rb, a, R, beyond, t1, t2, tL, tU)

@@ -55,6 +55,9 @@ from . import Parameter, checks
 from ._common import dem_outcome, in_bounds, nan_outcome
 from ._jkr import GW, GX
 
+#: The unit roundoff of doubles, ``2^-53``.
+_EPS = 2.0**-53
+
 NAME = "dmt_elastic_adhesive"
 TITLE = "DMT elastic adhesion: Hertz minus 4 pi gamma R while in contact (LAMMPS granular dmt)"
 CITATION = "Derjaguin, Muller & Toporov, J. Colloid Interface Sci. 53:314 (1975); LAMMPS pair_style granular dmt"
@@ -108,6 +111,21 @@ def max_approach_root(K, k, Fc):
 
 
 @jitable
+def _loading_time_from_rest(bs, k, Fc, m):
+    """``int_0^(bs^2) d alpha / v`` [s] at ``K = 0``: with ``v^2 = 2 (F_c b^2 - 2/5 k b^5)/m`` and
+    ``d alpha = 2 b db`` the integrand ``2 (2 (F_c - 2/5 k b^3)/m)^(-1/2)`` is smooth (the adhesion pulls
+    the particle in from rest as a constant force would), one 48-point Gauss-Legendre rule on
+    ``[0, bs]``. The limit of :func:`loading_time`'s lower part as ``c = (K/F_c)^(1/2)`` falls below
+    ``bs`` times the rounding (it differs by ``O(c/bs)``), where the ``sinh`` substitution's range
+    ``asinh(bs/c)`` has grown past what its 48 points resolve, and ``K`` or ``c`` may underflow."""
+    low = 0.0
+    for i in range(48):
+        b = 0.5 * bs * (GX[i] + 1.0)
+        low += GW[i] * 2.0 / math.sqrt(2.0 * (Fc - 0.4 * k * (b * b * b)) / m)
+    return 0.5 * bs * low
+
+
+@jitable
 def loading_time(bm, K, k, Fc, m):
     """``t_L = int_0^alpha_m d alpha / v`` [s] for the impact energy ``K`` (module docstring): two
     48-point Gauss-Legendre quadratures in ``b = alpha^(1/2)``, split at ``b_m/2``. Above it
@@ -125,6 +143,8 @@ def loading_time(bm, K, k, Fc, m):
     t = 0.5 * W * top
     if bs > 0.0:
         c = math.sqrt(K / Fc)
+        if not c > bs * _EPS:  # K's share of the time below the rounding: its limit K = 0
+            return t + _loading_time_from_rest(bs, k, Fc, m)
         U = math.asinh(bs / c)
         low = 0.0
         for i in range(48):

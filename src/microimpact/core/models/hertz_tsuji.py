@@ -49,6 +49,7 @@ particles above their yield velocity.
 from __future__ import annotations
 
 import math
+import sys
 
 from .. import hertz
 from .._jit import jitable
@@ -68,6 +69,8 @@ BOUNDS, validate = checks(NAME, PARAMETERS)
 __getattr__ = deprecated_names(__name__, NAME)  # released DEFAULTS: one release, with a warning
 #: Cost class (the contract's ``COST``): ``e`` integrates the equation of motion, 0.4 ms a group in Python.
 COST = "slow"
+#: The smallest normal double: below it a factor of :func:`restitution_group` has lost its precision.
+_NORMAL = sys.float_info.min
 #: Order of the zero of :func:`signed_force` where the contact ends: the damping term cancels the
 #: Hertz term at a finite approach with the particle moving out, a simple zero.
 ZERO_FORCE_ORDER = 1.0
@@ -145,9 +148,14 @@ def restitution_group(V, E, R, m, p_y, params):
     T = hertz.dem_time_scale(V, E, R, m)
     X = V * T
     # damping term alpha_T (m (4/3) E R^(1/2))^(1/2) alpha^(1/4) alpha_dot, scaled by m X / T^2:
-    if not X > 0.0:  # V so small that X = V T underflows: the same group as V^(1/4) T^(5/4) (rho/m)^(1/2)
-        return params[0] * math.sqrt(rho / m) * V**0.25 * T**1.25
-    return params[0] * math.sqrt(m * rho) * X**0.25 * (X / T) / (m * X / (T * T))
+    if X > 0.0:
+        num = params[0] * math.sqrt(m * rho) * X**0.25 * (X / T)
+        den = m * X / (T * T)
+        if _NORMAL <= den < math.inf and _NORMAL <= num < math.inf:
+            return num / den
+    # V so small (or so large) that X = V T, the scale m X/T^2 or the damping force leaves the normal
+    # doubles (a subnormal or a 0 in a quotient; an overflow): the same group as V^(1/4) T^(5/4) (rho/m)^(1/2)
+    return params[0] * math.sqrt(rho / m) * V**0.25 * T**1.25
 
 
 @jitable

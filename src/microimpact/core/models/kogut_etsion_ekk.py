@@ -72,6 +72,10 @@ not used.
 Validity: the fits were made for ``100 < E/Y < 1000`` and ``nu = 0.3`` (the transcription's
 note); an impact that leaves Hertz's curve with ``E*/Y`` outside that range, or that exceeds
 ``a*/R* = 0.3``, has ``large_strain`` 1 (flagged, not refused). Quasi-static, no adhesion.
+Where double precision cannot compute the impact (a yield strength so small beside ``E*`` that
+``delta_c`` underflows, a speed whose square overflows, a rebound lost to the rounding of ``alpha*``
+past about 1e35 m/s) the outcome is NaN: the law cannot say
+(``_fitted_laws.computable``).
 """
 
 from __future__ import annotations

@@ -63,6 +63,7 @@ stiffnesses are calibration parameters rather than material properties.
 from __future__ import annotations
 
 import math
+import sys
 
 from .._jit import jitable
 from . import Parameter, checks, deprecated_names
@@ -85,6 +86,10 @@ PARAMETERS = (
     Parameter.of("plasticity_depth", "phi_f > 0, LIGGGHTS' phiF", low=0.0, low_open=True),
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
+#: The smallest normal double: a square below it has lost its precision or underflowed to 0.
+_NORMAL = sys.float_info.min
+#: The unit roundoff of doubles, ``2^-53``.
+_EPS = 2.0**-53
 __getattr__ = deprecated_names(__name__, NAME)  # released DEFAULTS: one release, with a warning
 
 
@@ -108,6 +113,12 @@ def outcome(V, E, R, m, p_y, params):
         return dem_outcome(V, 1.0, 0.0, 0.0, 0.0, R, t0, t0)
     a1 = V / w1
     dp = plasticity_overlap(R, params)
+    if a1 <= dp * _EPS:
+        # the plastic share of the approach, O(a1/dp), below the rounding: the small-impact limit, e = 1
+        # to rounding and both stages a quarter period (below, a0 = a1 - U loses every digit, and with a1
+        # subnormal or 0 the unloading's U would underflow into a spurious capture)
+        t0 = 0.5 * math.pi / w1
+        return dem_outcome(V, 1.0, a1, 0.0, k1 * a1, R, t0, t0)
     if a1 <= dp:
         K = k1 + (k2 - k1) * a1 / dp
         amax = a1
@@ -129,9 +140,16 @@ def outcome(V, E, R, m, p_y, params):
     wK = math.sqrt(K / m)
     ac = K * a0 / (K + kc)
     x = ac - a0  # <= 0: the adhesive limit lies beyond the zero-force approach
+    if x > 0.0:  # rounded past a0 where kc is negligible beside K: the same difference, exactly <= 0
+        x = -kc * a0 / (K + kc)
     if -x >= U:  # the unloading line turns the particle back before the adhesive branch
         return dem_outcome(V, 0.0, amax, a0, Pm, R, t_load, math.inf)
-    vc = wK * math.sqrt((U - x) * (U + x))
+    s = (U - x) * (U + x)
+    if s >= _NORMAL:
+        vc = wK * math.sqrt(s)
+    else:  # U^2 leaves the normal doubles (a stiffness near the largest double, where K/m may overflow too)
+        r = x / U
+        vc = math.sqrt(K) * (U / math.sqrt(m)) * math.sqrt((1.0 - r) * (1.0 + r))
     t_un = math.acos(x / U) / wK
     if kc == 0.0:
         e = vc / V
