@@ -462,17 +462,9 @@ def mi_fit():
     return fitting
 
 
-#: What still fails (found by this file, not yet fixed): each a division by zero or an overflow where a
-#: ValueError or a NaN is due, in a module this file's fixes did not touch. Not strict: a fix makes the case pass.
-KNOWN = {
-    "calibrate:velocity": "calibrate(velocity=5e-324): the calibration's speed grid np.geomspace(V/10, 10 V) "
-    "(calibrate.py) starts at 0, a ValueError not naming velocity; from 1e308, 10 V overflows",
-    "oblique_impact:velocity": "oblique_impact(velocity=5e-324): the table path's Vy/Vn (oblique/__init__.py) "
-    "overflows for a subnormal normal speed",
-    "dem.deck:velocity": "dem.deck(velocity=5e-324): the law's contact time is 2e57 s there, and dem.py refuses "
-    "the given time step for it, a ValueError naming time_step and not the speed that caused it",
-    "oblique_impact:friction": "oblique_impact(friction=0.0): normalized_angle is infinite: inf (oblique/)",
-}
+#: What still fails (found by this file, not yet fixed), "case:param" -> the reason; an expected failure,
+#: not strict, so that a fix makes the case pass. None at present.
+KNOWN: dict[str, str] = {}
 IDS = [f"{c.name}:{p}" for c in CASES for p in c.params]
 PARAMS = [
     pytest.param(c, p, marks=pytest.mark.xfail(reason=KNOWN[f"{c.name}:{p}"], strict=False))

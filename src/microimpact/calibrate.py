@@ -56,7 +56,7 @@ import numpy as np
 
 from . import _calibration_cache
 from . import models as _models
-from ._validation import check_dem_lines, check_dem_words, check_nonnegative, check_poisson
+from ._validation import TINY_NORMAL, check_dem_lines, check_dem_words, check_nonnegative, check_poisson
 from .core import models as _core
 from .core.quantities import OUTCOME_FIELDS
 
@@ -108,6 +108,11 @@ def _speeds(velocity):
     bad = ~((v > 0.0) & np.isfinite(v))
     if bad.any():
         raise ValueError(f"velocity must be positive and finite, got {float(v[bad][0])!r}")
+    # e(V) is looked at a decade either side (the monotonicity note): both ends must be normal doubles
+    lo, hi = 10.0 * TINY_NORMAL, np.finfo(float).max / 10.0
+    bad = ~((v >= lo) & (v <= hi))
+    if bad.any():
+        raise ValueError(f"velocity must lie in [{lo!r}, {hi!r}] m/s, got {float(v[bad][0])!r}")
     return v
 
 

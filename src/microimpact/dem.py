@@ -367,7 +367,7 @@ def deck(
     room = (2.0 * L - radius) if geometry == "wall" else 2.0 * (L - radius)
     if not gap < 0.95 * room:
         raise ValueError(
-            f"time_step {dt!r} s is too large: the free flight of 1.5 steps at {V!r} m/s puts the particle "
+            f"time_step {dt!r} s is too large: the free flight of 1.5 steps at velocity {V!r} m/s puts the particle "
             f"outside the deck's box; give at most {0.95 * room / (1.5 * V):.3g} s (the contact time is {t_size:.3g} s)"
         )
     n_steps = (gap / V + t_run) / dt + 20.0
@@ -378,8 +378,8 @@ def deck(
             per = (MAX_STEPS // 2 if t_run == 2.0 * t_size else int(MAX_STEPS * t_size / t_run)) - 20
             what, most = f"steps_per_contact {steps_per_contact!r}", f"at most {per} per contact"
         raise ValueError(
-            f"{what} needs {n_steps:.3g} steps for the contact time {t_size:.3g} s, more than a run can finish "
-            f"(at most {MAX_STEPS} steps: {most})"
+            f"{what} needs {n_steps:.3g} steps for the contact time {t_size:.3g} s at velocity {V_size!r} m/s, "
+            f"more than a run can finish (at most {MAX_STEPS} steps: {most})"
         )
     steps = int(math.ceil((gap / V + t_run) / dt)) + 20
     if geometry == "wall":

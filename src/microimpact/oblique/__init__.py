@@ -260,7 +260,8 @@ class UniversalTable:
         v = self.values
         lx = np.clip(np.log10(np.maximum(np.where(np.isnan(x), 1.0, x), 1e-300)), self.log_x[0], 0.0)
         p = np.where(np.isfinite(psi), psi, 0.0)
-        fp = np.clip(p / (self.psi[1] - self.psi[0]), 0.0, self.psi.size - 1.0)
+        with np.errstate(over="ignore"):  # psi beyond the largest double: the table's last node, sliding
+            fp = np.clip(p / (self.psi[1] - self.psi[0]), 0.0, self.psi.size - 1.0)
         fl = np.clip((lx - self.log_x[0]) / (self.log_x[1] - self.log_x[0]), 0.0, self.log_x.size - 1.0)
         near = np.round(fl)
         fl = np.where(np.abs(fl - near) < 1e-9, near, fl)  # on a row (x = 1: 3/0.1 is 29.999999999999996)
@@ -284,7 +285,8 @@ class UniversalTable:
         lx = np.clip(np.log10(np.maximum(x, 1e-300)), self.log_x[0], 0.0)
         dp = self.psi[1] - self.psi[0]
         dl = self.log_x[1] - self.log_x[0]
-        fp = np.clip(psi / dp, 0.0, self.psi.size - 1.0)
+        with np.errstate(over="ignore"):  # psi beyond the largest double: the table's last node, sliding
+            fp = np.clip(psi / dp, 0.0, self.psi.size - 1.0)
         fl = np.clip((lx - self.log_x[0]) / dl, 0.0, self.log_x.size - 1.0)
         i = np.minimum(fp.astype(np.intp), self.psi.size - 2)
         j = np.minimum(fl.astype(np.intp), self.log_x.size - 2)
@@ -597,7 +599,8 @@ def oblique_impact(
         Vy = float(
             yield_velocity(pair.limiting_pressure, pair.effective_modulus, pair.effective_radius, pair.effective_mass)
         )
-        x = np.minimum(Vy / out.normal_speed, 1.0)
+        with np.errstate(over="ignore"):  # V_y/V_n beyond the largest double: elastic all the same (x = 1)
+            x = np.minimum(Vy / out.normal_speed, 1.0)
         redo = ~table.trusted(out.normalized_angle, x)
         if not redo.any():
             return out
@@ -629,7 +632,8 @@ def oblique_impact(
     bad = ~((theta >= 0.0) & (theta < 90.0))
     if np.any(bad):
         raise ValueError(f"angle must be in [0, 90) degrees, got {float(theta[bad].flat[0])!r}")
-    mu = check_nonnegative("friction", friction)
+    check_not_subnormal("velocity", speed)  # the precision is lost there
+    mu = check_not_subnormal("friction", check_nonnegative("friction", friction))
     if np.any(np.isinf(mu)):
         raise ValueError("friction must be finite, got inf")
     w0 = np.asarray(spin, dtype=float)
@@ -653,7 +657,8 @@ def oblique_impact(
             if tangential != "rigid":
                 raise
             kappa = math.nan
-    with np.errstate(divide="ignore", invalid="ignore"):
+    # over: mu V_n beyond the largest double leaves no slip to speak of (sticking)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         u0_hat = np.where(mu > 0, u0 / (mu * Vn), np.copysign(np.inf, u0))  # slip in mu V_n
         psi = np.abs(kappa * u0_hat) if not math.isnan(kappa) else np.full(u0.shape, np.nan)
 
@@ -700,7 +705,8 @@ def oblique_impact(
         regime[...] = np.where(rolling & ~frictionless, tg.REGIME_ROLLING, tg.REGIME_SLIDING)
         regime[(u0 == 0.0) & (mu > 0.0)] = tg.REGIME_ROLLING
     else:
-        x = np.where(Vn > 0, Vy / np.where(Vn > 0, Vn, 1.0), np.inf)
+        with np.errstate(over="ignore"):  # V_y/V_n beyond the largest double: elastic all the same (x >= 1)
+            x = np.where(Vn > 0, Vy / np.where(Vn > 0, Vn, 1.0), np.inf)
         if method == "table":
             table = universal_table(kappa)
             F = table(np.where(frictionless, 0.0, psi), np.minimum(x, 1.0))
@@ -717,14 +723,15 @@ def oblique_impact(
 
     Jt = np.where(frictionless, 0.0, J * mu * Vn)  # J_t / m [m/s]
     vt_out = vt + Jt
-    if dw is None:
-        w_out = w0 + tg.SLIP_FACTOR * 5.0 / 7.0 * Jt / R  # r omega' = r omega + 5/2 J_t/m
-        ur = u0 + tg.SLIP_FACTOR * Jt
-    else:
-        w_out = w0 + dw / R
-        ur = u0 + Jt + dw
+    with np.errstate(over="ignore"):  # a spin beyond the largest double (speeds near it over R): inf
+        if dw is None:
+            w_out = w0 + tg.SLIP_FACTOR * 5.0 / 7.0 * Jt / R  # r omega' = r omega + 5/2 J_t/m
+            ur = u0 + tg.SLIP_FACTOR * Jt
+        else:
+            w_out = w0 + dw / R
+            ur = u0 + Jt + dw
     Vn_out = e * Vn
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # over: as u0_hat above
         e_t = np.where(vt != 0.0, vt_out / vt, np.nan)
         slip_ratio = np.where(u0 != 0.0, ur / u0, np.nan)
         F_out = np.where(mu > 0, np.abs(Jt) / (mu * one_e * Vn), 0.0)
