@@ -656,9 +656,9 @@ def capture(
     """Measure the capture velocity of the calibrated law in ``code`` and set it beside the law's.
 
     The code's capture velocity is bracketed by runs of one impact each (:func:`deck` and
-    :func:`run`; a run is a capture where the particle is still in contact at its end): first at
-    ``V_s (1 - rel)`` and ``V_s (1 + rel)`` around the law's ``V_s`` (the code agrees with the law to
-    ``rel`` where it keeps the first and lets the second go); where it does not, the bracket is
+    :func:`run`; a run is a capture where the particle is still in contact, or not moving away, at
+    its end): first at ``V_s (1 - rel)`` and ``V_s (1 + rel)`` around the law's ``V_s`` (the code
+    agrees with the law to ``rel`` where it keeps the first and lets the second go); where it does not, the bracket is
     widened by factors of 2 and halved again to ``rel``. All runs share one time step: the law's
     contact time at ``V_s (1 + rel)`` over ``steps_per_contact`` (or ``time_step``).
 
