@@ -246,7 +246,9 @@ def one_run(name: str, seed: int, from_exec: bool = False, typical: float | None
             res["ok"] = all(checks.values())
             if not res["ok"]:
                 res["failed"] = [k for k, v in checks.items() if not v]
-                res["stderr"] = err[-600:] if took <= LIMIT else err  # all the stacks of a run that did not end
+                # all of it for a run that did not end or that a signal killed (faulthandler's stacks
+                # come first, before the list of extension modules)
+                res["stderr"] = err[-600:] if took <= LIMIT and rc >= 0 else err
                 res["temporaries"] = _temporaries(folder)
         return res
     finally:
