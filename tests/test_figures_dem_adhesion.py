@@ -15,6 +15,7 @@ import pytest
 
 import microimpact as mi
 from microimpact.core import models as cm
+from microimpact.core.models import _capillary as cap
 from microimpact.figures import dem_adhesion as da
 
 plt = pytest.importorskip("matplotlib.pyplot")
@@ -118,8 +119,9 @@ def test_the_fitted_damping_is_the_fits_optimum(pair, data):
 
 def test_captures_nothing_only_where_claimed(data):
     none = {law for law, entry in data["laws"].items() if entry["capture_velocity"] == 0.0}
-    # a conservative DMT force without damping, EEPA without pull-off at a wall, and mdr
-    assert none == {"lammps_dmt", "lethe_dmt_vdw", "liggghts_edinburgh", "lammps_mdr"}
+    # a conservative DMT force without damping, EEPA without pull-off at a wall, mdr, and washino, whose
+    # bridge (5 % of the liquid, at most the 0.5 the law takes) stays below LIGGGHTS' volume floor
+    assert none == {"lammps_dmt", "lethe_dmt_vdw", "liggghts_edinburgh", "lammps_mdr", "liggghts_washino_capillary"}
     assert np.all(data["laws"]["lammps_dmt"]["restitution"] == pytest.approx(1.0, abs=1e-6))
 
 
@@ -127,12 +129,27 @@ def test_the_bridges_give_one_curve_below_yield(pair, data):
     # a law taking a fixed energy from the particle rebounds with e = (1 - V_s^2/V^2)^(1/2)
     V = data["velocity"]
     vy = pair.yield_velocity
-    for law in ("liggghts_easo_capillary", "liggghts_washino_capillary", "willett_capillary", "rabinovich_capillary"):
+    for law in ("willett_capillary", "rabinovich_capillary"):
         entry = data["laws"][law]
         vs = entry["capture_velocity"]
         sel = (V > 1.05 * vs) & (V < vy)
         np.testing.assert_allclose(entry["restitution"][sel], np.sqrt(1.0 - (vs / V[sel]) ** 2), atol=2e-3)
         assert vs == pytest.approx(data["reference_capture_velocity"], rel=1e-3), law
+        assert entry["params"]["liquid_volume"] < 1e-5 * cap.LIGGGHTS_VOLUME_FLOOR / 1000.0  # ~6e-23 m^3
+
+
+def test_liggghts_bridges_cannot_give_the_whole_laws_capture_here(pair, data):
+    """The bridge Yade's laws need is far below LIGGGHTS' floor: easo's fit ends on the floor's edge, its
+    smallest bridge with a force, capturing ten times faster than the whole law; washino never gets there."""
+    easo = data["laws"]["liggghts_easo_capillary"]
+    assert easo["capture_velocity"] > 5.0 * data["reference_capture_velocity"]
+    c = easo["params"]["liquid_content"]
+    V_b = 0.5 * 4.0 / 3.0 * math.pi * pair.effective_radius**3 * c  # at a wall: half the particle's liquid
+    assert V_b * 1000.0 == pytest.approx(cap.LIGGGHTS_VOLUME_FLOOR, rel=0.05)
+    washino = data["laws"]["liggghts_washino_capillary"]
+    args = (pair.effective_modulus, pair.effective_radius, pair.effective_mass, math.inf)
+    params = tuple(washino["params"].values())
+    assert int(cm.get("liggghts_washino_capillary").outside_validity(1.0, *args, params)) & 16
 
 
 def test_the_plot_draws_every_law_and_lists_the_others(data):

@@ -26,9 +26,13 @@ linear axis, since ``e = 0`` (capture) is the point of the figure.
 
 What it shows for the seed's pair at ``G`` = 0.1 J/m^2 (the gallery example): no two codes agree on the
 capture velocity (0.224 m/s for LAMMPS' undamped ``jkr``, none for the undamped DMT laws, 0.31 m/s for
-``sjkr`` with its fitted restitution, against the whole law's 0.318 m/s), and the liquid bridges,
-fitted to that capture velocity, all give ``e = (1 - V_s^2/V^2)^(1/2)``, the curve of any law that
-takes a fixed energy from the particle, which is the whole law's below its yield speed.
+``sjkr`` with its fitted restitution, against the whole law's 0.318 m/s). Yade's liquid bridges,
+fitted to that capture velocity, give ``e = (1 - V_s^2/V^2)^(1/2)``, the curve of any law that takes
+a fixed energy from the particle, which is the whole law's below its yield speed. LIGGGHTS' bridges
+cannot be fitted to it: the code gives no force to a bridge below 1e-17 m^3
+(:data:`microimpact.core.models._capillary.LIGGGHTS_VOLUME_FLOOR`), while the fitted Yade bridge is
+about 6e-23 m^3; ``washino`` stays below the floor (no capture), ``easo``'s smallest bridge above it
+captures up to 3.1 m/s.
 
 The laws are found by their declarations, not by name: a law with a capture velocity whose ``TITLE``
 begins with the code running it (or says which code writes it, "as Yade writes it"); the panels are
