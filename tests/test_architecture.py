@@ -25,6 +25,7 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "microimpact"
 
 LAYERS = {
     "core": 0,
+    "_atomic": 0,  # the steps a signal must not cut (numba building a loop): the standard library only
     "engine": 0.5,  # between the core and the base: runs the core's functions, knows nothing above
     "_validation": 1,
     "_optional": 1,

@@ -30,6 +30,8 @@ import signal
 import sys
 import threading
 
+from .. import _atomic
+
 __all__ = ["Interrupted", "check", "install", "message", "pending", "restore", "set_prefix"]
 
 SIGNALS = (signal.SIGINT, signal.SIGTERM)
@@ -85,6 +87,8 @@ def _handler(signum, frame):
     if _state["pending"] is not None:  # a second signal: the command did not end on the first
         _end(_state["pending"])
     _state["pending"] = int(signum)
+    if _atomic.busy():  # numba is building a loop: raised when it is done (check, on leaving the step)
+        return
     raise Interrupted(signum)
 
 
@@ -110,6 +114,7 @@ def install() -> None:
     if not _main_thread() or _state["installed"]:
         return
     _state["installed"] = True
+    _atomic.on_leave(check)
     _state["hook"] = sys.unraisablehook
     sys.unraisablehook = _unraisable
     for sig in SIGNALS:
@@ -145,5 +150,6 @@ def restore(exiting: bool = False) -> None:
     if sys.unraisablehook is _unraisable:
         sys.unraisablehook = _silent if (exiting and interrupted) else (_state["hook"] or sys.__unraisablehook__)
     _state["hook"] = None
+    _atomic.off_leave(check)
     _state["pending"] = None
     _state["installed"] = False

@@ -33,6 +33,7 @@ import os
 import sys
 import threading
 
+from .. import _atomic
 from . import cache as _cache
 
 __all__ = ["MARK", "Loop", "loops", "generate", "owned_files"]
@@ -108,7 +109,7 @@ class Loop:
     def prepare(self, args) -> None:
         """Compile or load the loop by a call over no element (``args``: inputs, params and out
         as the real call passes them), under its file lock; heal what its cache entry breaks."""
-        with _LOCK:
+        with _LOCK, _atomic.step():  # numba builds or loads it in Python: no signal may cut that
             if not self.ready:
                 self.family.first_call(self, args)
                 self.ready = True

@@ -1,0 +1,86 @@
+"""A signal during a step numba must finish (:mod:`microimpact._atomic`) is raised when the step ends.
+
+Numba builds and loads compiled loops in Python, through llvmlite; a KeyboardInterrupt raised there by
+the command line's handler left an LLVM object owned twice, whose release then aborted the process
+("free(): double free detected", exit -6, in the interrupt soak) instead of the one line and 130.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+
+import pytest
+
+from microimpact import _atomic
+from microimpact.cli import _interrupt
+
+
+@pytest.fixture
+def installed():
+    _interrupt.install()
+    try:
+        yield
+    finally:
+        _interrupt.restore()
+
+
+@pytest.mark.needs_sigint
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_inside_a_step_is_raised_when_the_step_ends(installed, sig):
+    done = []
+    with pytest.raises(_interrupt.Interrupted) as caught:
+        with _atomic.step():
+            with _atomic.step():  # nested: the outermost step's end raises it
+                os.kill(os.getpid(), sig)
+                done.append(sum(range(1000)))  # bytecodes after the signal: the handler has run, not raised
+            done.append("inner left")
+    assert done == [499500, "inner left"]
+    assert caught.value.signum == int(sig) and _interrupt.pending() == int(sig)
+
+
+@pytest.mark.needs_sigint
+def test_outside_a_step_the_signal_is_raised_where_the_command_is(installed):
+    with pytest.raises(_interrupt.Interrupted):
+        os.kill(os.getpid(), signal.SIGINT)
+        for _ in range(10**6):  # the handler runs between bytecodes
+            pass
+    assert not _atomic.busy()
+
+
+def test_the_engine_compiles_and_loads_in_a_step():
+    """Every first call of a compiled loop (where numba builds or loads it) runs inside a step: in a
+    new process, where no loop is ready yet."""
+    code = """
+import numpy as np
+import microimpact as mi
+from microimpact import _atomic
+from microimpact.engine import loops
+
+seen = []
+real = loops._Family.first_call
+
+
+def spy(self, loop, args):
+    seen.append(_atomic.busy())
+    return real(self, loop, args)
+
+
+loops._Family.first_call = spy
+mi.ContactPair.paper_case("mica").impact(np.linspace(1.0, 2.0, 5000), warn=False)
+print(len(seen), all(seen))
+"""
+    env = {**os.environ, "MICROIMPACT_BACKEND": "numba"}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True)
+    n, every = out.stdout.split()
+    assert int(n) > 0 and every == "True"
+
+
+def test_no_handler_no_callback():
+    """Without the command line's handler a step changes nothing: no callback, nothing raised."""
+    assert not _atomic.busy()
+    with _atomic.step():
+        assert _atomic.busy()
+    assert not _atomic.busy()
