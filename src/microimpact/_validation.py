@@ -21,6 +21,8 @@ import sys
 
 import numpy as np
 
+from .core import constants as _constants
+
 __all__ = [
     "check_number",
     "check_positive",
@@ -94,7 +96,7 @@ def describe_value(value) -> str:
 _F64 = np.dtype(np.float64)
 #: The smallest normal double. A positive input below it (subnormal) has lost precision, and every
 #: quotient by it (``1/x``; the models divide by the radius, the mass, the speed) overflows to inf.
-TINY_NORMAL = float(np.finfo(np.float64).tiny)
+TINY_NORMAL = _constants.TINY_NORMAL
 
 
 def _as_float_array(name: str, value) -> np.ndarray:

@@ -239,17 +239,16 @@ class Deck:
     sizing_contact_time: float = math.nan
 
 
+def _law_args(calibration):
+    """``(E*, R*, m*, p_y, params)`` of a calibration, as its model's hooks take them (no yield: the
+    DEM laws carry their own plasticity, if any)."""
+    params = tuple(float(p) for p in calibration.params)
+    return calibration.effective_modulus, calibration.effective_radius, calibration.effective_mass, math.inf, params
+
+
 def predict(calibration, velocity: float) -> tuple[float, float]:
     """The calibrated law's ``e`` [-] and contact time [s] at ``velocity`` [m/s]."""
-    mod = _models.get(calibration.model)
-    row = mod.outcome(
-        float(velocity),
-        calibration.effective_modulus,
-        calibration.effective_radius,
-        calibration.effective_mass,
-        math.inf,
-        tuple(float(p) for p in calibration.params),
-    )
+    row = _models.get(calibration.model).outcome(float(velocity), *_law_args(calibration))
     return float(row[_E]), float(row[_TC])
 
 
@@ -338,8 +337,9 @@ def deck(
     # the contact time that sizes the step, and the time the contact may last before the run ends: two
     # of the law's contact times for a bounce, four at the sizing speed for a capture (a particle the
     # code lets go leaves near the capture velocity in about one)
-    if sizing_velocity is None and not (math.isfinite(t_p) and t_p > 0.0) and capture_velocity(calibration) > 0.0:
-        V_size = capture_velocity(calibration) * (1.0 + CAPTURE_REL)
+    if sizing_velocity is None and not (math.isfinite(t_p) and t_p > 0.0):
+        V_s = capture_velocity(calibration)
+        V_size = V_s * (1.0 + CAPTURE_REL) if V_s > 0.0 else V
     t_size = predict(calibration, V_size)[1]
     if not (math.isfinite(t_size) and t_size > 0.0):
         if sizing_velocity is None:
@@ -631,15 +631,7 @@ def capture_velocity(calibration) -> float:
     mod = _models.get(calibration.model)
     if not (mod.STICKS and mod.sticking_velocity is not None):
         return 0.0
-    return float(
-        mod.sticking_velocity(
-            calibration.effective_modulus,
-            calibration.effective_radius,
-            calibration.effective_mass,
-            math.inf,
-            tuple(float(p) for p in calibration.params),
-        )
-    )
+    return float(mod.sticking_velocity(*_law_args(calibration)))
 
 
 def capture(

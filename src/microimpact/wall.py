@@ -696,17 +696,12 @@ def _adhesive_oblique(table, vT, nT, wT, d, rho, E, p_y, G, mu, kappa, tangentia
         return np.broadcast_to(c, (N,))[sel]
 
     vx, vy, vz = (pick(c) for c in vT)
-    nx, ny, nz = (pick(c) for c in nT)
     wx, wy, wz = (pick(c) for c in wT)
-    length = np.sqrt(nx * nx + ny * ny + nz * nz)
-    ux, uy, uz = nx / length, ny / length, nz / length
+    ux, uy, uz = evaluate(_wall.unit_normal, *(pick(c) for c in nT), nout=3)
     r = 0.5 * d[sel]
     V = V_all[sel]
-    vn = vx * ux + vy * uy + vz * uz
-    tx, ty, tz = vx - vn * ux, vy - vn * uy, vz - vn * uz
-    sx = tx + r * (uy * wz - uz * wy)
-    sy = ty + r * (uz * wx - ux * wz)
-    sz = tz + r * (ux * wy - uy * wx)
+    # v_t and the contact point's slip u_t = v_t + r n x omega, as the rigid and table paths take them
+    _, tx, ty, tz, sx, sy, sz = evaluate(_wall.contact_slip, vx, vy, vz, ux, uy, uz, wx, wy, wz, r, nout=7)
     slip = np.sqrt(sx * sx + sy * sy + sz * sz)
     tmag = np.sqrt(tx * tx + ty * ty + tz * tz)
     slips = slip > 0.0

@@ -63,10 +63,17 @@ LIGGGHTS_VOLUME_FLOOR = 1e-14
 
 
 @jitable
+def below_liggghts_floor(q):
+    """True where the bridge (``q[2]``, its volume [m^3]) is below LIGGGHTS' floor
+    (:data:`LIGGGHTS_VOLUME_FLOOR`): the code gives it no force."""
+    return q[2] * 1000.0 < LIGGGHTS_VOLUME_FLOOR
+
+
+@jitable
 def liggghts_floor(q):
     """``q`` without its capillary and viscous forces where the bridge is below LIGGGHTS' floor
-    (:data:`LIGGGHTS_VOLUME_FLOOR`; ``q[2]`` the bridge volume [m^3]), else ``q`` unchanged."""
-    if not q[2] * 1000.0 < LIGGGHTS_VOLUME_FLOOR:
+    (:func:`below_liggghts_floor`), else ``q`` unchanged."""
+    if not below_liggghts_floor(q):
         return q
     return (0.0, q[1], q[2], q[3], q[4], q[5], q[6], q[7], q[8], q[9], 0.0)
 

@@ -29,10 +29,10 @@ operations as :func:`loading_force`.
 from __future__ import annotations
 
 import math
-import sys
 
 from .. import hertz
 from .._jit import jitable
+from ..constants import TINY_NORMAL
 from ..gauss_legendre import RULES
 from ..special import BETA_25_12
 from ._common import nan_outcome, pack, pack_beyond
@@ -53,9 +53,6 @@ PANEL = 0.5
 #: Relative Newton step of :func:`max_approach` after which the iterate is exact to rounding: the
 #: next step would be about ``STEP_DONE^2``.
 STEP_DONE = 1e-12
-
-#: The smallest normal double.
-_NORMAL = sys.float_info.min
 
 #: Jackson & Green's switch from Hertz to the elastic-plastic law, ``delta/delta_c`` (Ghaednia et al.
 #: 2019 Sec. 3.2: Hertz while ``Delta <= 1.9 delta_c``).
@@ -515,7 +512,7 @@ def computable(a1, V1, V, m):
     switch approach ``a1`` or the speed ``V1`` reaching it not a normal double (a yield strength so
     small beside ``E*`` that ``delta_c ~ (S_y/E*)^2 R`` underflows), or, beyond ``V1``, ``V^2`` or the
     kinetic energy ``m* V^2/2`` that the loading work must balance overflowing (speeds past 1e154)."""
-    if not (a1 >= _NORMAL and V1 >= _NORMAL):
+    if not (a1 >= TINY_NORMAL and V1 >= TINY_NORMAL):
         return False
     return V <= V1 or (V * V < math.inf and 0.5 * m * V * V < math.inf)
 
@@ -696,7 +693,7 @@ def rebound_resolved(astar, d, Rb, E, m):
     about 1e35 m/s, the contact far wider than the sphere), so that the Hertz speed reaching it is 0:
     the outcome is NaN there, the law cannot say (its unloading time would divide by that speed)."""
     y = astar - d
-    return math.sqrt(0.8 * hertz.force(y, E, Rb) * y / m) >= _NORMAL
+    return math.sqrt(0.8 * hertz.force(y, E, Rb) * y / m) >= TINY_NORMAL
 
 
 @jitable
@@ -737,7 +734,7 @@ def impact(law, V, E, R, m, Y, nu, twin, a_limit):
     a1 = switch_approach(law, E, R, Y, nu, twin)
     Vy = math.sqrt(0.8 * hertz.force(ac, E, R) * ac / m)  # Hertz's impact speed reaching alpha_c
     V1 = math.sqrt(0.8 * hertz.force(a1, E, R) * a1 / m)
-    if not (computable(a1, V1, V, m) and Vy >= _NORMAL):
+    if not (computable(a1, V1, V, m) and Vy >= TINY_NORMAL):
         return nan_outcome(V)
     if V <= V1:  # Hertz
         astar = hertz.max_approach(V, E, R, m)
@@ -758,7 +755,7 @@ def impact(law, V, E, R, m, Y, nu, twin, a_limit):
     y = astar - d
     y0 = -d if d < 0.0 else 0.0
     Vfull = math.sqrt(0.8 * hertz.force(y, E, Rb) * y / m)  # the speed of a Hertz impact reaching y
-    if not Vfull >= _NORMAL:  # y lost every digit to the rounding of alpha* (:func:`rebound_resolved`)
+    if not Vfull >= TINY_NORMAL:  # y lost every digit to the rounding of alpha* (:func:`rebound_resolved`)
         return nan_outcome(V)
     V0 = math.sqrt(0.8 * hertz.force(y0, E, Rb) * y0 / m)
     tU = 0.4 * BETA_25_12 * y / Vfull - elastic_stage_time(Vfull, E, Rb, m, y0, V0)

@@ -51,12 +51,10 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
+from ..constants import UNIT_ROUNDOFF
 from . import Parameter, checks
 from ._common import dem_outcome, in_bounds, nan_outcome
 from ._jkr import GW, GX
-
-#: The unit roundoff of doubles, ``2^-53``.
-_EPS = 2.0**-53
 
 NAME = "dmt_elastic_adhesive"
 TITLE = "DMT elastic adhesion: Hertz minus 4 pi gamma R while in contact (LAMMPS granular dmt)"
@@ -143,7 +141,7 @@ def loading_time(bm, K, k, Fc, m):
     t = 0.5 * W * top
     if bs > 0.0:
         c = math.sqrt(K / Fc)
-        if not c > bs * _EPS:  # K's share of the time below the rounding: its limit K = 0
+        if not c > bs * UNIT_ROUNDOFF:  # K's share of the time below the rounding: its limit K = 0
             return t + _loading_time_from_rest(bs, k, Fc, m)
         U = math.asinh(bs / c)
         low = 0.0

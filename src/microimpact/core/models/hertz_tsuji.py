@@ -49,10 +49,10 @@ particles above their yield velocity.
 from __future__ import annotations
 
 import math
-import sys
 
 from .. import hertz
 from .._jit import jitable
+from ..constants import TINY_NORMAL
 from . import LIMIT_FORCE, Parameter, checks, deprecated_names
 from ._common import dem_outcome, in_bounds, nan_outcome
 from .hertz_viscoelastic import reaches_bound, scaled_damped_hertz, scaled_restitution
@@ -69,8 +69,6 @@ BOUNDS, validate = checks(NAME, PARAMETERS)
 __getattr__ = deprecated_names(__name__, NAME)  # released DEFAULTS: one release, with a warning
 #: Cost class (the contract's ``COST``): ``e`` integrates the equation of motion, 0.4 ms a group in Python.
 COST = "slow"
-#: The smallest normal double: below it a factor of :func:`restitution_group` has lost its precision.
-_NORMAL = sys.float_info.min
 #: Order of the zero of :func:`signed_force` where the contact ends: the damping term cancels the
 #: Hertz term at a finite approach with the particle moving out, a simple zero.
 ZERO_FORCE_ORDER = 1.0
@@ -151,7 +149,7 @@ def restitution_group(V, E, R, m, p_y, params):
     if X > 0.0:
         num = params[0] * math.sqrt(m * rho) * X**0.25 * (X / T)
         den = m * X / (T * T)
-        if _NORMAL <= den < math.inf and _NORMAL <= num < math.inf:
+        if TINY_NORMAL <= den < math.inf and TINY_NORMAL <= num < math.inf:
             return num / den
     # V so small (or so large) that X = V T, the scale m X/T^2 or the damping force leaves the normal
     # doubles (a subnormal or a 0 in a quotient; an overflow): the same group as V^(1/4) T^(5/4) (rho/m)^(1/2)

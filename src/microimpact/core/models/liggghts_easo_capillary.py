@@ -184,6 +184,6 @@ def outside_validity(V, E, R, m, p_y, params):
     (module docstring); the law is what the fixed code computes. 16 where the bridge is below the
     code's volume floor, which leaves it without any cohesive force (:data:`~microimpact.core.models._capillary.LIGGGHTS_VOLUME_FLOOR`)."""
     code = 8.0 if params[9] == 0.0 else 0.0
-    if constants(E, R, m, params)[0] == 0.0:
+    if cap.below_liggghts_floor(constants(E, R, m, params)):
         code += 16.0
     return code

@@ -142,7 +142,7 @@ def work(E, R, m, params):
 def outside_validity(V, E, R, m, p_y, params):
     """16 where the bridge is below the code's volume floor, which leaves it without any cohesive force
     (:data:`~microimpact.core.models._capillary.LIGGGHTS_VOLUME_FLOOR`, the same in this model's source)."""
-    return 16.0 if constants(E, R, m, params)[0] == 0.0 else 0.0
+    return 16.0 if cap.below_liggghts_floor(constants(E, R, m, params)) else 0.0
 
 
 @jitable

@@ -63,9 +63,9 @@ stiffnesses are calibration parameters rather than material properties.
 from __future__ import annotations
 
 import math
-import sys
 
 from .._jit import jitable
+from ..constants import TINY_NORMAL, UNIT_ROUNDOFF
 from . import Parameter, checks, deprecated_names
 from ._common import dem_outcome, in_bounds, nan_outcome
 
@@ -86,10 +86,6 @@ PARAMETERS = (
     Parameter.of("plasticity_depth", "phi_f > 0, LIGGGHTS' phiF", low=0.0, low_open=True),
 )
 BOUNDS, validate = checks(NAME, PARAMETERS)
-#: The smallest normal double: a square below it has lost its precision or underflowed to 0.
-_NORMAL = sys.float_info.min
-#: The unit roundoff of doubles, ``2^-53``.
-_EPS = 2.0**-53
 __getattr__ = deprecated_names(__name__, NAME)  # released DEFAULTS: one release, with a warning
 
 
@@ -113,7 +109,7 @@ def outcome(V, E, R, m, p_y, params):
         return dem_outcome(V, 1.0, 0.0, 0.0, 0.0, R, t0, t0)
     a1 = V / w1
     dp = plasticity_overlap(R, params)
-    if a1 <= dp * _EPS:
+    if a1 <= dp * UNIT_ROUNDOFF:
         # the plastic share of the approach, O(a1/dp), below the rounding: the small-impact limit, e = 1
         # to rounding and both stages a quarter period (below, a0 = a1 - U loses every digit, and with a1
         # subnormal or 0 the unloading's U would underflow into a spurious capture)
@@ -145,7 +141,7 @@ def outcome(V, E, R, m, p_y, params):
     if -x >= U:  # the unloading line turns the particle back before the adhesive branch
         return dem_outcome(V, 0.0, amax, a0, Pm, R, t_load, math.inf)
     s = (U - x) * (U + x)
-    if s >= _NORMAL:
+    if s >= TINY_NORMAL:
         vc = wK * math.sqrt(s)
     else:  # U^2 leaves the normal doubles (a stiffness near the largest double, where K/m may overflow too)
         r = x / U
