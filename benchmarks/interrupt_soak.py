@@ -246,9 +246,9 @@ def one_run(name: str, seed: int, from_exec: bool = False, typical: float | None
             res["ok"] = all(checks.values())
             if not res["ok"]:
                 res["failed"] = [k for k, v in checks.items() if not v]
-                # all of it for a run that did not end or that a signal killed (faulthandler's stacks
-                # come first, before the list of extension modules)
-                res["stderr"] = err[-600:] if took <= LIMIT and rc >= 0 else err
+                # all of it, or its beginning and end: a traceback's first frames say who printed it,
+                # and faulthandler's stacks come before the list of extension modules
+                res["stderr"] = err if len(err) <= 6000 else err[:3000] + "\n[...]\n" + err[-3000:]
                 res["temporaries"] = _temporaries(folder)
         return res
     finally:

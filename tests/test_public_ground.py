@@ -34,6 +34,9 @@ EXPECTED = {
     # the command's own process while a command runs after an interrupt: what numba's compiler,
     # cut short, leaves to be freed says nothing (the interrupt's one line is the command's report)
     "cli: sets an attribute of sys (sys.unraisablehook)",
+    # the same for the interrupt's traceback where a C extension prints the exception it caught (numba's
+    # _dispatcher, when a signal cuts its import of numba._devicearray): the one line says it
+    "cli: sets an attribute of sys (sys.excepthook)",
 }
 
 #: Calls of public names that are off limits all the same, and why.

@@ -112,11 +112,11 @@ def test_a_second_signal_ends_a_stuck_command_at_once(tmp_path):
 _NOTHING_CHANGED = """
 import signal, sys
 sys.argv = ["microimpact", "impact", "50"]  # as the command would have them
-hook = sys.unraisablehook
+hook, excepthook = sys.unraisablehook, sys.excepthook
 import microimpact, microimpact.cli, microimpact.io, microimpact.sweep
 assert signal.getsignal(signal.SIGINT) is signal.default_int_handler, signal.getsignal(signal.SIGINT)
 assert signal.getsignal(signal.SIGTERM) == signal.SIG_DFL, signal.getsignal(signal.SIGTERM)
-assert sys.unraisablehook is hook
+assert sys.unraisablehook is hook and sys.excepthook is excepthook
 print("unchanged")
 """
 

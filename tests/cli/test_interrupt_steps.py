@@ -84,3 +84,28 @@ def test_no_handler_no_callback():
     with _atomic.step():
         assert _atomic.busy()
     assert not _atomic.busy()
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_while_numba_initialises_its_dispatcher(tmp_path, sig):
+    """numba's ``_dispatcher`` extension imports ``numba._devicearray`` in its initialisation and, when
+    that import fails, prints the exception (C's ``PyErr_Print``, through :data:`sys.excepthook`) before
+    raising an ImportError: a signal at that moment of the interrupt soak printed a traceback before the
+    command's one line. The signal is sent from an audit hook at the import of ``numba._devicearray``."""
+    driver = f"""
+import os, signal, sys
+def hook(event, args):
+    handler = signal.getsignal({int(sig)})
+    if event == "import" and args[0] == "numba._devicearray" and handler not in (signal.default_int_handler, signal.SIG_DFL, signal.SIG_IGN):
+        os.kill(os.getpid(), {int(sig)})
+sys.addaudithook(hook)
+from microimpact.cli import console_main
+# enough speeds for the compiled loop (numba is imported for it)
+sys.argv = ["microimpact", "export", "--out", "out", "--velocities", "0.01:200:100000"]
+sys.exit(console_main())
+"""
+    proc = subprocess.run([sys.executable, "-c", driver], cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 128 + int(sig), proc.stderr
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and "interrupted" in lines[0], proc.stderr
+    assert not (tmp_path / "out").exists()

@@ -32,6 +32,19 @@ def test_python_dash_m_runs_the_command(monkeypatch, capsys):
     assert capsys.readouterr().out.strip() == f"microimpact {microimpact.__version__}"
 
 
+def test_a_command_gives_back_the_hooks_it_set(capsys):
+    # the command line silences the interrupt's tracebacks while a command runs, and only then
+    hooks = (sys.excepthook, sys.unraisablehook, signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM))
+    assert main(["impact", "50"]) == 0
+    assert (
+        sys.excepthook,
+        sys.unraisablehook,
+        signal.getsignal(signal.SIGINT),
+        signal.getsignal(signal.SIGTERM),
+    ) == hooks
+    capsys.readouterr()
+
+
 def test_no_command_prints_help_and_exits_2(capsys):
     assert main([]) == 2
     assert "COMMAND" in capsys.readouterr().out

@@ -15,7 +15,12 @@ start of :func:`microimpact.cli.main`, :func:`restore` at its end):
   command stuck where an exception cannot reach it, such as a wait inside a C library;
 * while an interrupt is pending, exceptions Python cannot raise (:data:`sys.unraisablehook`) are
   not printed: they come from what the interrupt cut short (an object of numba's compiler left
-  half built, whose ``__del__`` then fails). Other unraisable exceptions are printed as before.
+  half built, whose ``__del__`` then fails). Other unraisable exceptions are printed as before;
+* nor is the interrupt's traceback where a C extension prints the exception it caught and raises
+  another (:data:`sys.excepthook`, which C's ``PyErr_Print`` calls): numba's ``_dispatcher``
+  module does so when the import of ``numba._devicearray`` inside its initialisation fails, so a
+  signal during ``import numba`` printed a traceback before the one line. The other exceptions
+  printed that way are printed as before.
 
 A signal the process was started with ignored stays ignored, as Python itself keeps an ignored
 SIGINT: a non-interactive shell starts a background job (``cmd &`` in a script) with SIGINT
@@ -36,7 +41,7 @@ __all__ = ["Interrupted", "check", "install", "message", "pending", "restore", "
 
 SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
-_state = {"pending": None, "old": {}, "hook": None, "prefix": "microimpact", "installed": False}
+_state = {"pending": None, "old": {}, "hook": None, "excepthook": None, "prefix": "microimpact", "installed": False}
 
 
 class Interrupted(KeyboardInterrupt):
@@ -100,6 +105,14 @@ def _unraisable(unraisable):
     (_state["hook"] or sys.__unraisablehook__)(unraisable)
 
 
+def _excepthook(exc_type, exc_value, exc_traceback):
+    """Print no traceback of our interrupt (a C extension printing what it caught: module docstring);
+    the command's one line says it."""
+    if isinstance(exc_value, Interrupted):
+        return
+    (_state["excepthook"] or sys.__excepthook__)(exc_type, exc_value, exc_traceback)
+
+
 def _silent(unraisable):
     """The hook of a process leaving after an interrupt (:func:`restore` with ``exiting``)."""
 
@@ -117,6 +130,8 @@ def install() -> None:
     _atomic.on_leave(check)
     _state["hook"] = sys.unraisablehook
     sys.unraisablehook = _unraisable
+    _state["excepthook"] = sys.excepthook
+    sys.excepthook = _excepthook
     for sig in SIGNALS:
         try:
             if signal.getsignal(sig) == signal.SIG_IGN:
@@ -150,6 +165,9 @@ def restore(exiting: bool = False) -> None:
     if sys.unraisablehook is _unraisable:
         sys.unraisablehook = _silent if (exiting and interrupted) else (_state["hook"] or sys.__unraisablehook__)
     _state["hook"] = None
+    if sys.excepthook is _excepthook:
+        sys.excepthook = _state["excepthook"] or sys.__excepthook__
+    _state["excepthook"] = None
     _atomic.off_leave(check)
     _state["pending"] = None
     _state["installed"] = False
