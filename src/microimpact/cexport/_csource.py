@@ -7,6 +7,7 @@ import math
 from .._validation import check_nonnegative, check_positive
 from ..adhesion import STICKING_CONSTANT
 from ..core.tangential import stiffness_ratio, stiffness_ratio_same_poisson
+from ._adhesive import ADHESIVE_CALL, ADHESIVE_HEADER, adhesive_c_source, adhesive_laws
 from ._common import comment_text
 
 __all__ = ["generate_c_source", "write_c_source"]
@@ -322,11 +323,11 @@ def generate_c_source(
     if math.isinf(G) or math.isinf(mu):
         raise ValueError("work_of_adhesion and friction must be finite")
     kappa = _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus)
-    if kappa is not None and G > 0.0:
+    if kappa is not None and G > 0.0 and tangential not in adhesive_laws():
         raise ValueError(
             f"work_of_adhesion={G!r} with tangential={tangential!r} is not exported to C: wall_interaction "
-            "integrates each adhesive impact (normal and tangential together, microimpact.oblique.adhesive), "
-            "which the C function does not reproduce; export tangential='rigid' or work_of_adhesion=0"
+            f"integrates adhesive impacts of {', '.join(repr(x) for x in adhesive_laws())} (or 'rigid') only; "
+            "export one of those or work_of_adhesion=0"
         )
     label = f"{comment_text(pair.label)}; " if pair is not None and pair.label else ""
     desc = f"{label}E* = {E:.6g} Pa, p_y = {p_y:.6g} Pa, G = {G:.6g} J/m^2, mu = {mu:.6g}"
@@ -347,6 +348,8 @@ def generate_c_source(
         root_of_e2=_ROOT_OF_E2,
     )
     text = text if kappa is None else _mindlin_source(text, kappa, tangential)
+    if kappa is not None and tangential in adhesive_laws():
+        text = _adhesive_source(text, tangential)
     return text if adhesion == "additive" else _whole_law_source(text)
 
 
@@ -436,6 +439,31 @@ _MINDLIN_EDITS = (
     ),
     (_ROOT_OF_E2, _COMPLIANT_ROOT_OF_E2),  # last: the first edit's text is read for the header
 )
+
+
+def _adhesive_source(text, law):
+    """The compliant source ``text`` of ``law`` with the adhesive integration in place of its -3 refusal
+    (:mod:`._adhesive`): the header's lines, the integration's functions before the wall function (after
+    ``MICROIMPACT_KAPPA``), and the call once ``vn``, ``r`` and ``m`` are known."""
+    from ..adhesion import WHOLE_LAW
+
+    refusal, kept = _MINDLIN_EDITS[3][1], _MINDLIN_EDITS[3][0]
+    edits = (
+        (refusal, kept + ADHESIVE_HEADER.replace("@LAW@", WHOLE_LAW)),
+        (_MINDLIN_EDITS[4][1], _MINDLIN_EDITS[4][0]),
+        (_MASS_LINE, _MASS_LINE + ADHESIVE_CALL),
+    )
+    for old, new in edits:
+        if text.count(old) != 1:  # pragma: no cover - the template changed
+            raise RuntimeError("the C template no longer has the compliant adhesive refusal")
+        text = text.replace(old, new)
+    anchor = "int microimpact_wall_interaction("
+    head, tail = text.split(anchor, 1)
+    return head + adhesive_c_source(law) + anchor + tail
+
+
+#: The template's line computing the sphere's mass, after which an adhesive particle is integrated.
+_MASS_LINE = "    m = 4.0 / 3.0 * MICROIMPACT_PI * (r * r * r) * density;\n"
 
 
 def _mindlin_source(text, kappa, law="mindlin"):
