@@ -31,15 +31,15 @@ REL = 1e-15
 
 @pytest.fixture(scope="module")
 def programs(tmp_path_factory):
-    """One compiled driver per law. The universal table of each law (the non-adhesive particles' path,
-    not met here) is built coarse: a full one takes seconds per law in a new cache."""
+    """One compiled driver per law. The universal table baked in serves the non-adhesive particles only,
+    none here: every law gets Mindlin's, built coarse (a full one takes seconds per law in a new cache)."""
     cc = _compiler()
     if cc is None:
         pytest.skip("no C compiler on this machine")
     full = oblique.universal_table
     out = {}
     with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(oblique, "universal_table", lambda k, law="mindlin": full(k, dpsi=0.5, n_x=3, steps=20, law=law))
+        mp.setattr(oblique, "universal_table", lambda k, law="mindlin": full(k, dpsi=0.5, n_x=3, steps=20))
         for law in LAWS:
             tmp = tmp_path_factory.mktemp(f"cexport_adhesive_{law}")
             write_c_source(
@@ -146,9 +146,7 @@ def test_adhesive_source_per_law(monkeypatch):
     from microimpact.core import tangential_laws as tl
 
     full = oblique.universal_table
-    monkeypatch.setattr(
-        oblique, "universal_table", lambda k, law="mindlin": full(k, dpsi=0.5, n_x=3, steps=20, law=law)
-    )
+    monkeypatch.setattr(oblique, "universal_table", lambda k, law="mindlin": full(k, dpsi=0.5, n_x=3, steps=20))
 
     pair_kw = {"effective_modulus": 1.31e9, "limiting_pressure": 156e6, "friction": 0.3, "poisson_ratio": NU}
     src = generate_c_source(tangential="lammps_linear_history", work_of_adhesion=0.1, **pair_kw)
@@ -163,3 +161,16 @@ def test_adhesive_source_per_law(monkeypatch):
             generate_c_source(tangential=law, work_of_adhesion=0.1, **pair_kw)
     src = generate_c_source(tangential="stronge", **pair_kw)  # an adhesive struct: -3, outputs = inputs
     assert "return -3;" in src and "microimpact__adhesive_wall" not in src
+
+
+def test_cli_exports_adhesion_with_a_compliant_law(tmp_path, monkeypatch):
+    """``microimpact export`` writes the C file of a compliant law with adhesion (it refused it before)."""
+    from microimpact.cli import main
+
+    full = oblique.universal_table
+    monkeypatch.setattr(oblique, "universal_table", lambda k, law="mindlin": full(k, dpsi=0.5, n_x=3, steps=20))
+    args = ["export", "--out", str(tmp_path), "--radius", "5e-6", "--density", "2500", "--effective-modulus", "5e9"]
+    args += ["--limiting-pressure", "1e8", "--poisson-ratio", "0.3", "--friction", "0.3"]
+    assert main([*args, "--work-of-adhesion", "0.1", "--tangential", "lammps_mindlin"]) == 0
+    src = (tmp_path / "microimpact_wall.c").read_text()
+    assert "microimpact__adhesive_wall" in src and "return -3;" not in src
