@@ -294,6 +294,7 @@ static double microimpact_adh_jkr_turning_point(double Kin, double b0, double E,
 static double microimpact_adh_unloading_radius_b(double bs, double Ps, double E, double R, double s)
 {
     double b3 = bs * bs * bs;
+    (void)R;
     return (4.0 * E * b3 * b3 / 3.0) / (Ps + 4.0 * E * s * b3);
 }
 
