@@ -9,7 +9,9 @@ estimate and the two ends of its confidence band. Sign conventions are those of
 :mod:`microimpact.wall`.
 
 One private module a subject: ``_tables`` (CSV tables), ``_csource`` (the C
-source), ``_band`` (a fit's confidence band); every name is importable from here.
+source), ``_adhesive`` (the C source's adhesive oblique impact, integrated as
+:mod:`microimpact.oblique.adhesive` integrates it), ``_band`` (a fit's confidence band); every
+name is importable from here.
 """
 
 from __future__ import annotations

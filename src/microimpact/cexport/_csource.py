@@ -7,6 +7,7 @@ import math
 from .._validation import check_nonnegative, check_positive
 from ..adhesion import STICKING_CONSTANT
 from ..core.tangential import stiffness_ratio, stiffness_ratio_same_poisson
+from ._adhesive import ADHESIVE_CALL, ADHESIVE_HEADER, adhesive_c_source, adhesive_laws
 from ._common import comment_text
 
 __all__ = ["generate_c_source", "write_c_source"]
@@ -266,11 +267,18 @@ def generate_c_source(
         tangential impulse is ``J_t = -F(psi, V_y/V) mu J_n u_t/|u_t|`` with
         ``psi = kappa |u_t| / (mu V)``, as the Python function computes it. ``kappa``
         is a compile-time constant (``MICROIMPACT_KAPPA``): a struct with another
-        ``E*`` keeps the ``kappa`` given here. With adhesion (``work_of_adhesion > 0``) a compliant
-        law is refused (ValueError): Python integrates each adhesive
-        impact (:func:`~microimpact.oblique.adhesive.adhesive_oblique_impact`), which the C function does
-        not reproduce; the compliant function returns -3 (outputs = inputs) for a struct whose
-        ``work_of_adhesion`` is positive, rather than scale the non-adhesive table by the adhesive ``J_n``.
+        ``E*`` keeps the ``kappa`` given here. With adhesion (a struct whose ``work_of_adhesion`` is
+        positive) the compliant function integrates each impact as
+        :func:`~microimpact.wall.wall_interaction` does (normal and tangential together under Thornton
+        & Ning's whole adhesive elastic-plastic law, whatever ``adhesion=`` says, as there;
+        :func:`~microimpact.oblique.adhesive.adhesive_oblique_impact`), the same operations in the same
+        order (the tests find the same bits): it returns 0 (bounced, ``*e_n`` the law's restitution) or
+        1 (captured, ``*e_n = 0``), and a captured particle's ``v_out`` and ``omega_out`` are the velocity
+        along the wall and the spin it keeps (rolling or sliding on the wall; no normal part), not zero.
+        About as costly as in Python (thousands of time steps an impact, a few ms). ``"stronge"`` and
+        ``"mindlin_deresiewicz"``, which that integration does not run, are refused with adhesion
+        (ValueError), and their function returns -3 (outputs = inputs) for a struct whose
+        ``work_of_adhesion`` is positive.
     poisson_ratio : float, optional
         ``"mindlin"`` only: one Poisson's ratio for particle and wall,
         ``kappa = 2(1 - nu)/(2 - nu)``.
@@ -305,7 +313,7 @@ def generate_c_source(
         are given, a value is out of range, or ``tangential="mindlin"`` has no way to
         ``kappa`` (or gets both ``poisson_ratio`` and ``effective_shear_modulus``);
         ``poisson_ratio`` or ``effective_shear_modulus`` with ``"rigid"`` is refused
-        too (it would be ignored); ``work_of_adhesion > 0`` with a compliant ``tangential``.
+        too (it would be ignored); ``work_of_adhesion > 0`` with ``"stronge"`` or ``"mindlin_deresiewicz"``.
     """
     from .._version import __version__
     from ..adhesion import check_adhesion_rule
@@ -322,11 +330,11 @@ def generate_c_source(
     if math.isinf(G) or math.isinf(mu):
         raise ValueError("work_of_adhesion and friction must be finite")
     kappa = _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus)
-    if kappa is not None and G > 0.0:
+    if kappa is not None and G > 0.0 and tangential not in adhesive_laws():
         raise ValueError(
             f"work_of_adhesion={G!r} with tangential={tangential!r} is not exported to C: wall_interaction "
-            "integrates each adhesive impact (normal and tangential together, microimpact.oblique.adhesive), "
-            "which the C function does not reproduce; export tangential='rigid' or work_of_adhesion=0"
+            f"integrates adhesive impacts of {', '.join(repr(x) for x in adhesive_laws())} (or 'rigid') only; "
+            "export one of those or work_of_adhesion=0"
         )
     label = f"{comment_text(pair.label)}; " if pair is not None and pair.label else ""
     desc = f"{label}E* = {E:.6g} Pa, p_y = {p_y:.6g} Pa, G = {G:.6g} J/m^2, mu = {mu:.6g}"
@@ -347,6 +355,8 @@ def generate_c_source(
         root_of_e2=_ROOT_OF_E2,
     )
     text = text if kappa is None else _mindlin_source(text, kappa, tangential)
+    if kappa is not None and tangential in adhesive_laws():
+        text = _adhesive_source(text, tangential)
     return text if adhesion == "additive" else _whole_law_source(text)
 
 
@@ -436,6 +446,31 @@ _MINDLIN_EDITS = (
     ),
     (_ROOT_OF_E2, _COMPLIANT_ROOT_OF_E2),  # last: the first edit's text is read for the header
 )
+
+
+def _adhesive_source(text, law):
+    """The compliant source ``text`` of ``law`` with the adhesive integration in place of its -3 refusal
+    (:mod:`._adhesive`): the header's lines, the integration's functions before the wall function (after
+    ``MICROIMPACT_KAPPA``), and the call once ``vn``, ``r`` and ``m`` are known."""
+    from ..adhesion import WHOLE_LAW
+
+    refusal, kept = _MINDLIN_EDITS[3][1], _MINDLIN_EDITS[3][0]
+    edits = (
+        (refusal, kept + ADHESIVE_HEADER.replace("@LAW@", WHOLE_LAW)),
+        (_MINDLIN_EDITS[4][1], _MINDLIN_EDITS[4][0]),
+        (_MASS_LINE, _MASS_LINE + ADHESIVE_CALL),
+    )
+    for old, new in edits:
+        if text.count(old) != 1:  # pragma: no cover - the template changed
+            raise RuntimeError("the C template no longer has the compliant adhesive refusal")
+        text = text.replace(old, new)
+    anchor = "int microimpact_wall_interaction("
+    head, tail = text.split(anchor, 1)
+    return head + adhesive_c_source(law) + anchor + tail
+
+
+#: The template's line computing the sphere's mass, after which an adhesive particle is integrated.
+_MASS_LINE = "    m = 4.0 / 3.0 * MICROIMPACT_PI * (r * r * r) * density;\n"
 
 
 def _mindlin_source(text, kappa, law="mindlin"):

@@ -11,6 +11,7 @@ from ..adhesion import check_adhesion_rule, work_of_adhesion
 from ..cexport import DEFAULT_VS_OVER_VY, generate_c_source, write_band, write_tables
 from ..materials import sphere_mass
 from ..oblique import DEM_LAWS as LAWS
+from ..oblique.adhesive import ADHESIVE_LAWS
 from ._common import (
     DeferredHelp,
     add_pair_arguments,
@@ -99,8 +100,9 @@ def register(sub) -> None:
         help="rigid: rigid-body Coulomb impulse (default); mindlin: compliant contact (Mindlin's no-slip spring "
         "with a Coulomb limit) through the universal table of kappa = 4 G*/E*, baked into the C file; the DEM "
         "codes' laws (lammps_mindlin, ..., liggghts_history, di_renzo_di_maio) likewise; needs "
-        "--poisson-ratio, --shear-modulus or --particle/--surface; not with adhesion (G > 0: microimpact "
-        "integrates those impacts, which the C file does not reproduce)",
+        "--poisson-ratio, --shear-modulus or --particle/--surface; with adhesion (G > 0) the C function "
+        "integrates each impact under Thornton & Ning's whole law, as microimpact does (not stronge or "
+        "mindlin_deresiewicz)",
     )
     k = t.add_mutually_exclusive_group()
     k.add_argument("--poisson-ratio", metavar="NU", help="mindlin: one Poisson ratio of particle and wall")
@@ -182,12 +184,11 @@ def run(args) -> int:
         check_nonnegative(name, value)
         if math.isinf(value):
             raise ValueError(f"{name} must be finite, got {value!r}")
-    if tangential != "rigid" and G > 0.0:  # before anything is fitted or written
+    if tangential not in ADHESIVE_LAWS and G > 0.0:  # before anything is fitted or written
         raise ValueError(
             f"--tangential {tangential} with adhesion (--work-of-adhesion or --surface-energy: G = {G:g} J/m^2) is "
-            "not exported to C: microimpact integrates "
-            "each adhesive impact (normal and tangential together), which the C function does not reproduce; "
-            "use --tangential rigid or no adhesion"
+            "not exported to C: microimpact integrates adhesive impacts of "
+            f"{', '.join(x for x in ADHESIVE_LAWS if x != 'rigid')} only; use one of those, rigid or no adhesion"
         )
     velocities = parse_values(args.velocities, "--velocities") if args.velocities is not None else None
     if velocities is not None:
