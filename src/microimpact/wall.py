@@ -682,7 +682,7 @@ def _adhesive_oblique(table, vT, nT, wT, d, rho, E, p_y, G, mu, kappa, tangentia
     law depends on each impact's maximum approach and is found per impact). ``"lammps_linear_history"``
     takes each impact's ``8 G* a_m`` as without adhesion (``a_m`` of the elastic impact at ``V``)."""
     from .impact import elastic_max_approach
-    from .oblique.adhesive import adhesive_law, adhesive_oblique_impact
+    from .oblique.adhesive import adhesive_law, adhesive_oblique_impact, libm
     from .pair import ContactPair
 
     N = table.shape[0]
@@ -712,7 +712,7 @@ def _adhesive_oblique(table, vT, nT, wT, d, rho, E, p_y, G, mu, kappa, tangentia
     w_b = wx * bx + wy * by + wz * bz
     sign = np.where(v_e < 0.0, -1.0, 1.0)
     speed = np.hypot(V, v_e)
-    angle = np.minimum(np.degrees(np.arctan2(np.abs(v_e), V)), np.nextafter(90.0, 0.0))
+    angle = np.minimum(np.degrees(libm(math.atan2, np.abs(v_e), V)), np.nextafter(90.0, 0.0))
     rho_s, E_s, py_s, G_s, mu_s, kap_s = rho[sel], E[sel], p_y[sel], G[sel], mu[sel], kappa[sel]
     m = evaluate(_wall.sphere_mass, r, rho_s)[0]
     k_lin = np.zeros(sel.size)

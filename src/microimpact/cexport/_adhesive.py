@@ -12,8 +12,9 @@ sets the step, the velocity-Verlet integration, the outcome's classification and
 (slip direction ``e``, ``b = e x n``, the outgoing ``v'`` and ``omega'``). Every step is a
 translation of the Python source, expression by expression (C's ``*``, ``/``, ``+``, ``-`` group
 from the left as Python's do, and ``x ** y`` is the C library's ``pow``), so the results are the
-same bits where the C library's ``pow``, ``hypot``, ``atan2``, ``cos`` and ``sin`` are the ones
-Python and numpy call (the tests measure it).
+same bits: the Python path calls the C library's ``atan2``, ``cos`` and ``sin`` through :mod:`math`
+(:func:`microimpact.oblique.adhesive.libm`: numpy's own vectorised routines may differ by an ulp),
+``hypot`` through numpy, and ``pow`` where numba or Python raise to a power (the tests measure it).
 
 The constants come from their Python homes (the tangential law's ``(c_load, c_unload, factor,
 linear, lam)`` from :func:`microimpact.core.tangential_laws.law_parameters`, the Gauss-Legendre rule,

@@ -154,6 +154,14 @@ class AdhesiveObliqueImpact:
         return int(np.size(self.angle))
 
 
+def libm(fn, *xs):
+    """``fn`` (one of :mod:`math`'s functions, the C library's) element by element over ``xs``: numpy may
+    evaluate ``cos``, ``sin`` or ``arctan2`` of float64 arrays with its own vectorised routines (on
+    AVX-512 machines), a few ulp from the C library's, and the exported C wall function
+    (:mod:`microimpact.cexport`), which calls the C library, must reproduce this path bit for bit."""
+    return np.vectorize(fn, otypes=[float])(*xs)
+
+
 def _hertz_time(Vn, E, R, m):
     """Hertz contact time [s] at ``Vn`` (:func:`microimpact.core.hertz.contact_time`): the step's scale."""
     return float(hertz.contact_time(Vn, E, R, m))
@@ -407,8 +415,8 @@ def adhesive_oblique_impact(
     E, R, m, p_y = (float(x) for x in (pair.effective_modulus, pair.effective_radius, pair.effective_mass,
                                        pair.limiting_pressure))  # fmt: skip
     rad = np.radians(theta)
-    Vn = speed * np.cos(rad)
-    vt = speed * np.sin(rad)
+    Vn = speed * libm(math.cos, rad)
+    vt = speed * libm(math.sin, rad)
     out = pair.impact(Vn, model=model, warn=False, **dict(zip((p.name for p in mod.PARAMETERS), params)))
     e = np.asarray(out.restitution, dtype=float)
     amax_all = np.asarray(out.max_approach, dtype=float)
