@@ -77,3 +77,45 @@ def test_steps_have_eighth_order():
         got = hv._step(x0, v0, h, 0.3, 0.5)
         errs.append(math.hypot(got[0] - ref[0], got[1] - ref[1]))
     assert 2.0**9 / 2.5 < errs[0] / errs[1] < 2.0**9 * 2.5
+
+
+def _oscillator(x, v, p):
+    """``x'' = -k x`` with the spring's energy ``w' = k x v`` (``p = (k,)``)."""
+    return -p[0] * x, p[0] * x * v
+
+
+def test_step_carries_a_third_state_to_eighth_order():
+    """:func:`dp.step` on the harmonic oscillator from ``(1, 0, 0)``: the state after one step and the
+    third state (the change of the spring's energy, ``-sin^2(h)/2`` exactly) have a local error of at
+    least O(h^9): halving the step divides it by about 2^9 or more (a wrong weight of the third
+    state's rates would leave a low order); the error estimators shrink with the step too."""
+    errs = []
+    for h in (0.8, 0.4):
+        x, v, w, e5x, e5v, e3x, e3v = dp.step(_oscillator, 1.0, 0.0, 0.0, h, (1.0,))
+        exact = (math.cos(h), -math.sin(h), -0.5 * math.sin(h) ** 2)
+        errs.append((math.hypot(x - exact[0], v - exact[1]), abs(w - exact[2]), abs(e5x) + abs(e5v)))
+    assert 2.0**9 / 2.5 < errs[0][0] / errs[1][0] < 2.0**9 * 2.5  # measured 524
+    assert errs[0][1] / errs[1][1] > 2.0**9 / 2.5  # measured 5988: this quadrature gains orders
+    assert errs[1][2] < errs[0][2] / 16.0
+
+
+def test_hairer_error_is_the_rms_of_the_scaled_estimators():
+    """Both estimators equal (``err5 = err3 = e``): ``|h| e^2 / sqrt(2 (1.01 e^2))`` for two components
+    of scaled size ``e / sqrt(2)`` each; zero estimators give zero."""
+    e = 3.0
+    got = dp.hairer_error(-0.5, e, e, e, e, 2.0, 2.0)
+    scaled = 2.0 * (e / 2.0) ** 2
+    assert got == pytest.approx(0.5 * scaled / math.sqrt(2.0 * 1.01 * scaled), rel=1e-15)
+    assert dp.hairer_error(0.5, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0) == 0.0
+
+
+def test_the_stages_are_written_once():
+    """Every model that integrates its equation of motion takes DOP853's step from :func:`dp.step`:
+    no other module of the core writes out the last stage's coefficients."""
+    import pathlib
+
+    import microimpact.core as core
+
+    root = pathlib.Path(core.__file__).parent
+    copies = [p.name for p in root.rglob("*.py") if p.name != "dop853.py" and "A11_10" in p.read_text()]
+    assert copies == []

@@ -47,11 +47,6 @@ RABINOVICH = 3
 #: Returns into contact after which a particle held by the bridge is counted as captured.
 MAX_RETURNS = 40
 
-#: The stage matrix of DOP853 as one flat 12 x 12 tuple (row ``s``: the slopes stage ``s`` takes).
-_A = tuple(float(getattr(dp, f"A{s}_{j}", 0.0)) if 0 < s < 12 and j < s else 0.0 for s in range(12) for j in range(12))
-_B = tuple(float(getattr(dp, f"B{j}", 0.0)) for j in range(12))
-_E5 = tuple(float(getattr(dp, f"E5_{j}", 0.0)) for j in range(12))
-_E3 = tuple(float(getattr(dp, f"E3_{j}", 0.0)) for j in range(12))
 _RTOL = 1e-13
 
 #: LIGGGHTS' floor on 1000 times the bridge volume [m^3]: both capillary models return before adding
@@ -274,40 +269,18 @@ def _acc(kind, inside, x, v, E, R, m, q):
 
 
 @jitable
+def _rates(x, v, p):
+    """:func:`_acc` as :func:`~microimpact.core.dop853.step` calls it, ``p = (kind, inside, E, R, m,
+    q)``: no third state."""
+    return _acc(p[0], p[1], x, v, p[2], p[3], p[4], p[5]), 0.0
+
+
+@jitable
 def _step(kind, inside, x, v, h, E, R, m, q, xs, vs):
-    """One DOP853 step of length ``h`` from ``(x, v)``: ``(x_new, v_new, err)`` with Hairer's error
-    norm (each component relative to ``xs``/``vs`` plus ``_RTOL`` times its size)."""
-    kx = [0.0] * 12
-    kv = [0.0] * 12
-    kx[0] = v
-    kv[0] = _acc(kind, inside, x, v, E, R, m, q)
-    for s in range(1, 12):
-        sx = 0.0
-        sv = 0.0
-        for j in range(s):
-            a = _A[12 * s + j]
-            if a != 0.0:
-                sx += a * kx[j]
-                sv += a * kv[j]
-        xi = x + h * sx
-        vi = v + h * sv
-        kx[s] = vi
-        kv[s] = _acc(kind, inside, xi, vi, E, R, m, q)
-    bx = 0.0
-    bv = 0.0
-    e5x = 0.0
-    e5v = 0.0
-    e3x = 0.0
-    e3v = 0.0
-    for j in range(12):
-        bx += _B[j] * kx[j]
-        bv += _B[j] * kv[j]
-        e5x += _E5[j] * kx[j]
-        e5v += _E5[j] * kv[j]
-        e3x += _E3[j] * kx[j]
-        e3v += _E3[j] * kv[j]
-    xn = x + h * bx
-    vn = v + h * bv
+    """One DOP853 step of length ``h`` from ``(x, v)`` (:func:`microimpact.core.dop853.step`):
+    ``(x_new, v_new, err)`` with Hairer's error norm (each component relative to ``xs``/``vs`` plus
+    ``_RTOL`` times the larger of its sizes at the step's ends)."""
+    xn, vn, _, e5x, e5v, e3x, e3v = dp.step(_rates, x, v, 0.0, h, (kind, inside, E, R, m, q))
     scx = _RTOL * (xs + max(abs(x), abs(xn)))
     scv = _RTOL * (vs + max(abs(v), abs(vn)))
     e5x /= scx  # squares as products: Python's ``** 2`` is libm's pow, not always x * x as compiled

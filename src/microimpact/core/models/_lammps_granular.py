@@ -131,110 +131,19 @@ def separation(kind, E, R, gamma):
 
 
 @jitable
-def _rates(kind, mode, factor, x, v, E, R, m, gamma):
-    """``(alpha'', dissipation rate)`` of the state ``(x, v)``."""
+def _rates(x, v, p):
+    """``(alpha'', dissipation rate)`` of the state ``(x, v)``; ``p = (kind, mode, factor, E, R, m, gamma)``."""
+    kind, mode, factor, E, R, m, gamma = p
     fd = damping_force(kind, mode, factor, x, v, E, R, m, gamma)
     return -(elastic_force(kind, x, E, R, gamma) + fd) / m, fd * v
 
 
 @jitable
 def _step(x, v, w, h, kind, mode, factor, E, R, m, gamma, sx, sv):
-    """One DOP853 step of ``(alpha, alpha', dissipated work)``: ``(x, v, w, error)`` with Hairer's error
-    measure, ``x`` and ``v`` weighed with ``_TOL (scale + |value|)``."""
-    a0, d0 = _rates(kind, mode, factor, x, v, E, R, m, gamma)
-    x1 = x + h * (dp.A1_0 * v)
-    v1 = v + h * (dp.A1_0 * a0)
-    a1, d1 = _rates(kind, mode, factor, x1, v1, E, R, m, gamma)
-    x2 = x + h * (dp.A2_0 * v + dp.A2_1 * v1)
-    v2 = v + h * (dp.A2_0 * a0 + dp.A2_1 * a1)
-    a2, d2 = _rates(kind, mode, factor, x2, v2, E, R, m, gamma)
-    x3 = x + h * (dp.A3_0 * v + dp.A3_2 * v2)
-    v3 = v + h * (dp.A3_0 * a0 + dp.A3_2 * a2)
-    a3, d3 = _rates(kind, mode, factor, x3, v3, E, R, m, gamma)
-    x4 = x + h * (dp.A4_0 * v + dp.A4_2 * v2 + dp.A4_3 * v3)
-    v4 = v + h * (dp.A4_0 * a0 + dp.A4_2 * a2 + dp.A4_3 * a3)
-    a4, d4 = _rates(kind, mode, factor, x4, v4, E, R, m, gamma)
-    x5 = x + h * (dp.A5_0 * v + dp.A5_3 * v3 + dp.A5_4 * v4)
-    v5 = v + h * (dp.A5_0 * a0 + dp.A5_3 * a3 + dp.A5_4 * a4)
-    a5, d5 = _rates(kind, mode, factor, x5, v5, E, R, m, gamma)
-    x6 = x + h * (dp.A6_0 * v + dp.A6_3 * v3 + dp.A6_4 * v4 + dp.A6_5 * v5)
-    v6 = v + h * (dp.A6_0 * a0 + dp.A6_3 * a3 + dp.A6_4 * a4 + dp.A6_5 * a5)
-    a6, d6 = _rates(kind, mode, factor, x6, v6, E, R, m, gamma)
-    x7 = x + h * (dp.A7_0 * v + dp.A7_3 * v3 + dp.A7_4 * v4 + dp.A7_5 * v5 + dp.A7_6 * v6)
-    v7 = v + h * (dp.A7_0 * a0 + dp.A7_3 * a3 + dp.A7_4 * a4 + dp.A7_5 * a5 + dp.A7_6 * a6)
-    a7, d7 = _rates(kind, mode, factor, x7, v7, E, R, m, gamma)
-    x8 = x + h * (dp.A8_0 * v + dp.A8_3 * v3 + dp.A8_4 * v4 + dp.A8_5 * v5 + dp.A8_6 * v6 + dp.A8_7 * v7)
-    v8 = v + h * (dp.A8_0 * a0 + dp.A8_3 * a3 + dp.A8_4 * a4 + dp.A8_5 * a5 + dp.A8_6 * a6 + dp.A8_7 * a7)
-    a8, d8 = _rates(kind, mode, factor, x8, v8, E, R, m, gamma)
-    x9 = x + h * (dp.A9_0 * v + dp.A9_3 * v3 + dp.A9_4 * v4 + dp.A9_5 * v5 + dp.A9_6 * v6 + dp.A9_7 * v7 + dp.A9_8 * v8)
-    v9 = v + h * (
-        dp.A9_0 * a0 + dp.A9_3 * a3 + dp.A9_4 * a4 + dp.A9_5 * a5 + dp.A9_6 * a6 + dp.A9_7 * a7 + dp.A9_8 * a8
-    )
-    a9, d9 = _rates(kind, mode, factor, x9, v9, E, R, m, gamma)
-    x10 = x + h * (
-        dp.A10_0 * v
-        + dp.A10_3 * v3
-        + dp.A10_4 * v4
-        + dp.A10_5 * v5
-        + dp.A10_6 * v6
-        + dp.A10_7 * v7
-        + dp.A10_8 * v8
-        + dp.A10_9 * v9
-    )
-    v10 = v + h * (
-        dp.A10_0 * a0
-        + dp.A10_3 * a3
-        + dp.A10_4 * a4
-        + dp.A10_5 * a5
-        + dp.A10_6 * a6
-        + dp.A10_7 * a7
-        + dp.A10_8 * a8
-        + dp.A10_9 * a9
-    )
-    a10, d10 = _rates(kind, mode, factor, x10, v10, E, R, m, gamma)
-    x11 = x + h * (
-        dp.A11_0 * v
-        + dp.A11_3 * v3
-        + dp.A11_4 * v4
-        + dp.A11_5 * v5
-        + dp.A11_6 * v6
-        + dp.A11_7 * v7
-        + dp.A11_8 * v8
-        + dp.A11_9 * v9
-        + dp.A11_10 * v10
-    )
-    v11 = v + h * (
-        dp.A11_0 * a0
-        + dp.A11_3 * a3
-        + dp.A11_4 * a4
-        + dp.A11_5 * a5
-        + dp.A11_6 * a6
-        + dp.A11_7 * a7
-        + dp.A11_8 * a8
-        + dp.A11_9 * a9
-        + dp.A11_10 * a10
-    )
-    a11, d11 = _rates(kind, mode, factor, x11, v11, E, R, m, gamma)
-    b = dp.B
-    xn = x + h * (b[0] * v + b[1] * v5 + b[2] * v6 + b[3] * v7 + b[4] * v8 + b[5] * v9 + b[6] * v10 + b[7] * v11)
-    vn = v + h * (b[0] * a0 + b[1] * a5 + b[2] * a6 + b[3] * a7 + b[4] * a8 + b[5] * a9 + b[6] * a10 + b[7] * a11)
-    wn = w + h * (b[0] * d0 + b[1] * d5 + b[2] * d6 + b[3] * d7 + b[4] * d8 + b[5] * d9 + b[6] * d10 + b[7] * d11)
-    e5, e3 = dp.E5, dp.E3
-    e5x = e5[0] * v + e5[1] * v5 + e5[2] * v6 + e5[3] * v7 + e5[4] * v8 + e5[5] * v9 + e5[6] * v10 + e5[7] * v11
-    e5v = e5[0] * a0 + e5[1] * a5 + e5[2] * a6 + e5[3] * a7 + e5[4] * a8 + e5[5] * a9 + e5[6] * a10 + e5[7] * a11
-    e3x = e3[0] * v + e3[1] * v5 + e3[2] * v6 + e3[3] * v7 + e3[4] * v8 + e3[5] * v9 + e3[6] * v10 + e3[7] * v11
-    e3v = e3[0] * a0 + e3[1] * a5 + e3[2] * a6 + e3[3] * a7 + e3[4] * a8 + e3[5] * a9 + e3[6] * a10 + e3[7] * a11
-    wx = _TOL * (sx + abs(xn))
-    wv = _TOL * (sv + abs(vn))
-    e5x /= wx
-    e5v /= wv
-    e3x /= wx
-    e3v /= wv
-    s5 = e5x * e5x + e5v * e5v
-    s3 = e3x * e3x + e3v * e3v
-    if s5 == 0.0 and s3 == 0.0:
-        return xn, vn, wn, 0.0
-    return xn, vn, wn, abs(h) * s5 / math.sqrt(2.0 * (s5 + 0.01 * s3))
+    """One DOP853 step of ``(alpha, alpha', dissipated work)`` (:func:`microimpact.core.dop853.step`):
+    ``(x, v, w, error)`` with Hairer's error measure, ``x`` and ``v`` weighed with ``_TOL (scale + |value|)``."""
+    xn, vn, wn, e5x, e5v, e3x, e3v = dp.step(_rates, x, v, w, h, (kind, mode, factor, E, R, m, gamma))
+    return xn, vn, wn, dp.hairer_error(h, e5x, e5v, e3x, e3v, _TOL * (sx + abs(xn)), _TOL * (sv + abs(vn)))
 
 
 @jitable

@@ -109,112 +109,19 @@ def _acc(x, v, kappa, q):
     return -(x * s + kappa * _power(x, s, q) * v)
 
 
-@jitable(inline=True)
-def _weighted(w, y0, y5, y6, y7, y8, y9, y10, y11):
-    """``sum_j w_j y_j`` over the stages DOP853's weights use (0 and 5 to 11; ``w`` one of the
-    tuples :data:`~microimpact.core.dop853.B`, ``E5``, ``E3``), left to right."""
-    return w[0] * y0 + w[1] * y5 + w[2] * y6 + w[3] * y7 + w[4] * y8 + w[5] * y9 + w[6] * y10 + w[7] * y11
+@jitable
+def _rates(x, v, p):
+    """:func:`_acc` as :func:`~microimpact.core.dop853.step` calls it, ``p = (kappa, q)``: no third state."""
+    return _acc(x, v, p[0], p[1]), 0.0
 
 
 @jitable
 def _step(x, v, h, kappa, q):
-    """One step of length ``h`` of Hairer's DOP853 (:mod:`microimpact.core.dop853`): ``(x, v, error)``,
-    the error measured as Hairer's code measures it (root mean square over ``x`` and ``x'``, each
-    relative to ``_TOL (1e-3 + |new value|)``)."""
-    v0 = v
-    a0 = _acc(x, v, kappa, q)
-    x1 = x + h * (dp.A1_0 * v0)
-    v1 = v + h * (dp.A1_0 * a0)
-    a1 = _acc(x1, v1, kappa, q)
-    x2 = x + h * (dp.A2_0 * v0 + dp.A2_1 * v1)
-    v2 = v + h * (dp.A2_0 * a0 + dp.A2_1 * a1)
-    a2 = _acc(x2, v2, kappa, q)
-    x3 = x + h * (dp.A3_0 * v0 + dp.A3_2 * v2)
-    v3 = v + h * (dp.A3_0 * a0 + dp.A3_2 * a2)
-    a3 = _acc(x3, v3, kappa, q)
-    x4 = x + h * (dp.A4_0 * v0 + dp.A4_2 * v2 + dp.A4_3 * v3)
-    v4 = v + h * (dp.A4_0 * a0 + dp.A4_2 * a2 + dp.A4_3 * a3)
-    a4 = _acc(x4, v4, kappa, q)
-    x5 = x + h * (dp.A5_0 * v0 + dp.A5_3 * v3 + dp.A5_4 * v4)
-    v5 = v + h * (dp.A5_0 * a0 + dp.A5_3 * a3 + dp.A5_4 * a4)
-    a5 = _acc(x5, v5, kappa, q)
-    x6 = x + h * (dp.A6_0 * v0 + dp.A6_3 * v3 + dp.A6_4 * v4 + dp.A6_5 * v5)
-    v6 = v + h * (dp.A6_0 * a0 + dp.A6_3 * a3 + dp.A6_4 * a4 + dp.A6_5 * a5)
-    a6 = _acc(x6, v6, kappa, q)
-    x7 = x + h * (dp.A7_0 * v0 + dp.A7_3 * v3 + dp.A7_4 * v4 + dp.A7_5 * v5 + dp.A7_6 * v6)
-    v7 = v + h * (dp.A7_0 * a0 + dp.A7_3 * a3 + dp.A7_4 * a4 + dp.A7_5 * a5 + dp.A7_6 * a6)
-    a7 = _acc(x7, v7, kappa, q)
-    x8 = x + h * (dp.A8_0 * v0 + dp.A8_3 * v3 + dp.A8_4 * v4 + dp.A8_5 * v5 + dp.A8_6 * v6 + dp.A8_7 * v7)
-    v8 = v + h * (dp.A8_0 * a0 + dp.A8_3 * a3 + dp.A8_4 * a4 + dp.A8_5 * a5 + dp.A8_6 * a6 + dp.A8_7 * a7)
-    a8 = _acc(x8, v8, kappa, q)
-    x9 = x + h * (
-        dp.A9_0 * v0 + dp.A9_3 * v3 + dp.A9_4 * v4 + dp.A9_5 * v5 + dp.A9_6 * v6 + dp.A9_7 * v7 + dp.A9_8 * v8
-    )
-    v9 = v + h * (
-        dp.A9_0 * a0 + dp.A9_3 * a3 + dp.A9_4 * a4 + dp.A9_5 * a5 + dp.A9_6 * a6 + dp.A9_7 * a7 + dp.A9_8 * a8
-    )
-    a9 = _acc(x9, v9, kappa, q)
-    x10 = x + h * (
-        dp.A10_0 * v0
-        + dp.A10_3 * v3
-        + dp.A10_4 * v4
-        + dp.A10_5 * v5
-        + dp.A10_6 * v6
-        + dp.A10_7 * v7
-        + dp.A10_8 * v8
-        + dp.A10_9 * v9
-    )
-    v10 = v + h * (
-        dp.A10_0 * a0
-        + dp.A10_3 * a3
-        + dp.A10_4 * a4
-        + dp.A10_5 * a5
-        + dp.A10_6 * a6
-        + dp.A10_7 * a7
-        + dp.A10_8 * a8
-        + dp.A10_9 * a9
-    )
-    a10 = _acc(x10, v10, kappa, q)
-    x11 = x + h * (
-        dp.A11_0 * v0
-        + dp.A11_3 * v3
-        + dp.A11_4 * v4
-        + dp.A11_5 * v5
-        + dp.A11_6 * v6
-        + dp.A11_7 * v7
-        + dp.A11_8 * v8
-        + dp.A11_9 * v9
-        + dp.A11_10 * v10
-    )
-    v11 = v + h * (
-        dp.A11_0 * a0
-        + dp.A11_3 * a3
-        + dp.A11_4 * a4
-        + dp.A11_5 * a5
-        + dp.A11_6 * a6
-        + dp.A11_7 * a7
-        + dp.A11_8 * a8
-        + dp.A11_9 * a9
-        + dp.A11_10 * a10
-    )
-    a11 = _acc(x11, v11, kappa, q)
-    xn = x + h * _weighted(dp.B, v0, v5, v6, v7, v8, v9, v10, v11)
-    vn = v + h * _weighted(dp.B, a0, a5, a6, a7, a8, a9, a10, a11)
-    e5x = _weighted(dp.E5, v0, v5, v6, v7, v8, v9, v10, v11)
-    e5v = _weighted(dp.E5, a0, a5, a6, a7, a8, a9, a10, a11)
-    e3x = _weighted(dp.E3, v0, v5, v6, v7, v8, v9, v10, v11)
-    e3v = _weighted(dp.E3, a0, a5, a6, a7, a8, a9, a10, a11)
-    sx = _TOL * (1e-3 + abs(xn))
-    sv = _TOL * (1e-3 + abs(vn))
-    e5x /= sx  # (squares written as products: Python's ``** 2`` is libm's pow, not always x * x)
-    e5v /= sv
-    e3x /= sx
-    e3v /= sv
-    e5 = e5x * e5x + e5v * e5v
-    e3 = e3x * e3x + e3v * e3v
-    if e5 == 0.0 and e3 == 0.0:
-        return xn, vn, 0.0
-    return xn, vn, abs(h) * e5 / math.sqrt(2.0 * (e5 + 0.01 * e3))
+    """One step of length ``h`` of Hairer's DOP853 (:func:`microimpact.core.dop853.step`): ``(x, v,
+    error)``, the error measured as Hairer's code measures it (root mean square over ``x`` and
+    ``x'``, each relative to ``_TOL (1e-3 + |new value|)``)."""
+    xn, vn, _, e5x, e5v, e3x, e3v = dp.step(_rates, x, v, 0.0, h, (kappa, q))
+    return xn, vn, dp.hairer_error(h, e5x, e5v, e3x, e3v, _TOL * (1e-3 + abs(xn)), _TOL * (1e-3 + abs(vn)))
 
 
 @jitable
