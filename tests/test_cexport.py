@@ -163,10 +163,11 @@ def test_adhesion_with_a_law_not_integrated_is_not_exported(law, tmp_path, capsy
     function: test_cexport_adhesive.py); with these the export refuses, in one line naming the options
     and why, and writes nothing."""
     pair = mi.ContactPair.paper_case("mica")
-    with pytest.raises(ValueError, match=r"work_of_adhesion=0\.05 with tangential=.* not exported") as err:
+    refusal = rf"tangential='{law}' with adhesion \(work_of_adhesion = 0\.05 J/m\^2\): .* integrated with 'mindlin'"
+    with pytest.raises(ValueError, match=refusal) as err:
         generate_c_source(pair, work_of_adhesion=0.05, friction=0.25, tangential=law, poisson_ratio=NU)
-    assert "\n" not in str(err.value) and "integrates" in str(err.value)
-    with pytest.raises(ValueError, match="not exported"):
+    assert "\n" not in str(err.value) and "C wall function" in str(err.value)
+    with pytest.raises(ValueError, match=refusal):
         write_c_source(tmp_path / "c", pair, work_of_adhesion=0.05, tangential=law, poisson_ratio=NU)
     assert not (tmp_path / "c").exists()
     args = ["export", "--out", str(tmp_path / "cli"), "--radius", "5e-6", "--density", "2500"]

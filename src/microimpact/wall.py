@@ -414,7 +414,7 @@ def wall_interaction(
         raise ValueError("work_of_adhesion and friction must be finite")
     adhesive_oblique = tangential != "rigid" and bool(np.any(G > 0.0))
     if adhesive_oblique:
-        adhesion = _check_adhesive_oblique(tangential, adhesion)
+        adhesion = _check_adhesive_oblique(tangential, adhesion, float(np.max(G)))
         per += _BYTES_ADHESIVE_OBLIQUE  # known once G is: still before anything of size N is made
         check_memory(N * per, f"wall_interaction of {N} particles", "pass the particles in blocks")
     has_spin = spin is not None
@@ -635,7 +635,7 @@ def _compliant_impulse_ratio(ut_mag, V, Vy, mu, kappa, law, skip):
     return np.where(approaching & (mu > 0.0), F, 0.0)
 
 
-def _check_adhesive_oblique(tangential, adhesion):
+def _check_adhesive_oblique(tangential, adhesion, G):
     """Refuse, before anything of size N is made, what the adhesive integration cannot run; the
     adhesion rule it integrates. The additive rule gives ``e`` but no force history to integrate the
     tangential contact along: the whole law it approximates is integrated in its place, with a
@@ -643,13 +643,9 @@ def _check_adhesive_oblique(tangential, adhesion):
     import warnings
 
     from .adhesion import ADDITIVE_RULE, WHOLE_LAW
-    from .oblique.adhesive import ADHESIVE_LAWS
+    from .oblique.adhesive import check_adhesive_tangential
 
-    if tangential not in ADHESIVE_LAWS:
-        raise ValueError(
-            f"tangential={tangential!r} with work_of_adhesion > 0: the adhesive integration runs "
-            f"{', '.join(repr(x) for x in ADHESIVE_LAWS if x != 'rigid')} (or 'rigid')"
-        )
+    check_adhesive_tangential(tangential, G)
     if adhesion == ADDITIVE_RULE:
         warnings.warn(
             f"adhesion={adhesion!r} with work_of_adhesion > 0 and tangential={tangential!r}: the additive rule "

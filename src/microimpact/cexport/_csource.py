@@ -330,12 +330,10 @@ def generate_c_source(
     if math.isinf(G) or math.isinf(mu):
         raise ValueError("work_of_adhesion and friction must be finite")
     kappa = _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus)
-    if kappa is not None and G > 0.0 and tangential not in adhesive_laws():
-        raise ValueError(
-            f"work_of_adhesion={G!r} with tangential={tangential!r} is not exported to C: wall_interaction "
-            f"integrates adhesive impacts of {', '.join(repr(x) for x in adhesive_laws())} (or 'rigid') only; "
-            "export one of those or work_of_adhesion=0"
-        )
+    if kappa is not None:
+        from ..oblique.adhesive import check_adhesive_tangential
+
+        check_adhesive_tangential(tangential, G)
     label = f"{comment_text(pair.label)}; " if pair is not None and pair.label else ""
     desc = f"{label}E* = {E:.6g} Pa, p_y = {p_y:.6g} Pa, G = {G:.6g} J/m^2, mu = {mu:.6g}"
     if kappa is not None:

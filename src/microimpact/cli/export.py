@@ -11,7 +11,7 @@ from ..adhesion import check_adhesion_rule, work_of_adhesion
 from ..cexport import DEFAULT_VS_OVER_VY, generate_c_source, write_band, write_tables
 from ..materials import sphere_mass
 from ..oblique import DEM_LAWS as LAWS
-from ..oblique.adhesive import ADHESIVE_LAWS
+from ..oblique.adhesive import check_adhesive_tangential
 from ._common import (
     DeferredHelp,
     add_pair_arguments,
@@ -184,12 +184,8 @@ def run(args) -> int:
         check_nonnegative(name, value)
         if math.isinf(value):
             raise ValueError(f"{name} must be finite, got {value!r}")
-    if tangential not in ADHESIVE_LAWS and G > 0.0:  # before anything is fitted or written
-        raise ValueError(
-            f"--tangential {tangential} with adhesion (--work-of-adhesion or --surface-energy: G = {G:g} J/m^2) is "
-            "not exported to C: microimpact integrates adhesive impacts of "
-            f"{', '.join(x for x in ADHESIVE_LAWS if x != 'rigid')} only; use one of those, rigid or no adhesion"
-        )
+    # before anything is fitted or written
+    check_adhesive_tangential(tangential, G, "--tangential", "G of --work-of-adhesion or --surface-energy")
     velocities = parse_values(args.velocities, "--velocities") if args.velocities is not None else None
     if velocities is not None:
         check_nonnegative("--velocities", velocities)

@@ -74,7 +74,14 @@ from ..core import hertz
 from ..core import tangential_laws as tl
 from ..core.tangential_stages import SLIP_FACTOR
 
-__all__ = ["OUTCOMES", "AdhesiveObliqueImpact", "adhesive_oblique_impact", "COULOMB_LIMITS", "ADHESIVE_LAWS"]
+__all__ = [
+    "OUTCOMES",
+    "AdhesiveObliqueImpact",
+    "adhesive_oblique_impact",
+    "check_adhesive_tangential",
+    "COULOMB_LIMITS",
+    "ADHESIVE_LAWS",
+]
 
 #: Outcome names.
 OUTCOMES = ("bounce", "stick", "captured rolling", "captured sliding")
@@ -309,6 +316,24 @@ def _separation(model, params, alpha_max, E, R, m, p_y):
     if model.separation_approach is not None:
         return float(model.separation_approach(E, R, m, p_y, params))
     return 0.0
+
+
+def check_adhesive_tangential(
+    tangential, work_of_adhesion, tangential_name="tangential", adhesion_name="work_of_adhesion"
+):
+    """Refuse ``tangential`` where there is adhesion (``work_of_adhesion > 0``, a number) and this integration
+    does not run the law (:data:`ADHESIVE_LAWS`): the one refusal of every caller that integrates adhesive
+    oblique impacts (:func:`microimpact.wall.wall_interaction`, the C wall function of
+    :mod:`microimpact.cexport`, ``microimpact export``), each naming its inputs its own way
+    (``tangential_name``, ``adhesion_name``: the command line's options). Returns ``tangential``."""
+    if work_of_adhesion > 0.0 and tangential not in ADHESIVE_LAWS:
+        runs = ", ".join(repr(x) for x in ADHESIVE_LAWS if x != "rigid")
+        raise ValueError(
+            f"{tangential_name}={tangential!r} with adhesion ({adhesion_name} = {work_of_adhesion:g} J/m^2): "
+            f"adhesive oblique impacts (wall_interaction and the C wall function) are integrated with {runs} "
+            "or 'rigid' only; use one of those or no adhesion"
+        )
+    return tangential
 
 
 def adhesive_law(adhesion=None, params=None, work_of_adhesion=None):
