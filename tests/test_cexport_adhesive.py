@@ -149,7 +149,10 @@ def test_adhesive_source_per_law(monkeypatch):
     monkeypatch.setattr(oblique, "universal_table", lambda k, law="mindlin": full(k, dpsi=0.5, n_x=3, steps=20))
 
     pair_kw = {"effective_modulus": 1.31e9, "limiting_pressure": 156e6, "friction": 0.3, "poisson_ratio": NU}
-    src = generate_c_source(tangential="lammps_linear_history", work_of_adhesion=0.1, **pair_kw)
+    # G > 0 baked in with the additive rule (the default): the whole law is integrated, and said so, as
+    # wall_interaction says it
+    with pytest.warns(DeprecationWarning, match="the whole law it approximates is integrated instead"):
+        src = generate_c_source(tangential="lammps_linear_history", work_of_adhesion=0.1, **pair_kw)
     consts = ", ".join(repr(float(c)) for c in tl.law_parameters(tl.law_code("lammps_linear_history")))
     assert f"microimpact_adh_law[6] = {{{consts}, 0.0}};" in src
     assert "return -3;" not in src and "microimpact__adhesive_wall(v_in, n, w, vn, r, m" in src
@@ -157,7 +160,7 @@ def test_adhesive_source_per_law(monkeypatch):
     assert src.count("microimpact_adh_law[6] = {1.0, 1.0, 1.0, 0.0, 0.5, 1.0};") == 1  # arm r - delta/2, mu |F|
     for law in ("stronge", "mindlin_deresiewicz"):
         assert law not in LAWS
-        with pytest.raises(ValueError, match="not exported"):
+        with pytest.raises(ValueError, match=f"tangential='{law}' with adhesion .* integrated with 'mindlin'"):
             generate_c_source(tangential=law, work_of_adhesion=0.1, **pair_kw)
     src = generate_c_source(tangential="stronge", **pair_kw)  # an adhesive struct: -3, outputs = inputs
     assert "return -3;" in src and "microimpact__adhesive_wall" not in src
@@ -171,6 +174,7 @@ def test_cli_exports_adhesion_with_a_compliant_law(tmp_path, monkeypatch):
     monkeypatch.setattr(oblique, "universal_table", lambda k, law="mindlin": full(k, dpsi=0.5, n_x=3, steps=20))
     args = ["export", "--out", str(tmp_path), "--radius", "5e-6", "--density", "2500", "--effective-modulus", "5e9"]
     args += ["--limiting-pressure", "1e8", "--poisson-ratio", "0.3", "--friction", "0.3"]
-    assert main([*args, "--work-of-adhesion", "0.1", "--tangential", "lammps_mindlin"]) == 0
+    with pytest.warns(DeprecationWarning, match="additive"):  # --adhesion's default, as wall_interaction's
+        assert main([*args, "--work-of-adhesion", "0.1", "--tangential", "lammps_mindlin"]) == 0
     src = (tmp_path / "microimpact_wall.c").read_text()
     assert "microimpact__adhesive_wall" in src and "return -3;" not in src

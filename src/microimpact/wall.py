@@ -637,26 +637,11 @@ def _compliant_impulse_ratio(ut_mag, V, Vy, mu, kappa, law, skip):
 
 def _check_adhesive_oblique(tangential, adhesion, G):
     """Refuse, before anything of size N is made, what the adhesive integration cannot run; the
-    adhesion rule it integrates. The additive rule gives ``e`` but no force history to integrate the
-    tangential contact along: the whole law it approximates is integrated in its place, with a
-    DeprecationWarning (the default rule, so a call of the releases before keeps running)."""
-    import warnings
-
-    from .adhesion import ADDITIVE_RULE, WHOLE_LAW
-    from .oblique.adhesive import check_adhesive_tangential
+    adhesion rule it integrates (:func:`~microimpact.oblique.adhesive.adhesive_rule`)."""
+    from .oblique.adhesive import adhesive_rule, check_adhesive_tangential
 
     check_adhesive_tangential(tangential, G)
-    if adhesion == ADDITIVE_RULE:
-        warnings.warn(
-            f"adhesion={adhesion!r} with work_of_adhesion > 0 and tangential={tangential!r}: the additive rule "
-            f"gives e but no force history to integrate the tangential contact along, so the whole law it "
-            f"approximates is integrated instead; pass adhesion={WHOLE_LAW!r} to say so (the additive rule "
-            "will be refused here in the next release), or tangential='rigid' for the additive rule",
-            DeprecationWarning,
-            stacklevel=3,
-        )
-        return WHOLE_LAW
-    return adhesion
+    return adhesive_rule(adhesion, tangential, stacklevel=4)
 
 
 def _adhesive_oblique(table, vT, nT, wT, d, rho, E, p_y, G, mu, kappa, tangential, adhesion):

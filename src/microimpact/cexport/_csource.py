@@ -270,7 +270,8 @@ def generate_c_source(
         ``E*`` keeps the ``kappa`` given here. With adhesion (a struct whose ``work_of_adhesion`` is
         positive) the compliant function integrates each impact as
         :func:`~microimpact.wall.wall_interaction` does (normal and tangential together under Thornton
-        & Ning's whole adhesive elastic-plastic law, whatever ``adhesion=`` says, as there;
+        & Ning's whole adhesive elastic-plastic law, whatever ``adhesion=`` says, as there, and with
+        ``work_of_adhesion > 0`` given here the additive rule gets the same DeprecationWarning;
         :func:`~microimpact.oblique.adhesive.adhesive_oblique_impact`), the same operations in the same
         order (the tests find the same bits): it returns 0 (bounced, ``*e_n`` the law's restitution) or
         1 (captured, ``*e_n = 0``), and a captured particle's ``v_out`` and ``omega_out`` are the velocity
@@ -330,10 +331,11 @@ def generate_c_source(
     if math.isinf(G) or math.isinf(mu):
         raise ValueError("work_of_adhesion and friction must be finite")
     kappa = _kappa_for_c(pair, E, tangential, poisson_ratio, effective_shear_modulus)
-    if kappa is not None:
-        from ..oblique.adhesive import check_adhesive_tangential
+    if kappa is not None and G > 0.0:  # the C function integrates these impacts (wall_interaction's rule)
+        from ..oblique.adhesive import adhesive_rule, check_adhesive_tangential
 
         check_adhesive_tangential(tangential, G)
+        adhesive_rule(adhesion, tangential)
     label = f"{comment_text(pair.label)}; " if pair is not None and pair.label else ""
     desc = f"{label}E* = {E:.6g} Pa, p_y = {p_y:.6g} Pa, G = {G:.6g} J/m^2, mu = {mu:.6g}"
     if kappa is not None:

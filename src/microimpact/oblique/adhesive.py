@@ -78,6 +78,7 @@ __all__ = [
     "OUTCOMES",
     "AdhesiveObliqueImpact",
     "adhesive_oblique_impact",
+    "adhesive_rule",
     "check_adhesive_tangential",
     "COULOMB_LIMITS",
     "ADHESIVE_LAWS",
@@ -334,6 +335,29 @@ def check_adhesive_tangential(
             "or 'rigid' only; use one of those or no adhesion"
         )
     return tangential
+
+
+def adhesive_rule(adhesion, tangential, stacklevel=3):
+    """The adhesion rule an adhesive oblique impact under ``tangential`` (a compliant law) integrates for
+    the rule asked for, ``adhesion``: that rule, or, for the additive rule, the whole law it approximates,
+    with a DeprecationWarning. The additive rule gives ``e`` but no force history to integrate the
+    tangential contact along; it is the default of :func:`microimpact.wall.wall_interaction` and of the
+    C export, so calls of the releases before keep running (it will be refused there in the next one)."""
+    import warnings
+
+    from ..adhesion import ADDITIVE_RULE, WHOLE_LAW
+
+    if adhesion != ADDITIVE_RULE:
+        return adhesion
+    warnings.warn(
+        f"adhesion={adhesion!r} with work_of_adhesion > 0 and tangential={tangential!r}: the additive rule "
+        f"gives e but no force history to integrate the tangential contact along, so the whole law it "
+        f"approximates is integrated instead; pass adhesion={WHOLE_LAW!r} to say so (the additive rule "
+        "will be refused here in the next release), or tangential='rigid' for the additive rule",
+        DeprecationWarning,
+        stacklevel=stacklevel,
+    )
+    return WHOLE_LAW
 
 
 def adhesive_law(adhesion=None, params=None, work_of_adhesion=None):
