@@ -414,7 +414,11 @@ def wall_interaction(
         raise ValueError("work_of_adhesion and friction must be finite")
     adhesive_oblique = tangential != "rigid" and bool(np.any(G > 0.0))
     if adhesive_oblique:
-        adhesion = _check_adhesive_oblique(tangential, adhesion, float(np.max(G)))
+        from .oblique.adhesive import adhesive_rule, check_adhesive_tangential
+
+        # refused, before anything of size N is made, where the integration does not run the law
+        check_adhesive_tangential(tangential, float(np.max(G)))
+        adhesion = adhesive_rule(adhesion, tangential)
         per += _BYTES_ADHESIVE_OBLIQUE  # known once G is: still before anything of size N is made
         check_memory(N * per, f"wall_interaction of {N} particles", "pass the particles in blocks")
     has_spin = spin is not None
@@ -633,15 +637,6 @@ def _compliant_impulse_ratio(ut_mag, V, Vy, mu, kappa, law, skip):
         sel = (rounded == kap) & ~skip
         F[sel] = universal_table(float(kap), law=law)(psi[sel], np.minimum(x[sel], 1.0))
     return np.where(approaching & (mu > 0.0), F, 0.0)
-
-
-def _check_adhesive_oblique(tangential, adhesion, G):
-    """Refuse, before anything of size N is made, what the adhesive integration cannot run; the
-    adhesion rule it integrates (:func:`~microimpact.oblique.adhesive.adhesive_rule`)."""
-    from .oblique.adhesive import adhesive_rule, check_adhesive_tangential
-
-    check_adhesive_tangential(tangential, G)
-    return adhesive_rule(adhesion, tangential, stacklevel=4)
 
 
 def _adhesive_oblique(table, vT, nT, wT, d, rho, E, p_y, G, mu, kappa, tangential, adhesion):

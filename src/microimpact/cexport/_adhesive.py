@@ -351,23 +351,13 @@ static double microimpact_adh_radius(const microimpact_adh_pair *t, double alpha
 static void microimpact_adh_outcome(const microimpact_adh_pair *t, double V, double *e, double *a_max, double *tL)
 {
     double E = t->E, R = t->R, m = t->m, s = t->s, b0 = t->b0, bY = t->bY;
-    double bF = pow(0.5 * R * s, 1.0 / 3.0), Kin = 0.5 * m * V * V, KY, G0, Wl, bm, f, d, step;
+    double bF = pow(0.5 * R * s, 1.0 / 3.0), Kin = 0.5 * m * V * V, KY, Wl, bm;
     double bs, Ps, Rp, bs2, bf, Wr, t1, W, total, w, b, q;
     int i;
     KY = bY == INFINITY ? INFINITY : (bY - b0) * microimpact_adh_work_difference(bY, b0, E, R, s);
     if (Kin <= KY) {  /* the elastic adhesive impact (_jkr.impact) */
-        G0 = microimpact_adh_work_integral(b0, E, R, s);
-        Wl = microimpact_adh_work_integral(bF, E, R, s) - G0;
-        bm = b0;
-        while (microimpact_adh_work_integral(bm, E, R, s) - G0 < Kin) bm *= 1.5;
-        for (i = 0; i < 200; i++) {
-            f = microimpact_adh_work_integral(bm, E, R, s) - G0 - Kin;
-            d = microimpact_adh_force_b(bm, E, R, s) * (4.0 * bm * bm * bm / R - 2.0 * s);
-            step = f / d;
-            bm -= step;
-            if (fabs(step) <= 1e-16 * bm) break;
-        }
-        if (bm < b0) bm = b0;
+        Wl = microimpact_adh_work_integral(bF, E, R, s) - microimpact_adh_work_integral(b0, E, R, s);
+        bm = microimpact_adh_jkr_turning_point(Kin, b0, E, R, s);
         *a_max = (bm * bm) * (bm * bm) / R - 2.0 * s * bm;
         *tL = bm > b0 ? microimpact_adh_time_to_top(b0, bm, E, R, m, s) : 0.0;
         *e = Kin <= Wl ? 0.0 : sqrt(1.0 - Wl / Kin);

@@ -99,11 +99,6 @@ E3_9 = -0.1521609496625161
 E3_10 = 0.20136540080403034
 E3_11 = 0.02265179219836082
 
-#: The weights above as tuples over the stages they use (0 and 5 to 11, in that order).
-B = (B0, B5, B6, B7, B8, B9, B10, B11)
-E5 = (E5_0, E5_5, E5_6, E5_7, E5_8, E5_9, E5_10, E5_11)
-E3 = (E3_0, E3_5, E3_6, E3_7, E3_8, E3_9, E3_10, E3_11)
-
 
 @jitable
 def step(rates, x, v, w, h, p):
