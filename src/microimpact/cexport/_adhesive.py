@@ -17,7 +17,7 @@ same bits: the Python path calls the C library's ``atan2``, ``cos`` and ``sin`` 
 ``hypot`` through numpy, and ``pow`` where numba or Python raise to a power (the tests measure it).
 
 The constants come from their Python homes (the tangential law's ``(c_load, c_unload, factor,
-linear, lam)`` from :func:`microimpact.core.tangential_laws.law_parameters`, the Gauss-Legendre rule,
+linear, lam, limit_mode)`` from :func:`microimpact.oblique.adhesive.law_constants`, the Gauss-Legendre rule,
 ``B(2/5, 1/2)``, the step counts and the rest tolerance), not retyped.
 """
 
@@ -56,19 +56,6 @@ def adhesive_laws():
     return tuple(law for law in ADHESIVE_LAWS if law != "rigid")
 
 
-def _law_constants(law):
-    """``(c_load, c_unload, factor, linear, lam, limit_mode)`` of ``law`` as the Python integration takes
-    them (:func:`~microimpact.oblique.adhesive.adhesive_oblique_impact`: ``"mindlin"`` is LAMMPS'
-    ``mindlin_rescale/force``; the Coulomb limit of the whole normal force, 1, for LIGGGHTS's law, else
-    the adhesive one, 0)."""
-    from ..core import tangential_laws as tl
-
-    name = "lammps_mindlin_rescale_force" if law == "mindlin" else law
-    c_load, c_unload, factor, linear, lam = tl.law_parameters(tl.law_code(name))
-    limit_mode = 1.0 if law == "liggghts_history" else 0.0
-    return c_load, c_unload, factor, linear, lam, limit_mode
-
-
 def _c_list(values):
     return ",\n    ".join(", ".join(repr(float(v)) for v in values[i : i + 4]) for i in range(0, len(values), 4))
 
@@ -91,7 +78,7 @@ def adhesive_c_source(law) -> str:
     for key, value in (
         ("@LAW@", law),
         ("@WHOLE_LAW@", WHOLE_LAW),
-        ("@LAWCONST@", ", ".join(repr(float(c)) for c in _law_constants(law))),
+        ("@LAWCONST@", ", ".join(repr(float(c)) for c in adh.law_constants(law))),
         ("@THIRD@", repr(1.0 / 3.0)),
         ("@BETA@", repr(float(BETA_25_12))),
         ("@STEPS@", repr(float(steps))),
@@ -112,7 +99,7 @@ _C_ADHESIVE = r"""
  * Python function of the same name there, translated expression by expression (the same operations in
  * the same order).
  * Tangential law @LAW@: (c_load, c_unload, factor, linear, lam, limit_mode) of
- * microimpact.core.tangential_laws.law_parameters; limit_mode 0: Coulomb limit mu |F + 2 F_c|,
+ * microimpact.oblique.adhesive.law_constants; limit_mode 0: Coulomb limit mu |F + 2 F_c|,
  * 1: mu |F| (LIGGGHTS).
  */
 static const double microimpact_adh_law[6] = {@LAWCONST@};

@@ -319,6 +319,25 @@ def _separation(model, params, alpha_max, E, R, m, p_y):
     return 0.0
 
 
+def default_coulomb(tangential):
+    """The Coulomb limit (:data:`COULOMB_LIMITS`) of ``tangential``'s code: ``"load"`` for LIGGGHTS'
+    ``"liggghts_history"``, ``"adhesive"`` for the others (module docstring)."""
+    return "load" if tangential == "liggghts_history" else "adhesive"
+
+
+def law_constants(tangential, coulomb=None):
+    """``(c_load, c_unload, factor, linear, lam, limit_mode)`` the integration takes for the compliant
+    ``tangential`` (one of :data:`ADHESIVE_LAWS` but ``"rigid"``; ``"mindlin"`` is LAMMPS'
+    ``mindlin_rescale/force``) from :func:`~microimpact.core.tangential_laws.law_parameters`, and the
+    Coulomb limit's mode: 0 for ``"adhesive"`` (``mu |F + 2 F_c|``), 1 for ``"load"`` (``mu |F|``);
+    ``coulomb`` None: the law's own (module docstring). The C wall function bakes in the same."""
+    if coulomb is None:
+        coulomb = default_coulomb(tangential)
+    law = "lammps_mindlin_rescale_force" if tangential == "mindlin" else tangential
+    c_load, c_unload, factor, linear, lam = tl.law_parameters(tl.law_code(law))
+    return c_load, c_unload, factor, linear, lam, 0.0 if coulomb == "adhesive" else 1.0
+
+
 def check_adhesive_tangential(
     tangential, work_of_adhesion, tangential_name="tangential", adhesion_name="work_of_adhesion"
 ):
@@ -444,7 +463,7 @@ def adhesive_oblique_impact(
     if tangential not in ADHESIVE_LAWS:
         raise ValueError(f"tangential must be one of {ADHESIVE_LAWS}, got {tangential!r}")
     if coulomb is None:
-        coulomb = "load" if tangential == "liggghts_history" else "adhesive"
+        coulomb = default_coulomb(tangential)
     if coulomb not in COULOMB_LIMITS:
         raise ValueError(f"coulomb must be one of {COULOMB_LIMITS}, got {coulomb!r}")
     mod = _models.get(model)
@@ -489,8 +508,7 @@ def adhesive_oblique_impact(
     else:
         if kappa is None or not (0.0 < float(kappa) < math.inf):
             raise ValueError(f"kappa must be positive and finite for tangential={tangential!r}, got {kappa!r}")
-        law = "lammps_mindlin_rescale_force" if tangential == "mindlin" else tangential
-        c_load, c_unload, factor, linear, lam = tl.law_parameters(tl.law_code(law))
+        c_load, c_unload, factor, linear, lam, limit_mode = law_constants(tangential, coulomb)
         k_lin = 0.0
         if linear:
             if tangential_stiffness is None or not (0.0 < float(tangential_stiffness) < math.inf):
@@ -499,7 +517,6 @@ def adhesive_oblique_impact(
         kG = factor * 2.0 * float(kappa) * E  # 8 G* = 2 kappa E*
         run = _kernel(mod)
         zero_end = bool(mod.ends_at_zero_force(params)) if mod.ends_at_zero_force is not None else False
-        limit_mode = 0.0 if coulomb == "adhesive" else 1.0
         for k, idx in enumerate(np.ndindex(shape)):
             am = float(amax_all[idx])
             Fc = elastic_fc if elastic_fc is not None else _pulloff(mod, params, am, E, R, m, p_y)
