@@ -41,14 +41,15 @@ def peak_rss(argv, cwd) -> int:
     return int(out.stdout.strip().splitlines()[-1])
 
 
-def growth(argv_of, small, large, cwd, repeat=1) -> float:
+def growth(argv_of, small, large, cwd, repeat=1, warm=None) -> float:
     """Bytes of peak RSS per item between ``small`` and ``large`` items, both measured with the compiled
     loops on disk: a first run warms the cache (numba's compiler held 80 MB more at its peak, which a
     cold cache charged to whichever size ran first: 70 bytes a point instead of 25 in a CSV sweep).
     Each size's peak is the least of ``repeat`` runs, taken in turn: where threads overlap the stages
     (a sweep's blocks), the peak depends on their timing, and on a loaded host it varied by 27 MB
-    between runs of the same sweep, 16 bytes a point of the difference."""
-    peak_rss(argv_of(small), cwd)
+    between runs of the same sweep, 16 bytes a point of the difference. ``warm`` items (default
+    ``small``) warm the cache: enough for the threaded compiled loop the measured runs use."""
+    peak_rss(argv_of(warm or small), cwd)
     peaks = {small: [], large: []}
     for _ in range(repeat):
         for n in peaks:
@@ -73,8 +74,10 @@ def test_stick_memory_per_diameter(tmp_path):
     def argv(n):
         return ["stick", "-G", "0.1", f"1e-7:1e-5:{n}", "--json", "--out", f"s{n}.csv"]
 
-    # both sizes above the writers' blocks (at most 65,536 rows), whose fixed cost is not per diameter
-    per_diameter = growth(argv, 70_000, 200_000, tmp_path)
+    # both sizes above the writers' blocks (at most 65,536 rows), whose fixed cost is not per diameter;
+    # 4,096 diameters run the threaded loop (above engine.SMALL, and each diameter's root search costs
+    # more than engine.PARALLEL_WORK / 2,048)
+    per_diameter = growth(argv, 70_000, 140_000, tmp_path, warm=4096)
     # the diameters, radii, masses and two laws' two results (64 bytes); the code before about 700
     assert per_diameter < 250, f"{per_diameter:.0f} bytes a diameter"
 

@@ -27,10 +27,11 @@ _spec = importlib.util.spec_from_file_location("interrupt_soak", ROOT / "benchma
 soak = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(soak)
 
-# 15 per command; the benchmark runs 1,000. It was 30 per command: on a host that runs a Python loop at half
-# the speed of the one it was sized on, the soak took 600 s of a 850 s suite split over two workers, and CI
-# 1,030-1,130 s of its 1,200 with 20 per command (``MICROIMPACT_SOAK_RUNS=210`` runs it at the old size)
-RUNS = int(os.environ.get("MICROIMPACT_SOAK_RUNS", "105"))
+# 10 per command; the benchmark runs 1,000. At 15 per command the soak took 340 s of a 900 s suite split
+# over two workers, and CI 1,068 s of its 1,200; the moments it found wanting (a signal during numba's
+# import, at the first instant) are each held by a deterministic test since (``test_interrupt_steps``,
+# ``test_a_signal_at_the_first_moment``). ``MICROIMPACT_SOAK_RUNS=210`` runs it at 30 per command.
+RUNS = int(os.environ.get("MICROIMPACT_SOAK_RUNS", "70"))
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc/PID/status")
@@ -38,7 +39,7 @@ RUNS = int(os.environ.get("MICROIMPACT_SOAK_RUNS", "105"))
 def test_interrupt_soak():
     results = soak.soak(RUNS, workers=2, seed=24)
     s = soak.summary(results)
-    assert s["runs"] == RUNS >= 105
+    assert s["runs"] == RUNS >= 70
     assert s["failed"] == 0, "\n".join(map(str, s["failures"]))  # whole, not cut by pytest
     # Most signals came while the commands worked. The moment is drawn over each command's duration as
     # measured before the soak; on a shared two-core host the suite's other worker makes a command faster

@@ -86,7 +86,7 @@ def test_no_handler_no_callback():
     assert not _atomic.busy()
 
 
-@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+@pytest.mark.parametrize("sig", [pytest.param(signal.SIGINT, marks=pytest.mark.needs_sigint), signal.SIGTERM])
 def test_a_signal_while_numba_initialises_its_dispatcher(tmp_path, sig):
     """numba's ``_dispatcher`` extension imports ``numba._devicearray`` in its initialisation and, when
     that import fails, prints the exception (C's ``PyErr_Print``, through :data:`sys.excepthook`) before

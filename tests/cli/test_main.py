@@ -6,7 +6,9 @@ base pair, bad chunk specifications): each raises ValueError naming the paramete
 
 import runpy
 import signal
+import subprocess
 import sys
+import warnings
 
 import numpy as np
 import pytest
@@ -34,14 +36,20 @@ def test_python_dash_m_runs_the_command(monkeypatch, capsys):
 
 def test_a_command_gives_back_the_hooks_it_set(capsys):
     # the command line silences the interrupt's tracebacks while a command runs, and only then
-    hooks = (sys.excepthook, sys.unraisablehook, signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM))
+    def now():
+        return (
+            sys.excepthook,
+            sys.unraisablehook,
+            signal.getsignal(signal.SIGINT),
+            signal.getsignal(signal.SIGTERM),
+            warnings.formatwarning,
+            warnings.showwarning,
+            list(warnings.filters),
+        )
+
+    hooks = now()
     assert main(["impact", "50"]) == 0
-    assert (
-        sys.excepthook,
-        sys.unraisablehook,
-        signal.getsignal(signal.SIGINT),
-        signal.getsignal(signal.SIGTERM),
-    ) == hooks
+    assert now() == hooks
     capsys.readouterr()
 
 
@@ -59,6 +67,20 @@ def test_usage_error_is_one_line_pointing_to_help(capsys):
 def test_warnings_are_one_short_line():
     text = cli._short_warning("outside the small-strain range", UserWarning, "f.py", 1)
     assert text == "warning: outside the small-strain range\n"
+
+
+def test_a_deprecation_reaches_the_command_line(tmp_path):
+    # Python's default filters hide a DeprecationWarning raised outside __main__: the command shows
+    # microimpact's own, once, on one line (here the additive rule with a compliant tangential law)
+    argv = ["export", "--out", "out", "--work-of-adhesion", "0.1", "--tangential", "mindlin"]
+    argv += ["--poisson-ratio", "0.3", "--friction", "0.3", "--velocities", "1,10"]
+    proc = subprocess.run(
+        [sys.executable, "-m", "microimpact", *argv], cwd=tmp_path, capture_output=True, text=True, timeout=120
+    )
+    assert proc.returncode == 0, proc.stderr
+    lines = proc.stderr.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("warning: adhesion='additive'"), proc.stderr
+    assert "adhesion='thornton_ning_1998_adhesive_plastic'" in lines[0]
 
 
 def test_broken_pipe_is_a_quiet_success(monkeypatch):

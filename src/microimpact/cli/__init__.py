@@ -173,7 +173,6 @@ def _main(argv):
     if not getattr(args, "func", None):
         parser.print_help()
         return 2
-    warnings.formatwarning = _short_warning
     prefix = f"microimpact {args.command}"
     _interrupt.set_prefix(prefix)
     stdout = sys.stdout
@@ -186,12 +185,20 @@ def _main(argv):
 
     try:
         sys.stdout = _NamedStdout(stdout)
+        format_before = warnings.formatwarning
         try:
-            with commit_check(_interrupt.check):  # a swallowed interrupt stops the command before its outputs appear
+            # a swallowed interrupt stops the command before its outputs appear
+            with warnings.catch_warnings(), commit_check(_interrupt.check):
+                # while the command runs: each warning on one short line, and microimpact's deprecations
+                # shown (Python's default filters show a DeprecationWarning only where __main__ calls the
+                # deprecated name, never to the person at the command line)
+                warnings.formatwarning = _short_warning
+                warnings.filterwarnings("default", category=DeprecationWarning, module="microimpact")
                 rc = args.func(args)
             sys.stdout.flush()
         finally:
             sys.stdout = stdout
+            warnings.formatwarning = format_before
         _interrupt.check()  # an interrupt whose exception was swallowed on the way (in a __del__, a callback)
     except KeyboardInterrupt:
         raise
