@@ -23,6 +23,7 @@ __all__ = [
     "time_to_top",
     "time_tensile",
     "hertz_impact",
+    "turning_point",
     "impact",
     "law_outcome",
     "law_restitution",
@@ -133,15 +134,9 @@ def restitution(V, E, R, m, s, b0, bF):
 
 
 @jitable
-def impact(V, E, R, m, s, b0, bF):
-    """The 18-tuple outcome of an impact on the JKR curve of ``s``, from contact at ``b0`` to breaking at ``bF``.
-
-    Maximum approach from the energy balance ``G(b_m) - G(b_0) = 1/2 m* V^2`` (Newton from above),
-    ``e = (1 - W/K)^(1/2)`` with ``W = G(b_F) - G(b_0)`` the work lost (0 and an infinite time when
-    the particle sticks), loading and unloading times by the quadratures above.
-    """
-    n = math.nan
-    K, G0, W = _energies(V, E, R, m, s, b0, bF)
+def turning_point(K, G0, b0, E, R, s):
+    """``b_m`` where the loading work from ``b_0`` equals ``K``: ``G(b_m) - G_0 = K``, ``G_0 = G(b_0)``
+    (Newton from above, the bracket grown from ``b_0``; not clipped to ``b_0``)."""
     bm = b0
     while work_integral(bm, E, R, s) - G0 < K:
         bm *= 1.5
@@ -152,6 +147,20 @@ def impact(V, E, R, m, s, b0, bF):
         bm -= step
         if abs(step) <= 1e-16 * bm:
             break
+    return bm
+
+
+@jitable
+def impact(V, E, R, m, s, b0, bF):
+    """The 18-tuple outcome of an impact on the JKR curve of ``s``, from contact at ``b0`` to breaking at ``bF``.
+
+    Maximum approach from the energy balance ``G(b_m) - G(b_0) = 1/2 m* V^2`` (Newton from above),
+    ``e = (1 - W/K)^(1/2)`` with ``W = G(b_F) - G(b_0)`` the work lost (0 and an infinite time when
+    the particle sticks), loading and unloading times by the quadratures above.
+    """
+    n = math.nan
+    K, G0, W = _energies(V, E, R, m, s, b0, bF)
+    bm = turning_point(K, G0, b0, E, R, s)
     if bm < b0:
         bm = b0
     a_max = (bm * bm) * (bm * bm) / R - 2.0 * s * bm

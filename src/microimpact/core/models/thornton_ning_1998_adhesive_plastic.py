@@ -219,23 +219,6 @@ def _plastic_turning_point(K2, E, R, p_y, s, bY, PY, K):
 
 
 @jitable
-def _jkr_turning_point(Kin, b0, E, R, s):
-    """``b_m`` where the JKR loading work from ``b_0`` equals ``Kin`` (as in :func:`_jkr.impact`)."""
-    G0 = _jkr.work_integral(b0, E, R, s)
-    bm = b0
-    while _jkr.work_integral(bm, E, R, s) - G0 < Kin:
-        bm *= 1.5
-    for _ in range(200):
-        f = _jkr.work_integral(bm, E, R, s) - G0 - Kin
-        d = _force_b(bm, E, R, s) * (4.0 * bm * bm * bm / R - 2.0 * s)
-        step = f / d
-        bm -= step
-        if abs(step) <= 1e-16 * bm:
-            break
-    return max(bm, b0)
-
-
-@jitable
 def unloading_radius_b(bs, Ps, E, R, s):
     """``R_p = R* P_1*/(P* + (4 P_c P_1*)^(1/2))`` [m] (eq. 76) at ``b* = a*^(1/2)``, ``P*``:
     ``(4 E* a*^3/3) / (P* + 4 E* s a*^(3/2))``."""
@@ -309,7 +292,8 @@ def outcome(V, E, R, m, p_y, params):
     Wr = (bs - bf) * _wd(bs, bf, E, Rp, s)
     # loading times: JKR stage (difference of two times to the elastic turning point), plastic stage
     if bY > b0:
-        bm = _jkr_turning_point(Kin, b0, E, R, s)
+        # the elastic turning point the JKR stage would reach (as in _jkr.impact), from which both times count
+        bm = max(_jkr.turning_point(Kin, _jkr.work_integral(b0, E, R, s), b0, E, R, s), b0)
         t1 = _jkr.time_to_top(b0, bm, E, R, m, s) - _jkr.time_to_top(bY, bm, E, R, m, s)
     else:
         t1 = 0.0
