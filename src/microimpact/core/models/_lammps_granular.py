@@ -51,6 +51,7 @@ import math
 
 from .. import dop853 as dp
 from .._jit import jitable
+from ..roots import illinois, secant_point
 from ._common import dem_outcome, nan_outcome
 from .hertz_tsuji import alpha_coeff_restitution, alpha_tsuji
 from .jkr_elastic_adhesive import WORK_CONSTANT, contact_radius, pulloff_approach
@@ -164,25 +165,12 @@ def _locate(which, sign, x, v, w, h, xh, vh, kind, mode, factor, E, R, m, gamma,
     gb = sign * _event(which, xh, vh, x_sep)
     side = 0
     for _ in range(200):
-        s = (a * gb - b * ga) / (gb - ga)
-        if not (s > a and s < b):
-            s = 0.5 * (a + b)
+        s = secant_point(a, b, ga, gb)
         xs, vs, _, _ = _step(x, v, w, s, kind, mode, factor, E, R, m, gamma, sx, sv)
         gs = sign * _event(which, xs, vs, x_sep)
         if gs == 0.0:
             return s
-        if gs > 0.0:
-            a = s
-            ga = gs
-            if side == -1:
-                gb *= 0.5
-            side = -1
-        else:
-            b = s
-            gb = gs
-            if side == 1:
-                ga *= 0.5
-            side = 1
+        a, b, ga, gb, side = illinois(a, b, ga, gb, side, s, gs)
         if b - a <= 1e-15 * b:
             break
     return b

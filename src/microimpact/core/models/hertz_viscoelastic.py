@@ -59,6 +59,7 @@ import math
 from .. import dop853 as dp
 from .. import hertz
 from .._jit import jitable
+from ..roots import illinois, secant_point
 from . import LIMIT_FORCE, Parameter, checks, deprecated_names
 from ._common import dem_outcome, in_bounds, nan_outcome
 
@@ -149,25 +150,12 @@ def _locate(which, x, v, h, xh, vh, kappa, q):
     gb = _event(which, xh, vh, kappa, q)
     side = 0
     for _ in range(200):
-        s = (a * gb - b * ga) / (gb - ga)
-        if not (s > a and s < b):
-            s = 0.5 * (a + b)
+        s = secant_point(a, b, ga, gb)
         xs, vs, _ = _step(x, v, s, kappa, q)
         gs = _event(which, xs, vs, kappa, q)
         if gs == 0.0:  # the root itself (else the secant would return s again and only bisect)
             return s
-        if gs > 0.0:
-            a = s
-            ga = gs
-            if side == -1:
-                gb *= 0.5
-            side = -1
-        else:
-            b = s
-            gb = gs
-            if side == 1:
-                ga *= 0.5
-            side = 1
+        a, b, ga, gb, side = illinois(a, b, ga, gb, side, s, gs)
         if b - a <= 1e-14 * (b if b > 1e-300 else 1.0):
             break
     return b

@@ -71,6 +71,7 @@ import math
 from .. import dop853 as dp
 from .. import hertz
 from .._jit import jitable
+from ..roots import illinois, secant_point
 from . import Parameter, checks
 from ._common import dem_outcome, in_bounds, nan_outcome
 
@@ -232,25 +233,12 @@ def _locate(which, level, x, v, h, xh, vh, amax, E, R, m, params, L, V, c):
     gb = _event(which, xh, vh, level)
     side = 0
     for _ in range(200):
-        s = (a * gb - b * ga) / (gb - ga)
-        if not (s > a and s < b):
-            s = 0.5 * (a + b)
+        s = secant_point(a, b, ga, gb)
         xs, vs, _ = _step(x, v, s, amax, E, R, m, params, L, V, c)
         gs = _event(which, xs, vs, level)
         if gs == 0.0:
             return s
-        if gs > 0.0:
-            a = s
-            ga = gs
-            if side == -1:
-                gb *= 0.5
-            side = -1
-        else:
-            b = s
-            gb = gs
-            if side == 1:
-                ga *= 0.5
-            side = 1
+        a, b, ga, gb, side = illinois(a, b, ga, gb, side, s, gs)
         if b - a <= 1e-14 * (b if b > 1e-300 else 1.0):
             break
     return b

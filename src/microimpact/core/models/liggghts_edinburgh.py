@@ -95,6 +95,7 @@ from __future__ import annotations
 import math
 
 from .._jit import jitable
+from ..roots import illinois
 from . import LIMIT_FORCE, Parameter, checks
 from ._common import dem_outcome, in_bounds, nan_outcome
 
@@ -415,18 +416,7 @@ def _locate(which, a, v, wc, wd, h, phase, c, ds):
         g = _event(which, an, vn, phase, c, ds)
         if g == 0.0:
             return s
-        if g > 0.0:
-            lo = s
-            g_lo = g
-            if side == -1:
-                g_hi *= 0.5
-            side = -1
-        else:
-            hi = s
-            g_hi = g
-            if side == 1:
-                g_lo *= 0.5
-            side = 1
+        lo, hi, g_lo, g_hi, side = illinois(lo, hi, g_lo, g_hi, side, s, g)
         if hi - lo <= 1e-15 * h:
             break
     return hi
