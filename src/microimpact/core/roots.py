@@ -1,6 +1,6 @@
 """The Illinois method's two moves, shared by the integrators that locate an event inside one of
 their own steps (the zero of the event function in the step length, re-stepping from the step's
-start) and by root searches on a speed.
+start).
 
 The root is bracketed by ``a < b`` with ``g(a) > 0 > g(b)``: the functions that use these are
 written to fall through zero. :func:`secant_point` is the regula falsi point of the bracket, or its
