@@ -1,10 +1,13 @@
-"""Steps a signal must not cut: numba building or loading a compiled function.
+"""Steps a signal must not cut: numba building or loading a compiled function, and xarray creating a
+NetCDF file.
 
 Python runs a signal handler between any two bytecodes, and numba compiles (or loads from its cache)
 in Python, through llvmlite. An exception raised there by a handler can leave an LLVM object owned
 twice, half handed over: its later release frees it twice and the process aborts ("free(): double
-free detected"), where an interrupted command should end with one line. The library marks such
-steps with :func:`step` and changes nothing else in the process. A program whose handler raises (the
+free detected"), where an interrupted command should end with one line. xarray takes its NetCDF file
+lock in Python too: an exception raised between an acquire and the ``try`` that releases it leaves
+the lock held, and the next acquire waits for ever. The library marks such steps with :func:`step`
+and changes nothing else in the process. A program whose handler raises (the
 command line, :mod:`microimpact.cli._interrupt`) asks :func:`busy` there and, while a step runs in the
 main thread, only remembers the signal; the callbacks given to :func:`on_leave` run when the step
 ends, and raise it then. The delay is the step's: a compilation takes seconds, a load from the cache

@@ -109,3 +109,32 @@ sys.exit(console_main())
     lines = proc.stderr.strip().splitlines()
     assert len(lines) == 1 and "interrupted" in lines[0], proc.stderr
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("sig", [pytest.param(signal.SIGINT, marks=pytest.mark.needs_sigint), signal.SIGTERM])
+def test_a_signal_while_xarray_creates_the_netcdf_file_waits_for_it(tmp_path, sig):
+    """xarray takes its NetCDF file lock in Python while it creates the file: an interrupt raised
+    between an acquire and the release left the lock held, and a sweep of the 1,000-run soak then
+    waited for ever on it. The signal is sent as that call starts; it must be raised when the call
+    has returned (the step), and the command end with one line and no file."""
+    driver = f"""
+import os, signal, sys
+import xarray as xr
+create = xr.Dataset.to_netcdf
+def to_netcdf(self, *args, **kwargs):
+    if kwargs.get("compute") is False:
+        os.kill(os.getpid(), {int(sig)})
+        delayed = create(self, *args, **kwargs)
+        sys.stderr.write("created\\n")
+        return delayed
+    return create(self, *args, **kwargs)
+xr.Dataset.to_netcdf = to_netcdf
+from microimpact.cli import console_main
+sys.argv = ["microimpact", "sweep", "--velocity", "1:120:2000", "--out", "out.nc", "--chunks", "200", "-q"]
+sys.exit(console_main())
+"""
+    proc = subprocess.run([sys.executable, "-c", driver], cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 128 + int(sig), proc.stderr
+    lines = [ln for ln in proc.stderr.strip().splitlines() if not ln.startswith("warning:")]
+    assert len(lines) == 2 and lines[0] == "created" and "interrupted" in lines[1], proc.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == []

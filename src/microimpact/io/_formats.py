@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .. import _atomic
 from ._files import atomic_write, check_output_path, naming_errors, replacing, resolve_link
 from ._memory import progress_bar
 
@@ -360,7 +361,13 @@ def write_netcdf(ds, path, *, engine=None, progress=False):
             if not ds.chunks:
                 ds.to_netcdf(tmp, engine=engine)
             else:
-                delayed = ds.to_netcdf(tmp, engine=engine, compute=False)
+                # Creating the file, its dimensions and variables takes xarray's file lock in Python:
+                # an exception raised between an acquire and the try that releases it (a signal's,
+                # raised there or in a file manager's __del__ running meanwhile) left the lock held,
+                # and the next acquire waited for ever. A step (milliseconds) is not cut: a signal
+                # during it is raised when it ends (microimpact._atomic).
+                with _atomic.step():
+                    delayed = ds.to_netcdf(tmp, engine=engine, compute=False)
                 bar = contextlib.nullcontext()
                 if progress:
                     from .._optional import require
