@@ -264,6 +264,7 @@ static double microimpact_adh_plastic_turning_point(const microimpact_adh_pair *
     return b;
 }
 
+/* microimpact.core.models._jkr.turning_point with G_0 = work_integral(b0) */
 static double microimpact_adh_jkr_turning_point(double Kin, double b0, double E, double R, double s)
 {
     double G0 = microimpact_adh_work_integral(b0, E, R, s), bm = b0, f, d, step;

@@ -136,7 +136,7 @@ def restitution(V, E, R, m, s, b0, bF):
 @jitable
 def turning_point(K, G0, b0, E, R, s):
     """``b_m`` where the loading work from ``b_0`` equals ``K``: ``G(b_m) - G_0 = K``, ``G_0 = G(b_0)``
-    (Newton from above, the bracket grown from ``b_0``; not clipped to ``b_0``)."""
+    (Newton from above, the bracket grown from ``b_0``), at least ``b_0``."""
     bm = b0
     while work_integral(bm, E, R, s) - G0 < K:
         bm *= 1.5
@@ -147,6 +147,8 @@ def turning_point(K, G0, b0, E, R, s):
         bm -= step
         if abs(step) <= 1e-16 * bm:
             break
+    if bm < b0:
+        bm = b0
     return bm
 
 
@@ -161,8 +163,6 @@ def impact(V, E, R, m, s, b0, bF):
     n = math.nan
     K, G0, W = _energies(V, E, R, m, s, b0, bF)
     bm = turning_point(K, G0, b0, E, R, s)
-    if bm < b0:
-        bm = b0
     a_max = (bm * bm) * (bm * bm) / R - 2.0 * s * bm
     p_max = force_b(bm, E, R, s)
     t_load = time_to_top(b0, bm, E, R, m, s) if bm > b0 else 0.0

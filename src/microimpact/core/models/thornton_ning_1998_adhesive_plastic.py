@@ -293,7 +293,7 @@ def outcome(V, E, R, m, p_y, params):
     # loading times: JKR stage (difference of two times to the elastic turning point), plastic stage
     if bY > b0:
         # the elastic turning point the JKR stage would reach (as in _jkr.impact), from which both times count
-        bm = max(_jkr.turning_point(Kin, _jkr.work_integral(b0, E, R, s), b0, E, R, s), b0)
+        bm = _jkr.turning_point(Kin, _jkr.work_integral(b0, E, R, s), b0, E, R, s)
         t1 = _jkr.time_to_top(b0, bm, E, R, m, s) - _jkr.time_to_top(bY, bm, E, R, m, s)
     else:
         t1 = 0.0
